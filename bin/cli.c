@@ -1,0 +1,202 @@
+/* Messages, allocation and output checks for the tools (sbase style). */
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli.h"
+
+const char *argv0 = "reflect";
+
+void
+cli_init(int argc, char **argv)
+{
+	const char *slash;
+
+	if (argc > 0 && argv[0]) {
+		slash = strrchr(argv[0], '/');
+		argv0 = slash ? slash + 1 : argv[0];
+		if (!strncmp(argv0, "lt-", 3))
+			argv0 += 3; /* libtool's uninstalled wrapper */
+	}
+	/* A closed downstream pipe ends us quietly, even when a parent
+	 * process left SIGPIPE ignored. */
+	signal(SIGPIPE, SIG_DFL);
+}
+
+static void
+vmessage(const char *fmt, va_list ap)
+{
+	size_t n = strlen(fmt);
+	int e = errno;
+
+	fprintf(stderr, "%s: ", argv0);
+	vfprintf(stderr, fmt, ap);
+	if (n && fmt[n - 1] == ':')
+		fprintf(stderr, " %s", strerror(e));
+	fputc('\n', stderr);
+}
+
+void
+die(const char *fmt, ...)
+{
+	va_list ap;
+
+	va_start(ap, fmt);
+	vmessage(fmt, ap);
+	va_end(ap);
+	exit(EXIT_BAD_INPUT);
+}
+
+void
+die_sys(const char *fmt, ...)
+{
+	va_list ap;
+
+	va_start(ap, fmt);
+	vmessage(fmt, ap);
+	va_end(ap);
+	exit(EXIT_SYSTEM);
+}
+
+void
+die_status(int status, const char *msg)
+{
+	if (status == RF_EIO && errno == EPIPE)
+		exit(EXIT_SYSTEM); /* downstream closed: no message */
+	fprintf(stderr, "%s: %s\n", argv0, msg && *msg ? msg : rf_strerror(status));
+	exit(status == RF_EIO || status == RF_ENOMEM ? EXIT_SYSTEM : EXIT_BAD_INPUT);
+}
+
+void
+warn(const char *fmt, ...)
+{
+	va_list ap;
+
+	va_start(ap, fmt);
+	vmessage(fmt, ap);
+	va_end(ap);
+}
+
+void *
+emalloc(size_t n)
+{
+	void *p = malloc(n ? n : 1);
+
+	if (!p)
+		die_sys("out of memory (%zu bytes)", n);
+	return p;
+}
+
+void *
+ecalloc(size_t n, size_t size)
+{
+	void *p = calloc(n ? n : 1, size ? size : 1);
+
+	if (!p)
+		die_sys("out of memory (%zu x %zu bytes)", n, size);
+	return p;
+}
+
+char *
+estrdup(const char *s)
+{
+	char *p = strdup(s);
+
+	if (!p)
+		die_sys("out of memory");
+	return p;
+}
+
+void
+fshut(FILE *fp, const char *name)
+{
+	int err = fflush(fp) != 0 || ferror(fp);
+	int e = errno;
+
+	if (fclose(fp) != 0 && !err) {
+		err = 1;
+		e = errno;
+	}
+	if (!err)
+		return;
+	if (e == EPIPE)
+		exit(EXIT_SYSTEM);
+	errno = e;
+	die_sys("cannot write '%s':", name);
+}
+
+void
+print_version(void)
+{
+	printf("%s (reflect) %s\nlibreflect %s\nplugin ABI %d.%d\n", argv0,
+	       RF_VERSION_STRING, rf_version_string(), RF_PLUGIN_ABI_MAJOR,
+	       RF_PLUGIN_ABI_MINOR);
+	fshut(stdout, "<stdout>");
+	exit(0);
+}
+
+size_t
+parse_count(const char *arg, int opt, size_t min, size_t max)
+{
+	unsigned long long v;
+	char *end;
+
+	errno = 0;
+	if (!arg || *arg < '0' || *arg > '9')
+		die("option -%c: '%s' is not a non-negative integer", opt, arg ? arg : "");
+	v = strtoull(arg, &end, 10);
+	if (*end)
+		die("option -%c: '%s' is not a non-negative integer", opt, arg);
+	if (errno == ERANGE || v < min || v > max)
+		die("option -%c: %s is out of range [%zu, %zu]", opt, arg, min, max);
+	return (size_t)v;
+}
+
+void
+parse_floats(const char *arg, const char *what, float *out, int n)
+{
+	const char *p = arg;
+	char *end;
+	int i;
+
+	for (i = 0; i < n; i++) {
+		double v;
+
+		errno = 0;
+		v = strtod(p, &end);
+		if (end == p || errno == ERANGE || !isfinite(v))
+			die("%s: '%s' needs %d comma-separated numbers", what, arg, n);
+		out[i] = (float)v;
+		p = end;
+		if (i + 1 < n) {
+			if (*p != ',')
+				die("%s: '%s' needs %d comma-separated numbers", what, arg, n);
+			p++;
+		}
+	}
+	if (*p)
+		die("%s: '%s' needs %d comma-separated numbers", what, arg, n);
+}
+
+int
+cli_threads(const char *arg)
+{
+	const char *env = getenv("REFLECT_THREADS");
+	long n;
+
+	if (arg)
+		return (int)parse_count(arg, 'j', 1, 256);
+	if (env && *env) {
+		char *end;
+
+		n = strtol(env, &end, 10);
+		if (*end || n < 1 || n > 256)
+			die("REFLECT_THREADS: '%s' is not a thread count in [1, 256]", env);
+		return (int)n;
+	}
+	n = sysconf(_SC_NPROCESSORS_ONLN);
+	return n < 1 ? 1 : n > 256 ? 256 : (int)n;
+}

@@ -1,0 +1,85 @@
+/* Helpers shared by the reflect-* tools (not part of libreflect). */
+#ifndef REFLECT_CLI_H
+#define REFLECT_CLI_H
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "reflect/reflect.h"
+#include "reflect/plugin.h"
+
+#if defined(__GNUC__)
+#define CLI_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#define CLI_NORETURN __attribute__((noreturn))
+#else
+#define CLI_PRINTF(a, b)
+#define CLI_NORETURN
+#endif
+
+enum { EXIT_BAD_INPUT = 1, EXIT_SYSTEM = 2 };
+
+extern const char *argv0;
+
+void cli_init(int argc, char **argv);
+/* A format ending in ':' gets ": strerror(errno)" appended (sbase rule). */
+CLI_NORETURN void die(const char *fmt, ...) CLI_PRINTF(1, 2);
+CLI_NORETURN void die_sys(const char *fmt, ...) CLI_PRINTF(1, 2);
+/* Exit status for a libreflect error: 2 for system errors, else 1. */
+CLI_NORETURN void die_status(int status, const char *msg);
+void warn(const char *fmt, ...) CLI_PRINTF(1, 2);
+void *emalloc(size_t n);
+void *ecalloc(size_t n, size_t size);
+char *estrdup(const char *s);
+/* Flushes and closes fp; a write error ends the tool with status 2, a
+ * closed downstream pipe ends it quietly. */
+void fshut(FILE *fp, const char *name);
+void print_version(void);
+/* Parses a decimal count in [min, max] for option `opt`. */
+size_t parse_count(const char *arg, int opt, size_t min, size_t max);
+/* Parses n comma-separated finite numbers for option `what`. */
+void parse_floats(const char *arg, const char *what, float *out, int n);
+
+/* Stream options every stream tool takes: -f a|f, -h, -H -x -y -c. */
+struct cli_io {
+	enum rf_format format;
+	int no_header;
+	int headerless;
+	size_t x, y;
+	const char *channels;
+	const char *input_name; /* for messages */
+	FILE *input;
+	rf_reader *reader;
+	rf_writer *writer;
+};
+
+#define CLI_IO_OPTSTRING "f:hHx:y:c:"
+#define CLI_IO_USAGE "[-f a|f] [-h] [-H -x W -y H -c CHANNELS]"
+/* Returns 1 when it took the option. */
+int cli_io_option(struct cli_io *io, int opt, const char *arg);
+/* Opens the input (NULL or "-" is stdin) and the output on stdout. */
+void cli_io_open(struct cli_io *io, const char *path);
+/* Next frame: 1 and *h set, 0 at the end of input; dies on errors. */
+int cli_io_next(struct cli_io *io, const rf_header **h);
+void cli_io_read(struct cli_io *io, float *buf, size_t nrows);
+void cli_io_begin(struct cli_io *io, const rf_header *h);
+void cli_io_write(struct cli_io *io, const float *buf, size_t nrows);
+void cli_io_end_frame(struct cli_io *io);
+void cli_io_close(struct cli_io *io);
+
+/* Rows a tool holds at once: a block of about this many bytes. */
+#define CLI_BLOCK_BYTES ((size_t)4 << 20)
+
+/* Threads over row blocks: -j N, else REFLECT_THREADS, else every core. */
+int cli_threads(const char *arg);
+
+/* Modes (plugins) of one kind: -l and -m name:key=value:... */
+struct cli_mode {
+	rf_module *module;
+	const struct rf_plugin *plugin;
+	double *values;
+};
+CLI_NORETURN void mode_list(unsigned kind);
+void mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose);
+void mode_unload(struct cli_mode *m);
+
+#endif

@@ -1,0 +1,144 @@
+/* The stream options and the read/write loop shared by the stream tools. */
+#include <errno.h>
+#include <string.h>
+
+#include "cli.h"
+
+int
+cli_io_option(struct cli_io *io, int opt, const char *arg)
+{
+	switch (opt) {
+	case 'f':
+		if (!strcmp(arg, "a"))
+			io->format = RF_FORMAT_ASCII;
+		else if (!strcmp(arg, "f"))
+			io->format = RF_FORMAT_FLOAT;
+		else
+			die("option -f: '%s' is not a data format (a: ascii, f: float)", arg);
+		return 1;
+	case 'h':
+		io->no_header = 1;
+		return 1;
+	case 'H':
+		io->headerless = 1;
+		return 1;
+	case 'x':
+		io->x = parse_count(arg, 'x', 1, (size_t)1 << 30);
+		return 1;
+	case 'y':
+		io->y = parse_count(arg, 'y', 1, (size_t)1 << 30);
+		return 1;
+	case 'c':
+		io->channels = arg;
+		return 1;
+	}
+	return 0;
+}
+
+/* "-c 3" names the channels c0 c1 c2; otherwise -c lists the names. */
+static char *
+raw_channel_names(const char *arg)
+{
+	size_t n, i, len = 0;
+	char *names, *end;
+
+	if (*arg < '0' || *arg > '9')
+		return estrdup(arg);
+	n = strtoul(arg, &end, 10);
+	if (*end || n < 1 || n > RF_CHANNELS_MAX)
+		die("option -c: '%s' is neither a channel count in [1, %d] nor a "
+		    "list of names", arg, RF_CHANNELS_MAX);
+	names = emalloc(n * 8);
+	for (i = 0; i < n; i++)
+		len += (size_t)sprintf(names + len, "%sc%zu", i ? " " : "", i);
+	return names;
+}
+
+void
+cli_io_open(struct cli_io *io, const char *path)
+{
+	struct rf_raw_input raw;
+	struct rf_writer_options wopt = { io->format, io->no_header };
+	int rc;
+
+	if (!path || !strcmp(path, "-")) {
+		io->input = stdin;
+		io->input_name = "<stdin>";
+	} else {
+		if (!(io->input = fopen(path, "rb")))
+			die("cannot open '%s':", path);
+		io->input_name = path;
+	}
+	if (io->headerless) {
+		if (!io->x || !io->y || !io->channels)
+			die("headerless input (-H) needs -x WIDTH, -y HEIGHT and -c CHANNELS");
+		raw.ncols = io->x;
+		raw.nrows = io->y;
+		raw.channels = raw_channel_names(io->channels);
+		raw.format = RF_FORMAT_FLOAT;
+		rc = rf_reader_open(&io->reader, io->input, io->input_name, &raw);
+		free((char *)raw.channels);
+	} else {
+		rc = rf_reader_open(&io->reader, io->input, io->input_name, NULL);
+	}
+	if (rc < 0)
+		die_status(rc, NULL);
+	if ((rc = rf_writer_open(&io->writer, stdout, "<stdout>", &wopt)) < 0)
+		die_status(rc, NULL);
+}
+
+int
+cli_io_next(struct cli_io *io, const rf_header **h)
+{
+	int rc = rf_reader_next_frame(io->reader, h);
+
+	if (rc < 0)
+		die_status(rc, rf_reader_error(io->reader));
+	return rc;
+}
+
+void
+cli_io_read(struct cli_io *io, float *buf, size_t nrows)
+{
+	int rc = rf_reader_read_rows(io->reader, buf, nrows);
+
+	if (rc < 0)
+		die_status(rc, rf_reader_error(io->reader));
+}
+
+void
+cli_io_begin(struct cli_io *io, const rf_header *h)
+{
+	int rc = rf_writer_begin_frame(io->writer, h);
+
+	if (rc < 0)
+		die_status(rc, rf_writer_error(io->writer));
+}
+
+void
+cli_io_write(struct cli_io *io, const float *buf, size_t nrows)
+{
+	int rc = rf_writer_write_rows(io->writer, buf, nrows);
+
+	if (rc < 0)
+		die_status(rc, rf_writer_error(io->writer));
+}
+
+void
+cli_io_end_frame(struct cli_io *io)
+{
+	int rc = rf_writer_end_frame(io->writer);
+
+	if (rc < 0)
+		die_status(rc, rf_writer_error(io->writer));
+}
+
+void
+cli_io_close(struct cli_io *io)
+{
+	rf_reader_close(io->reader);
+	rf_writer_close(io->writer);
+	if (io->input && io->input != stdin)
+		fclose(io->input);
+	fshut(stdout, "<stdout>");
+}

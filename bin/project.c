@@ -1,0 +1,134 @@
+/* reflect-project: reflection vector, lookup direction and distances. */
+#include <getopt.h>
+#include <string.h>
+
+#include "cli.h"
+#include "probe_opts.h"
+
+static void
+usage(void)
+{
+	fprintf(stderr, "usage: %s [-lvV] [-m MODE[:KEY=VALUE...]] [-j THREADS] "
+	        "[--box=XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX] [--center=X,Y,Z] "
+	        "[--box-projection=on|off] " CLI_IO_USAGE " [file]\n", argv0);
+	exit(EXIT_BAD_INPUT);
+}
+
+static const struct option long_options[] = {
+	{ "box", required_argument, NULL, 'B' },
+	{ "center", required_argument, NULL, 'C' },
+	{ "box-projection", required_argument, NULL, 'P' },
+	{ "help", no_argument, NULL, '?' + 256 },
+	{ NULL, 0, NULL, 0 },
+};
+
+static const char *
+header_get(void *ctx, const char *key)
+{
+	return rf_header_get(ctx, key);
+}
+
+static void
+project_frame(struct cli_io *io, struct cli_mode *mode, const struct probe_opts *po,
+              const char *spec, int nthreads, int argc, char **argv,
+              const rf_header *in)
+{
+	struct rf_host host;
+	struct rf_probe probe;
+	char err[1024], perr[512];
+	rf_stage *stage;
+	rf_header *out;
+	float *bin, *bout;
+	size_t rows, y, n;
+	int rc, prc;
+
+	memset(&host, 0, sizeof(host));
+	host.size = sizeof(host);
+	host.abi_major = RF_PLUGIN_ABI_MAJOR;
+	host.abi_minor = RF_PLUGIN_ABI_MINOR;
+	host.ctx = (void *)in;
+	host.header_get = header_get;
+	prc = probe_resolve(po, in, &probe, perr, sizeof(perr));
+	if (prc == -1)
+		die("%s", perr);
+	host.probe = prc == 0 ? &probe : NULL;
+	if ((rc = rf_stage_create(&stage, mode->plugin, mode->values, &host,
+	                          nthreads, err, sizeof(err))) < 0)
+		die_status(rc, err);
+	if ((rc = rf_stage_begin_frame(stage, in, &out, err, sizeof(err))) < 0)
+		die_status(rc, err);
+	rf_header_add_command(out, argc, argv);
+	rf_header_set(out, "PROJECTION", spec);
+	if (host.probe)
+		probe_to_header(&probe, out);
+	cli_io_begin(io, out);
+	rows = rf_block_rows(rf_header_ncols(out), rf_header_nchannels(out),
+	                     CLI_BLOCK_BYTES);
+	if (rows > rf_header_nrows(in))
+		rows = rf_header_nrows(in);
+	bin = emalloc(rows * rf_header_ncols(in) * rf_header_nchannels(in) * sizeof(float));
+	bout = emalloc(rows * rf_header_ncols(out) * rf_header_nchannels(out) * sizeof(float));
+	for (y = 0; y < rf_header_nrows(in); y += n) {
+		n = rf_header_nrows(in) - y < rows ? rf_header_nrows(in) - y : rows;
+		cli_io_read(io, bin, n);
+		if ((rc = rf_stage_run(stage, bin, bout, y, n)) < 0)
+			die_status(rc, NULL);
+		cli_io_write(io, bout, n);
+	}
+	cli_io_end_frame(io);
+	free(bin);
+	free(bout);
+	rf_stage_destroy(stage);
+}
+
+int
+main(int argc, char **argv)
+{
+	struct cli_io io = { 0 };
+	struct cli_mode mode = { 0 };
+	struct probe_opts po = { 0 };
+	const char *spec = "box", *threads = NULL;
+	const rf_header *in;
+	int c, list = 0, verbose = 0, nthreads;
+
+	cli_init(argc, argv);
+	while ((c = getopt_long(argc, argv, "lvVm:j:" CLI_IO_OPTSTRING, long_options,
+	                        NULL)) != -1) {
+		if (cli_io_option(&io, c, optarg))
+			continue;
+		switch (c) {
+		case 'l': list = 1; break;
+		case 'v': verbose = 1; break;
+		case 'V': print_version(); break;
+		case 'm': spec = optarg; break;
+		case 'j': threads = optarg; break;
+		case 'B': po.box = optarg; break;
+		case 'C': po.center = optarg; break;
+		case 'P': po.projection = optarg; break;
+		case '?' + 256:
+			printf("usage: %s [options] [file]\n"
+			       "Adds R (reflection vector), D (lookup direction), hit.dist and\n"
+			       "probe.dist to a G-buffer stream (P, N, V). See reflect-project(1).\n"
+			       "  -m MODE[:K=V...]  projection mode (default box); -l lists them\n"
+			       "  --box=...  --center=X,Y,Z  --box-projection=on|off  the probe\n"
+			       "  -j N  threads   -v  say which plugin   -V  versions\n"
+			       "  -f a|f  output format   -h  no output header\n"
+			       "  -H -x W -y H -c CHANNELS  headerless input\n", argv0);
+			fshut(stdout, "<stdout>");
+			return 0;
+		default: usage();
+		}
+	}
+	if (argc - optind > 1)
+		usage();
+	if (list)
+		mode_list(RF_KIND_PROJECTION);
+	nthreads = cli_threads(threads);
+	mode_load(&mode, RF_KIND_PROJECTION, spec, verbose);
+	cli_io_open(&io, optind < argc ? argv[optind] : NULL);
+	while (cli_io_next(&io, &in))
+		project_frame(&io, &mode, &po, spec, nthreads, argc, argv, in);
+	mode_unload(&mode);
+	cli_io_close(&io);
+	return 0;
+}

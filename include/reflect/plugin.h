@@ -1,0 +1,143 @@
+/*
+ * The reflect plugin ABI: the only header a plugin needs.
+ *
+ * A plugin is one shared object <name>.so exporting one function,
+ * rf_plugin_entry(), that returns a constant descriptor.  The host checks
+ * the descriptor's version and size before it reads anything else, maps
+ * stream channels to the plugin's inputs and outputs by name, and calls
+ * run() on spans of pixels.  Plugins link against nothing of ours: what
+ * they need from the host comes through the rf_host table.
+ *
+ * Rules for plugins: never print, never exit, keep no global mutable
+ * state (several instances run at once, one per thread), report errors
+ * from create() through its message buffer.
+ *
+ * History of the ABI version:
+ *   1.0  first version.
+ * A minor bump only appends fields at the end of a struct; a major bump is
+ * anything else.  The host accepts a plugin when its major equals the
+ * host's and its minor is not newer.
+ */
+#ifndef REFLECT_PLUGIN_H
+#define REFLECT_PLUGIN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define RF_PLUGIN_ABI_MAJOR 1
+#define RF_PLUGIN_ABI_MINOR 0
+
+#if defined(__GNUC__)
+#define RF_PLUGIN_EXPORT __attribute__((visibility("default")))
+#else
+#define RF_PLUGIN_EXPORT
+#endif
+
+#define RF_PLUGIN_ENTRY "rf_plugin_entry"
+
+/* What a plugin is for: the tool that loads it. */
+enum rf_plugin_kind {
+	RF_KIND_PROJECTION = 1, /* reflect-project: lookup direction and distances */
+	RF_KIND_SHADE = 2,      /* reflect-shade: environment radiance per pixel */
+	RF_KIND_OCCLUSION = 3,  /* reflect-occlude: specular occlusion term */
+	RF_KIND_ACCUMULATE = 4  /* reflect-accumulate: combines frames */
+};
+
+/* Parameter flags; a bit the host does not know makes it refuse the plugin. */
+#define RF_PARAM_INTEGER 0x1u /* value is rounded to an integer */
+#define RF_PARAM_BOOL 0x2u    /* 0 or 1; min 0, max 1 */
+#define RF_PARAM_CHOICE 0x4u  /* value is an index into `choices` */
+#define RF_PARAM_KNOWN_FLAGS (RF_PARAM_INTEGER | RF_PARAM_BOOL | RF_PARAM_CHOICE)
+
+struct rf_param {
+	const char *name;    /* [a-z][a-z0-9_]*, as in -m mode:name=value */
+	const char *help;    /* one line, lowercase, no full stop */
+	double min, max;     /* inclusive; -HUGE_VAL or HUGE_VAL for unbounded */
+	double def;          /* default, inside [min, max] */
+	unsigned flags;      /* RF_PARAM_* */
+	const char *choices; /* with RF_PARAM_CHOICE: "a|b|c", value = index */
+};
+
+/* The probe the stream is shaded with (world units). */
+struct rf_probe {
+	float center[3];  /* capture point */
+	float box_min[3]; /* influence and projection box */
+	float box_max[3];
+	int box_projection; /* 0: directions are used as they are */
+};
+
+/* Services of the host; a member is NULL when the tool cannot offer it. */
+struct rf_host {
+	uint32_t size; /* sizeof(struct rf_host) as the host was built */
+	uint32_t abi_major, abi_minor;
+	void *ctx; /* first argument of every callback below */
+	/* The value of a stream header key, NULL when absent. */
+	const char *(*header_get)(void *ctx, const char *key);
+	/* The probe, from the tool's options or the stream's header keys. */
+	const struct rf_probe *probe;
+	/* Environment radiance in direction dir (need not be unit) at a lod. */
+	void (*sample)(void *ctx, const float dir[3], float lod, float rgb[3]);
+	/* The one roughness-to-lod mapping of the environment, and back. */
+	float (*roughness_to_lod)(void *ctx, float roughness);
+	float (*lod_to_roughness)(void *ctx, float lod);
+	float lod_steps; /* index of the environment's last level */
+	uint32_t seed;   /* --seed */
+};
+
+/* A span of pixels along one row, channels interleaved in the order the
+ * descriptor declares them. */
+struct rf_span {
+	uint32_t size;          /* sizeof(struct rf_span) as the host was built */
+	uint32_t npix;          /* pixels in this span */
+	uint32_t x, y;          /* image position of the first pixel; top row 0 */
+	uint32_t width, height; /* the frame */
+	uint32_t frame;         /* index of the frame in the stream */
+	const float *in;        /* npix * ninputs */
+	float *out;             /* npix * noutputs */
+};
+
+struct rf_plugin {
+	/* These three come first and never move. */
+	uint32_t abi_major;
+	uint32_t abi_minor;
+	uint32_t size; /* sizeof(struct rf_plugin) as the plugin was built */
+
+	uint32_t kind;  /* enum rf_plugin_kind */
+	uint32_t flags; /* none defined yet: must be 0 */
+	const char *name;    /* equal to the file name without ".so" */
+	const char *summary; /* one line, lowercase, no full stop */
+	const char *version;
+	const char *author;
+	const char *license;
+
+	uint32_t nparams;
+	const struct rf_param *params;
+	const char *const *inputs;  /* channel names read, NULL-terminated */
+	const char *const *outputs; /* channel names written, NULL-terminated */
+
+	/* values[nparams] are validated against the table before the call.
+	 * Returns 0, or non-zero with a message in err. */
+	int (*create)(const struct rf_host *host, const double *values,
+	              void **state, char *err, size_t errlen);
+	void (*run)(void *state, const struct rf_span *span);
+	void (*destroy)(void *state);
+};
+
+typedef const struct rf_plugin *(*rf_plugin_entry_fn)(void);
+
+/* Declare the entry point in a plugin:
+ *   RF_PLUGIN_DEFINE(my_descriptor)
+ */
+#define RF_PLUGIN_DEFINE(descriptor)                                       \
+	RF_PLUGIN_EXPORT const struct rf_plugin *rf_plugin_entry(void);     \
+	const struct rf_plugin *rf_plugin_entry(void) { return &(descriptor); }
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,274 @@
+/*
+ * libreflect: box-projected cubemap reflections, offline.
+ *
+ * Every function returns 0 or a positive count on success and a negative
+ * rf_status on failure; nothing here prints or exits.  Objects that hold
+ * state are opaque and come with a create/destroy pair.
+ */
+#ifndef REFLECT_REFLECT_H
+#define REFLECT_REFLECT_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "reflect/version.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(__GNUC__) && !defined(RF_STATIC)
+#define RF_EXTERN __attribute__((visibility("default")))
+#else
+#define RF_EXTERN
+#endif
+
+/* Errors: one list makes the enum and the messages. */
+#define RF_STATUS_MAP(X)                                                  \
+	X(NOMEM, "out of memory")                                         \
+	X(IO, "input/output error")                                       \
+	X(EOF, "end of stream")                                           \
+	X(FORMAT, "malformed stream")                                     \
+	X(VERSION, "unsupported stream version")                          \
+	X(TRUNCATED, "truncated stream")                                  \
+	X(TOOBIG, "size out of range")                                    \
+	X(CHANNEL, "missing or bad channel")                              \
+	X(INVAL, "invalid argument")                                      \
+	X(PLUGIN, "plugin refused")                                       \
+	X(NOTFOUND, "not found")                                          \
+	X(IMAGE, "image error")
+
+enum rf_status {
+	RF_OK = 0,
+#define RF_STATUS_ENUM(name, msg) RF_E##name,
+	RF__STATUS_FIRST = -100,
+	RF_STATUS_MAP(RF_STATUS_ENUM)
+#undef RF_STATUS_ENUM
+	RF__STATUS_END
+};
+
+RF_EXTERN const char *rf_strerror(int status);
+RF_EXTERN const char *rf_status_name(int status);
+
+RF_EXTERN unsigned rf_version(void);
+RF_EXTERN const char *rf_version_string(void);
+
+/*
+ * The stream header.  It keeps every line it was given, in order: free
+ * lines (each tool's command line) and KEY=value lines, unknown keys
+ * included.  The size keys (NCOLS NROWS NCOMP CHANNELS BigEndian FORMAT)
+ * are not stored as lines; the writer produces them from the fields.
+ */
+#define RF_HEADER_LINE_MAX 2048 /* bytes per header line, newline excluded */
+#define RF_HEADER_LINES_MAX 4096
+#define RF_CHANNELS_MAX 1024
+#define RF_CHANNEL_NAME_MAX 63
+#define RF_ROW_BYTES_MAX ((size_t)1 << 30)
+
+enum rf_format {
+	RF_FORMAT_FLOAT = 0,
+	RF_FORMAT_ASCII = 1
+};
+
+typedef struct rf_header rf_header;
+
+RF_EXTERN rf_header *rf_header_new(void);
+RF_EXTERN rf_header *rf_header_dup(const rf_header *h);
+RF_EXTERN void rf_header_free(rf_header *h);
+
+RF_EXTERN size_t rf_header_ncols(const rf_header *h);
+RF_EXTERN size_t rf_header_nrows(const rf_header *h);
+RF_EXTERN int rf_header_set_size(rf_header *h, size_t ncols, size_t nrows);
+/* 1 when the data (as read) was big-endian, 0 otherwise. */
+RF_EXTERN int rf_header_big_endian(const rf_header *h);
+RF_EXTERN enum rf_format rf_header_format(const rf_header *h);
+
+RF_EXTERN size_t rf_header_nchannels(const rf_header *h);
+RF_EXTERN const char *rf_header_channel(const rf_header *h, size_t i);
+/* Index of the channel, or RF_ECHANNEL when there is none. */
+RF_EXTERN int rf_header_find_channel(const rf_header *h, const char *name);
+/* Appends a channel; returns its index.  A name already present is refused. */
+RF_EXTERN int rf_header_add_channel(rf_header *h, const char *name);
+/* Replaces the channel list; names separated by spaces or commas. */
+RF_EXTERN int rf_header_set_channels(rf_header *h, const char *names);
+/* A channel name is printable ASCII without spaces, commas or '='. */
+RF_EXTERN int rf_channel_name_valid(const char *name);
+
+/* KEY=value lines.  get returns NULL when the key is absent. */
+RF_EXTERN const char *rf_header_get(const rf_header *h, const char *key);
+RF_EXTERN int rf_header_set(rf_header *h, const char *key, const char *value);
+RF_EXTERN int rf_header_unset(rf_header *h, const char *key);
+/* A free line, e.g. a tool's command line (kept in order). */
+RF_EXTERN int rf_header_add_line(rf_header *h, const char *line);
+/* Appends "tool arg arg..." with arguments quoted where needed. */
+RF_EXTERN int rf_header_add_command(rf_header *h, int argc, char *const *argv);
+/* The stored lines in order, for printing; NULL past the end. */
+RF_EXTERN const char *rf_header_line(const rf_header *h, size_t i);
+
+/*
+ * Reading.  A reader takes frames back to back until EOF.  Errors fill a
+ * message (see rf_reader_error) that names the input, the header line or
+ * the row, and what was expected.
+ */
+typedef struct rf_reader rf_reader;
+
+struct rf_raw_input {
+	/* For headerless input (-H): geometry and channel names. */
+	size_t ncols, nrows;
+	const char *channels; /* "a b c" or "a,b,c" */
+	enum rf_format format;
+};
+
+RF_EXTERN int rf_reader_open(rf_reader **r, FILE *fp, const char *name,
+                             const struct rf_raw_input *raw);
+RF_EXTERN void rf_reader_close(rf_reader *r);
+/* 1 and *h set when a frame starts, 0 at a clean end of input, < 0 error.
+ * The header stays owned by the reader until the next call. */
+RF_EXTERN int rf_reader_next_frame(rf_reader *r, const rf_header **h);
+/* Reads nrows rows of the current frame into buf (ncols*ncomp floats a
+ * row), converting to native floats. */
+RF_EXTERN int rf_reader_read_rows(rf_reader *r, float *buf, size_t nrows);
+/* Rows of the current frame not yet read. */
+RF_EXTERN size_t rf_reader_rows_left(const rf_reader *r);
+/* Index (from 0) of the current frame. */
+RF_EXTERN size_t rf_reader_frame_index(const rf_reader *r);
+RF_EXTERN const char *rf_reader_error(const rf_reader *r);
+
+/* Writing. */
+typedef struct rf_writer rf_writer;
+
+struct rf_writer_options {
+	enum rf_format format;
+	int no_header; /* -h: data only */
+};
+
+RF_EXTERN int rf_writer_open(rf_writer **w, FILE *fp, const char *name,
+                             const struct rf_writer_options *opt);
+RF_EXTERN void rf_writer_close(rf_writer *w);
+RF_EXTERN int rf_writer_begin_frame(rf_writer *w, const rf_header *h);
+RF_EXTERN int rf_writer_write_rows(rf_writer *w, const float *buf, size_t nrows);
+/* Checks that every row of the frame was written. */
+RF_EXTERN int rf_writer_end_frame(rf_writer *w);
+RF_EXTERN const char *rf_writer_error(const rf_writer *w);
+
+/* The number of rows that fit in about `bytes` for a row of ncols*ncomp
+ * floats (at least 1): the block size tools stream with. */
+RF_EXTERN size_t rf_block_rows(size_t ncols, size_t ncomp, size_t bytes);
+
+/*
+ * Plugins (see reflect/plugin.h for the ABI).  A loaded plugin is opaque;
+ * its descriptor is checked before anything else in it is touched.
+ */
+struct rf_plugin;
+typedef struct rf_module rf_module;
+
+RF_EXTERN const char *rf_plugin_kind_name(unsigned kind);
+/* Searches REFLECT_PLUGIN_PATH, then REFLECT_PLUGIN_SYSTEM_PATH (when set;
+ * empty means none) else the installed directory.  A name containing '/'
+ * is a path.  On failure err holds the reason. */
+RF_EXTERN int rf_module_load(rf_module **m, const char *name, unsigned kind,
+                             char *err, size_t errlen);
+RF_EXTERN int rf_module_load_file(rf_module **m, const char *path, unsigned kind,
+                                  char *err, size_t errlen);
+RF_EXTERN void rf_module_unload(rf_module *m);
+RF_EXTERN const struct rf_plugin *rf_module_plugin(const rf_module *m);
+RF_EXTERN const char *rf_module_path(const rf_module *m);
+
+/* The directories searched, in order, as one ':'-separated string owned
+ * by the library (valid until the next call). */
+RF_EXTERN const char *rf_plugin_search_path(void);
+
+/* Calls fn for every plugin file (*.so) in the search path, first match of
+ * a name first; `shadowed` is 1 for files hidden by an earlier one. */
+typedef void (*rf_plugin_visit_fn)(void *arg, const char *path, int shadowed);
+RF_EXTERN int rf_plugin_scan(rf_plugin_visit_fn fn, void *arg);
+
+/* Parses "key=value:key=value" against the plugin's parameter table into
+ * values[nparams] (defaults first).  err names the key and the range. */
+RF_EXTERN int rf_plugin_parse_params(const struct rf_plugin *p, const char *spec,
+                                     double *values, char *err, size_t errlen);
+
+/*
+ * Images through OpenImageIO (EXR, HDR, PNG, JPEG, TIFF and the rest).
+ * Reading loads the whole first subimage as floats, rows top first;
+ * 8- and 16-bit sRGB files are returned as stored (0..1), not linearised.
+ */
+typedef struct rf_image rf_image;
+
+RF_EXTERN int rf_image_read(rf_image **img, const char *path, char *err,
+                            size_t errlen);
+RF_EXTERN void rf_image_free(rf_image *img);
+RF_EXTERN size_t rf_image_width(const rf_image *img);
+RF_EXTERN size_t rf_image_height(const rf_image *img);
+RF_EXTERN size_t rf_image_nchannels(const rf_image *img);
+RF_EXTERN const char *rf_image_channel(const rf_image *img, size_t i);
+RF_EXTERN const float *rf_image_pixels(const rf_image *img);
+/* A string attribute of the file (e.g. "envmap", "oiio:ColorSpace"), or
+ * NULL. */
+RF_EXTERN const char *rf_image_attribute(const rf_image *img, const char *name);
+
+/* Writing in blocks of rows, so a frame never has to be held whole. */
+typedef struct rf_image_writer rf_image_writer;
+
+enum rf_pixel_type {
+	RF_PIXEL_FLOAT = 0,
+	RF_PIXEL_HALF = 1,
+	RF_PIXEL_UINT8 = 2,
+	RF_PIXEL_UINT16 = 3
+};
+
+RF_EXTERN int rf_image_writer_open(rf_image_writer **w, const char *path,
+                                   size_t width, size_t height, size_t nchannels,
+                                   const char *const *names, enum rf_pixel_type type,
+                                   char *err, size_t errlen);
+/* Rows y .. y+nrows-1 as floats, channels interleaved; rows in order. */
+RF_EXTERN int rf_image_writer_write_rows(rf_image_writer *w, size_t y, size_t nrows,
+                                         const float *pixels, char *err,
+                                         size_t errlen);
+/* Closes the file; returns its last error. */
+RF_EXTERN int rf_image_writer_close(rf_image_writer *w, char *err, size_t errlen);
+/* The pixel type a file name's extension stores best (8-bit for PNG and
+ * JPEG, float for EXR and HDR), or -1 for an extension no plugin writes. */
+RF_EXTERN int rf_image_type_for_path(const char *path);
+
+/* Display encoding: exposure scale, an optional tone curve, sRGB. */
+enum rf_tone {
+	RF_TONE_NONE = 0,  /* clamp to [0, 1] only */
+	RF_TONE_FILMIC = 1 /* a fitted ACES-like filmic curve */
+};
+
+/* Encodes the first ncolour of every pixel's nchannels in place; other
+ * channels (alpha) are only clamped.  NaN becomes 0. */
+RF_EXTERN void rf_display_encode(float *values, size_t npix, size_t nchannels,
+                                 size_t ncolour, float scale, enum rf_tone tone,
+                                 int srgb);
+RF_EXTERN float rf_srgb_encode(float linear);
+RF_EXTERN float rf_srgb_decode(float encoded);
+
+/*
+ * A stage runs one plugin over the frames of a stream: it maps the
+ * plugin's inputs to stream channels by name, keeps every other channel,
+ * appends the plugin's outputs (or overwrites channels of the same name)
+ * and spreads rows over threads, one plugin instance per thread.
+ */
+struct rf_host;
+typedef struct rf_stage rf_stage;
+
+RF_EXTERN int rf_stage_create(rf_stage **s, const struct rf_plugin *p,
+                              const double *values, const struct rf_host *host,
+                              int nthreads, char *err, size_t errlen);
+RF_EXTERN void rf_stage_destroy(rf_stage *s);
+/* Prepares a frame with this input header; the output header is valid
+ * until the next call.  err names a missing channel. */
+RF_EXTERN int rf_stage_begin_frame(rf_stage *s, const rf_header *in,
+                                   rf_header **out, char *err, size_t errlen);
+/* Processes nrows rows starting at row y of the current frame. */
+RF_EXTERN int rf_stage_run(rf_stage *s, const float *in, float *out, size_t y,
+                           size_t nrows);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

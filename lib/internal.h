@@ -1,0 +1,28 @@
+/* Internal to libreflect: nothing here is installed. */
+#ifndef REFLECT_INTERNAL_H
+#define REFLECT_INTERNAL_H
+
+#include <stdarg.h>
+
+#include "reflect/reflect.h"
+
+#if defined(__GNUC__)
+#define RF__PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define RF__PRINTF(a, b)
+#endif
+
+/* Header fields the reader fills while parsing. */
+void rf__header_set_format(rf_header *h, enum rf_format format, int big_endian);
+/* Adds a stored line as read, without the checks rf_header_set makes. */
+int rf__header_push_line(rf_header *h, const char *line);
+/* 1 when the key is one the writer makes from the header's fields. */
+int rf__header_key_reserved(const char *key, size_t len);
+
+/* Writes a message into buf; always terminated, silently truncated. */
+void rf__format(char *buf, size_t size, const char *fmt, ...) RF__PRINTF(3, 4);
+
+/* x * y * z without overflow; 0 and *out set on success. */
+int rf__mul3(size_t x, size_t y, size_t z, size_t *out);
+
+#endif

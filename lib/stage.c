@@ -1,0 +1,267 @@
+/* Running a per-pixel plugin over blocks of rows, on several threads. */
+#include <errno.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal.h"
+#include "reflect/plugin.h"
+
+struct worker {
+	rf_stage *s;
+	void *state;
+	float *gather;  /* one row of the plugin's inputs */
+	float *scatter; /* one row of the plugin's outputs */
+	const float *in;
+	float *out;
+	size_t y, nrows;
+};
+
+struct rf_stage {
+	const struct rf_plugin *p;
+	int nthreads;
+	struct worker *workers;
+	size_t nin, nout;
+	int *in_map, *out_map; /* plugin channel -> stream channel */
+	rf_header *out_h;
+	size_t ncols, nrows, in_ncomp, out_ncomp, row_cap;
+	uint32_t frame;
+	size_t frames;
+};
+
+static size_t
+list_length(const char *const *list)
+{
+	size_t n = 0;
+
+	while (list[n])
+		n++;
+	return n;
+}
+
+int
+rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
+                const struct rf_host *host, int nthreads, char *err, size_t errlen)
+{
+	rf_stage *s;
+	int i;
+
+	*sp = NULL;
+	if (nthreads < 1)
+		nthreads = 1;
+	if (!(s = calloc(1, sizeof(*s))))
+		return RF_ENOMEM;
+	s->p = p;
+	s->nthreads = nthreads;
+	s->nin = list_length(p->inputs);
+	s->nout = list_length(p->outputs);
+	s->in_map = calloc(s->nin + 1, sizeof(int));
+	s->out_map = calloc(s->nout + 1, sizeof(int));
+	s->workers = calloc((size_t)nthreads, sizeof(struct worker));
+	if (!s->in_map || !s->out_map || !s->workers) {
+		rf_stage_destroy(s);
+		return RF_ENOMEM;
+	}
+	for (i = 0; i < nthreads; i++) {
+		char msg[400] = "";
+
+		s->workers[i].s = s;
+		if (p->create(host, values, &s->workers[i].state, msg, sizeof(msg))) {
+			rf__format(err, errlen, "mode '%s': %s", p->name,
+			           *msg ? msg : "cannot create an instance");
+			s->workers[i].state = NULL;
+			rf_stage_destroy(s);
+			return RF_EPLUGIN;
+		}
+	}
+	*sp = s;
+	return 0;
+}
+
+void
+rf_stage_destroy(rf_stage *s)
+{
+	int i;
+
+	if (!s)
+		return;
+	for (i = 0; s->workers && i < s->nthreads; i++) {
+		if (s->workers[i].state)
+			s->p->destroy(s->workers[i].state);
+		free(s->workers[i].gather);
+		free(s->workers[i].scatter);
+	}
+	free(s->workers);
+	free(s->in_map);
+	free(s->out_map);
+	rf_header_free(s->out_h);
+	free(s);
+}
+
+static int
+frame_number(const rf_header *h, size_t fallback, uint32_t *out)
+{
+	const char *v = rf_header_get(h, "FRAME");
+	unsigned long n;
+	char *end;
+
+	if (!v) {
+		*out = (uint32_t)fallback;
+		return 0;
+	}
+	errno = 0;
+	n = strtoul(v, &end, 10);
+	if (end == v || *end || errno || n > UINT32_MAX)
+		return -1;
+	*out = (uint32_t)n;
+	return 0;
+}
+
+int
+rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
+                     char *err, size_t errlen)
+{
+	size_t i;
+	int c, t;
+
+	*out = NULL;
+	rf_header_free(s->out_h);
+	if (!(s->out_h = rf_header_dup(in)))
+		return RF_ENOMEM;
+	for (i = 0; i < s->nin; i++) {
+		if ((c = rf_header_find_channel(in, s->p->inputs[i])) < 0) {
+			char list[512] = "";
+			size_t k = 0, j;
+
+			for (j = 0; j < s->nin && k + 2 < sizeof(list); j++)
+				k += (size_t)snprintf(list + k, sizeof(list) - k, "%s%s",
+				                      j ? " " : "", s->p->inputs[j]);
+			rf__format(err, errlen, "input has no channel '%s' (mode '%s' "
+			           "reads %s)", s->p->inputs[i], s->p->name, list);
+			return RF_ECHANNEL;
+		}
+		s->in_map[i] = c;
+	}
+	for (i = 0; i < s->nout; i++) {
+		if ((c = rf_header_find_channel(s->out_h, s->p->outputs[i])) < 0 &&
+		    (c = rf_header_add_channel(s->out_h, s->p->outputs[i])) < 0) {
+			rf__format(err, errlen, "cannot add channel '%s': %s",
+			           s->p->outputs[i], rf_strerror(c));
+			return c;
+		}
+		s->out_map[i] = c;
+	}
+	if (frame_number(in, s->frames, &s->frame) < 0) {
+		rf__format(err, errlen, "FRAME='%s' is not a frame number",
+		           rf_header_get(in, "FRAME"));
+		return RF_EFORMAT;
+	}
+	s->frames++;
+	s->ncols = rf_header_ncols(in);
+	s->nrows = rf_header_nrows(in);
+	s->in_ncomp = rf_header_nchannels(in);
+	s->out_ncomp = rf_header_nchannels(s->out_h);
+	if (s->ncols * s->out_ncomp * sizeof(float) > RF_ROW_BYTES_MAX) {
+		rf__format(err, errlen, "output rows of %zu channels are too large",
+		           s->out_ncomp);
+		return RF_ETOOBIG;
+	}
+	if (s->ncols > s->row_cap) {
+		for (t = 0; t < s->nthreads; t++) {
+			struct worker *w = &s->workers[t];
+
+			free(w->gather);
+			free(w->scatter);
+			w->gather = malloc(s->ncols * (s->nin + 1) * sizeof(float));
+			w->scatter = malloc(s->ncols * s->nout * sizeof(float));
+			if (!w->gather || !w->scatter) {
+				s->row_cap = 0;
+				return RF_ENOMEM;
+			}
+		}
+		s->row_cap = s->ncols;
+	}
+	*out = s->out_h;
+	return 0;
+}
+
+static void *
+work(void *arg)
+{
+	struct worker *w = arg;
+	rf_stage *s = w->s;
+	struct rf_span span;
+	size_t r, x, i;
+
+	memset(&span, 0, sizeof(span));
+	span.size = sizeof(span);
+	span.width = (uint32_t)s->ncols;
+	span.height = (uint32_t)s->nrows;
+	span.frame = s->frame;
+	span.npix = (uint32_t)s->ncols;
+	span.in = w->gather;
+	span.out = w->scatter;
+	for (r = 0; r < w->nrows; r++) {
+		const float *in = w->in + r * s->ncols * s->in_ncomp;
+		float *out = w->out + r * s->ncols * s->out_ncomp;
+
+		for (x = 0; x < s->ncols; x++) {
+			const float *pi = in + x * s->in_ncomp;
+			float *po = out + x * s->out_ncomp;
+			float *g = w->gather + x * s->nin;
+
+			memcpy(po, pi, s->in_ncomp * sizeof(float));
+			for (i = s->in_ncomp; i < s->out_ncomp; i++)
+				po[i] = 0.0f;
+			for (i = 0; i < s->nin; i++)
+				g[i] = pi[s->in_map[i]];
+		}
+		span.y = (uint32_t)(w->y + r);
+		s->p->run(w->state, &span);
+		for (x = 0; x < s->ncols; x++) {
+			float *po = out + x * s->out_ncomp;
+			const float *q = w->scatter + x * s->nout;
+
+			for (i = 0; i < s->nout; i++)
+				po[s->out_map[i]] = q[i];
+		}
+	}
+	return NULL;
+}
+
+int
+rf_stage_run(rf_stage *s, const float *in, float *out, size_t y, size_t nrows)
+{
+	pthread_t tid[256];
+	unsigned char running[256] = { 0 };
+	int n = s->nthreads, t;
+	size_t per, done = 0;
+
+	if (!s->out_h || y + nrows > s->nrows)
+		return RF_EINVAL;
+	if ((size_t)n > nrows)
+		n = nrows ? (int)nrows : 1;
+	if (n > 256)
+		n = 256;
+	per = (nrows + (size_t)n - 1) / (size_t)n;
+	for (t = 0; t < n && done < nrows; t++) {
+		struct worker *w = &s->workers[t];
+
+		w->y = y + done;
+		w->nrows = nrows - done < per ? nrows - done : per;
+		w->in = in + done * s->ncols * s->in_ncomp;
+		w->out = out + done * s->ncols * s->out_ncomp;
+		done += w->nrows;
+		if (t == 0)
+			continue;
+		if (pthread_create(&tid[t], NULL, work, w) != 0)
+			work(w); /* no thread to be had: do it here */
+		else
+			running[t] = 1;
+	}
+	work(&s->workers[0]);
+	for (t = 1; t < n; t++)
+		if (running[t])
+			pthread_join(tid[t], NULL);
+	return 0;
+}

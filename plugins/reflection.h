@@ -1,0 +1,97 @@
+/* Geometry shared by the projection modes (header-only: each plugin is
+ * one self-contained shared object). */
+#ifndef REFLECT_PLUGINS_REFLECTION_H
+#define REFLECT_PLUGINS_REFLECTION_H
+
+#include <math.h>
+#include <stdio.h>
+
+#include "reflect/plugin.h"
+
+/* Components smaller than this have no exit on their axis (no 0 * inf). */
+#define AXIS_EPSILON 1e-8f
+
+/* R = 2 (N.V) N - V, normalised. */
+static inline void
+reflection_vector(const float n[3], const float v[3], float r[3])
+{
+	float d = n[0] * v[0] + n[1] * v[1] + n[2] * v[2];
+	float len;
+
+	r[0] = 2.0f * d * n[0] - v[0];
+	r[1] = 2.0f * d * n[1] - v[1];
+	r[2] = 2.0f * d * n[2] - v[2];
+	len = sqrtf(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+	if (len > 0.0f) {
+		r[0] /= len;
+		r[1] /= len;
+		r[2] /= len;
+	}
+}
+
+/* Distance from p along unit dir to where it leaves the box; -1 when p
+ * is outside the box (no exit to speak of). */
+static inline int
+box_exit(const struct rf_probe *probe, const float p[3], const float dir[3],
+         float *dist)
+{
+	float t = INFINITY;
+	int i;
+
+	for (i = 0; i < 3; i++) {
+		float ti;
+
+		if (p[i] < probe->box_min[i] || p[i] > probe->box_max[i])
+			return -1;
+		if (dir[i] > AXIS_EPSILON)
+			ti = (probe->box_max[i] - p[i]) / dir[i];
+		else if (dir[i] < -AXIS_EPSILON)
+			ti = (probe->box_min[i] - p[i]) / dir[i];
+		else
+			continue;
+		if (ti < t)
+			t = ti;
+	}
+	if (!(t < INFINITY))
+		return -1; /* zero direction */
+	*dist = t;
+	return 0;
+}
+
+/* From the hit at p + dir * dist: the unit lookup direction from the
+ * capture point and the distance from the capture point to the hit. */
+static inline void
+lookup_from_hit(const struct rf_probe *probe, const float p[3],
+                const float dir[3], float dist, float lookup[3], float *probe_dist)
+{
+	float d[3], len;
+	int i;
+
+	for (i = 0; i < 3; i++)
+		d[i] = p[i] + dir[i] * dist - probe->center[i];
+	len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+	*probe_dist = len;
+	if (len > 0.0f) {
+		for (i = 0; i < 3; i++)
+			lookup[i] = d[i] / len;
+	} else {
+		for (i = 0; i < 3; i++)
+			lookup[i] = dir[i];
+	}
+}
+
+/* The state of a mode that only needs the probe: a copy of it. */
+static inline int
+reflection_create(const struct rf_host *host, void **state, char *err,
+                  size_t errlen)
+{
+	if (!host->probe) {
+		snprintf(err, errlen, "no probe box: give --box and --center or a "
+		         "stream with PROBE_BOX and PROBE_CENTER");
+		return -1;
+	}
+	*state = (void *)host->probe;
+	return 0;
+}
+
+#endif

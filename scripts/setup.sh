@@ -1,0 +1,88 @@
+# Sourced by ./demo and ./run-tests: installs what the build needs and
+# builds, doing only the steps that are not done yet.
+# Needs: $top (the source tree).
+
+setup_say () {
+	printf '%s\n' "$*" >&2
+}
+
+# Debian packages the build and the tests need.
+setup_packages="autoconf automake libtool pkg-config make gcc g++ \
+libopenimageio-dev libopenexr-dev"
+# Used by some tests when present (they skip otherwise).
+setup_optional_packages="python3-numpy valgrind clang"
+
+setup_missing () {
+	missing=""
+	command -v autoreconf >/dev/null 2>&1 || missing="$missing autoconf"
+	command -v automake >/dev/null 2>&1 || missing="$missing automake"
+	command -v libtoolize >/dev/null 2>&1 || missing="$missing libtool"
+	command -v pkg-config >/dev/null 2>&1 || missing="$missing pkg-config"
+	command -v make >/dev/null 2>&1 || missing="$missing make"
+	command -v gcc >/dev/null 2>&1 || missing="$missing gcc"
+	command -v g++ >/dev/null 2>&1 || missing="$missing g++"
+	if command -v pkg-config >/dev/null 2>&1
+	then
+		pkg-config --exists OpenImageIO || missing="$missing libopenimageio-dev"
+		pkg-config --exists OpenEXR || missing="$missing libopenexr-dev"
+	else
+		missing="$missing libopenimageio-dev libopenexr-dev"
+	fi
+	echo $missing
+}
+
+setup_optional_missing () {
+	missing=""
+	/usr/bin/python3 -c 'import numpy' >/dev/null 2>&1 || missing="$missing python3-numpy"
+	command -v valgrind >/dev/null 2>&1 || missing="$missing valgrind"
+	command -v clang >/dev/null 2>&1 || missing="$missing clang"
+	echo $missing
+}
+
+setup_install () {
+	need=$(setup_missing)
+	want="$need"
+	test "${1:-}" = with-optional && want="$want $(setup_optional_missing)"
+	want=$(echo $want)
+	test -n "$want" || return 0
+	if test "$(id -u)" -eq 0 && command -v apt-get >/dev/null 2>&1
+	then
+		setup_say "setup: installing $want"
+		export DEBIAN_FRONTEND=noninteractive
+		apt-get update -qq >/dev/null 2>&1 || apt-get update || return 1
+		apt-get install -y -qq $want >/dev/null || apt-get install -y $want || {
+			test -n "$need" && return 1
+			setup_say "setup: optional packages could not be installed; tests that need them skip"
+		}
+		return 0
+	fi
+	test -n "$need" || return 0
+	setup_say "setup: missing build dependencies: $need"
+	setup_say "setup: install them with: sudo apt-get install $need"
+	return 1
+}
+
+setup_build () {
+	cd "$top" || return 1
+	if ! test -x configure || test configure.ac -nt configure || test Makefile.am -nt configure
+	then
+		setup_say "setup: autoreconf"
+		autoreconf -fi >autoreconf.log 2>&1 || {
+			cat autoreconf.log >&2
+			return 1
+		}
+	fi
+	if ! test -f config.status || test configure -nt config.status
+	then
+		setup_say "setup: configure"
+		./configure ${REFLECT_CONFIGURE_FLAGS:-} >configure.log 2>&1 || {
+			tail -20 configure.log >&2
+			return 1
+		}
+	fi
+	setup_say "setup: make"
+	make -j"$(nproc 2>/dev/null || echo 2)" >make.log 2>&1 || {
+		tail -40 make.log >&2
+		return 1
+	}
+}

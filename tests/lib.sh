@@ -1,0 +1,118 @@
+# Test library for the shell tests, in the manner of git's t/test-lib.sh:
+# every step of a test runs inside test_expect_success, output is TAP.
+#
+#	test_description='what this file tests'
+#	. "$srcdir/tests/lib.sh"
+#	test_expect_success 'title' '
+#		command && command
+#	'
+#	test_done
+
+test_count=0
+test_failed=0
+: "${srcdir:=$(cd "$(dirname "$0")/.." && pwd)}"
+: "${builddir:=$srcdir}"
+test_name=$(basename "$0" .sh)
+TRASH="$builddir/tests/trash-$test_name"
+rm -rf "$TRASH" && mkdir -p "$TRASH" || {
+	echo "Bail out! cannot make $TRASH"
+	exit 1
+}
+cd "$TRASH" || exit 1
+test_log="$TRASH/.log"
+
+# Runs the body in a subshell with set -e semantics left to &&-chains;
+# its output goes to the log, shown only on failure.
+test_expect_success () {
+	test_count=$((test_count + 1))
+	if (eval "$2") >"$test_log" 2>&1
+	then
+		echo "ok $test_count - $1"
+	else
+		test_failed=$((test_failed + 1))
+		echo "not ok $test_count - $1"
+		sed -e 's/^/# /' "$test_log"
+	fi
+}
+
+# Skips a test with a reason (TAP "# SKIP").
+test_skip () {
+	test_count=$((test_count + 1))
+	echo "ok $test_count - $1 # SKIP $2"
+}
+
+# test_must_fail STATUS command...: the command fails with that status
+# (and is not killed by a signal).
+test_must_fail () {
+	want=$1
+	shift
+	"$@"
+	got=$?
+	if test "$got" -ne "$want"
+	then
+		echo "expected exit status $want, got $got: $*" >&2
+		return 1
+	fi
+	return 0
+}
+
+# test_grep PATTERN FILE: the file holds a line matching the (basic) regex.
+test_grep () {
+	if ! grep -e "$1" "$2" >/dev/null
+	then
+		echo "no line matches '$1' in $2:" >&2
+		cat "$2" >&2
+		return 1
+	fi
+}
+
+# test_line_count N FILE
+test_line_count () {
+	n=$(wc -l <"$2")
+	if test "$n" -ne "$1"
+	then
+		echo "expected $1 lines in $2, found $n" >&2
+		return 1
+	fi
+}
+
+# A one-line message on stderr, prefixed with the tool's name.
+test_one_line_message () {
+	test_line_count 1 "$2" && test_grep "^$1: " "$2"
+}
+
+test_done () {
+	echo "1..$test_count"
+	cd "$builddir" || exit 1
+	if test "$test_failed" -eq 0
+	then
+		rm -rf "$TRASH"
+		exit 0
+	fi
+	exit 1
+}
+
+# test_cmp_numbers EXPECTED ACTUAL [TOL]: the files hold the same numbers,
+# field by field, within an absolute tolerance (default 1e-5); "inf" and
+# "nan" must match exactly.
+test_cmp_numbers () {
+	awk -v tol="${3:-1e-5}" -v ef="$1" -v af="$2" '
+	function bad(msg) { print ef ":" NR ": " msg > "/dev/stderr"; err = 1 }
+	{
+		if ((getline line < af) <= 0) { bad("missing in " af); exit 1 }
+		n = split($0, e); m = split(line, a)
+		if (n != m) { bad(n " fields expected, " m " found: " line); next }
+		for (i = 1; i <= n; i++) {
+			if (e[i] ~ /[a-z]/ || a[i] ~ /[a-z]/) {
+				if (e[i] != a[i]) bad("field " i ": " e[i] " != " a[i])
+				continue
+			}
+			d = e[i] - a[i]; if (d < 0) d = -d
+			if (d > tol) bad("field " i ": " e[i] " != " a[i] " (tolerance " tol ")")
+		}
+	}
+	END {
+		if ((getline line < af) > 0) { print af ": more lines than " ef > "/dev/stderr"; err = 1 }
+		exit err
+	}' "$1"
+}
