@@ -25,4 +25,10 @@ void rf__format(char *buf, size_t size, const char *fmt, ...) RF__PRINTF(3, 4);
 /* x * y * z without overflow; 0 and *out set on success. */
 int rf__mul3(size_t x, size_t y, size_t z, size_t *out);
 
+/* A face of a cube level with its one-texel border: (n + 2)^2 RGB
+ * texels, rows top first, starting at border texel (-1, -1). */
+struct rf_cubemap;
+const float *rf__cubemap_padded_face(const struct rf_cubemap *c, size_t level,
+                                     int face);
+
 #endif

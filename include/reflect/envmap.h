@@ -1,0 +1,137 @@
+/*
+ * libreflect: environments, cubemaps, the roughness-to-lod mapping and
+ * GGX prefiltering.
+ *
+ * Conventions (OpenEXR's, see reflect-envmap(5)): world Y up, right
+ * handed; faces +X -X +Y -Y +Z -Z; texel i of a face of N has its centre
+ * at ((i + 1/2) / N) * 2 - 1.  Level k of a chain is N >> k texels wide.
+ */
+#ifndef REFLECT_ENVMAP_H
+#define REFLECT_ENVMAP_H
+
+#include "reflect/reflect.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- roughness <-> lod ------------------------------------------------- */
+
+enum rf_mapping {
+	RF_MAPPING_UNITY = 0,  /* lod = r (1.7 - 0.7 r) steps (default) */
+	RF_MAPPING_LINEAR = 1, /* lod = r steps */
+	RF_MAPPING_EXACT = 2   /* the spec-power remap Unity's fit approximates */
+};
+
+#define RF_MAPPING_DEFAULT RF_MAPPING_UNITY
+#define RF_STEPS_DEFAULT 6
+
+/* Parses "unity", "linear" or "exact"; RF_EINVAL otherwise. */
+RF_EXTERN int rf_mapping_parse(const char *name, enum rf_mapping *out);
+RF_EXTERN const char *rf_mapping_name(enum rf_mapping m);
+/* Perceptual roughness in [0, 1] (clamped) to a lod in [0, steps]. */
+RF_EXTERN float rf_roughness_to_lod(enum rf_mapping m, float steps, float roughness);
+/* A lod in [0, steps] (clamped) to perceptual roughness. */
+RF_EXTERN float rf_lod_to_roughness(enum rf_mapping m, float steps, float lod);
+
+/* ---- cube faces and directions ---------------------------------------- */
+
+enum rf_face {
+	RF_FACE_POS_X = 0, RF_FACE_NEG_X, RF_FACE_POS_Y,
+	RF_FACE_NEG_Y, RF_FACE_POS_Z, RF_FACE_NEG_Z
+};
+
+/* The face a direction (need not be unit) lands on and its position in
+ * the face: u across (columns), v down (rows), both in [0, 1]. */
+RF_EXTERN enum rf_face rf_cube_face(const float dir[3], float *u, float *v);
+/* The (unnormalised) direction through face position (u, v). */
+RF_EXTERN void rf_cube_direction(enum rf_face face, float u, float v, float dir[3]);
+/* Solid angle of texel (i, j) of a face of n texels. */
+RF_EXTERN double rf_cube_texel_solid_angle(size_t n, size_t i, size_t j);
+
+/* Lat-long (equirectangular) mapping: the image centre looks along +Z,
+ * right turns toward -X, the top row looks up.  u, v in [0, 1]. */
+RF_EXTERN void rf_latlong_direction(float u, float v, float dir[3]);
+RF_EXTERN void rf_latlong_position(const float dir[3], float *u, float *v);
+
+/* ---- cubemaps --------------------------------------------------------- */
+
+/* A cube of RGB floats with a chain of levels; each face is stored with a
+ * one-texel border copied from its neighbours, so bilinear filtering is
+ * seamless across edges at every level. */
+typedef struct rf_cubemap rf_cubemap;
+
+/* size: level 0 face width; nlevels: 0 means down to 1x1. */
+RF_EXTERN int rf_cubemap_new(rf_cubemap **c, size_t size, size_t nlevels);
+RF_EXTERN void rf_cubemap_free(rf_cubemap *c);
+RF_EXTERN size_t rf_cubemap_size(const rf_cubemap *c);
+RF_EXTERN size_t rf_cubemap_levels(const rf_cubemap *c);
+RF_EXTERN size_t rf_cubemap_level_size(const rf_cubemap *c, size_t level);
+/* Texel (i = column, j = row) of a face at a level: 3 floats, RGB. */
+RF_EXTERN float *rf_cubemap_texel(rf_cubemap *c, size_t level, enum rf_face f,
+                                  size_t i, size_t j);
+RF_EXTERN const float *rf_cubemap_texel_const(const rf_cubemap *c, size_t level,
+                                              enum rf_face f, size_t i, size_t j);
+/* Refreshes the borders of a level after its texels changed. */
+RF_EXTERN void rf_cubemap_seal_level(rf_cubemap *c, size_t level);
+/* Fills levels from+1 .. last by 2x2 box filtering (a plain mip chain). */
+RF_EXTERN void rf_cubemap_box_chain(rf_cubemap *c, size_t from);
+
+/* Bilinear sample of one level; trilinear across levels, lod clamped to
+ * [0, levels - 1].  dir need not be unit; a zero direction reads +X. */
+RF_EXTERN void rf_cubemap_sample_level(const rf_cubemap *c, size_t level,
+                                       const float dir[3], float rgb[3]);
+RF_EXTERN void rf_cubemap_sample(const rf_cubemap *c, const float dir[3], float lod,
+                                 float rgb[3]);
+/* Solid-angle-weighted mean of a level, per channel. */
+RF_EXTERN void rf_cubemap_level_mean(const rf_cubemap *c, size_t level, double rgb[3]);
+
+/* ---- prefiltering ----------------------------------------------------- */
+
+enum rf_prefilter_method {
+	RF_PREFILTER_FILTERED = 0, /* GGX importance sampling reading source mips */
+	RF_PREFILTER_BRUTE = 1     /* every source texel, for reference */
+};
+
+struct rf_prefilter_options {
+	enum rf_mapping mapping;
+	float steps;            /* lod of the roughest level; 0: levels - 1 */
+	unsigned samples;       /* GGX samples per texel (filtered method) */
+	enum rf_prefilter_method method;
+	float lod_bias;         /* added to each sample's source lod */
+	int nthreads;
+	/* Called from the calling thread now and then with done/total work;
+	 * may be NULL. */
+	void (*progress)(void *arg, double done, double total);
+	void *progress_arg;
+};
+
+RF_EXTERN void rf_prefilter_defaults(struct rf_prefilter_options *o);
+/* Convolves every level k >= 1 of `out` from level 0 of `src` with the
+ * GGX lobe of the roughness the mapping gives level k (V = N, N.L
+ * weighted, normalised); level 0 of out is a copy of src's level 0 when
+ * the sizes match, else a box-filtered copy. */
+RF_EXTERN int rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
+                           const struct rf_prefilter_options *o, char *err,
+                           size_t errlen);
+/* One texel of one lobe by brute force over the source level 0 (for
+ * tests and the bench). */
+RF_EXTERN void rf_prefilter_brute_texel(const rf_cubemap *src, const float n[3],
+                                        float roughness, float rgb[3]);
+
+/* ---- the embedded environment ----------------------------------------- */
+
+/* Radiance of the default room as seen from its probe centre: the room
+ * box (-3,0,-2)..(3,3,2), centre (0,1.5,0); a hue per wall, a bright
+ * grid, two HDR windows. */
+RF_EXTERN void rf_default_environment(const float dir[3], float rgb[3]);
+/* The same room as radiance leaving a point of its walls (world units). */
+RF_EXTERN void rf_default_room_radiance(const float point[3], float rgb[3]);
+/* Renders it into level 0 of a cube (supersampled) and seals it. */
+RF_EXTERN void rf_default_environment_cube(rf_cubemap *c);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

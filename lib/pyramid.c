@@ -1,0 +1,65 @@
+/* Building the RGBA pyramid the prefilter samples. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal.h"
+#include "pyramid.h"
+
+int
+rf__pyramid_from_cube(struct rf__pyramid *p, const rf_cubemap *c)
+{
+	size_t l, total = 0, i;
+	int f;
+
+	memset(p, 0, sizeof(*p));
+	p->nlevels = rf_cubemap_levels(c);
+	for (l = 0; l < p->nlevels; l++) {
+		p->size[l] = rf_cubemap_level_size(c, l);
+		p->face_stride[l] = (p->size[l] + 2) * (p->size[l] + 2);
+		total += 6 * p->face_stride[l];
+	}
+	if (!(p->data = aligned_alloc(16, total * sizeof(rf__v4))))
+		return RF_ENOMEM;
+	total = 0;
+	for (l = 0; l < p->nlevels; l++) {
+		p->level[l] = p->data + total;
+		for (f = 0; f < 6; f++) {
+			const float *src = rf__cubemap_padded_face(c, l, f);
+			rf__v4 *dst = p->level[l] + (size_t)f * p->face_stride[l];
+
+			for (i = 0; i < p->face_stride[l]; i++) {
+				rf__v4 t = { src[3 * i], src[3 * i + 1], src[3 * i + 2], 0.0f };
+
+				dst[i] = t;
+			}
+		}
+		total += 6 * p->face_stride[l];
+	}
+	return 0;
+}
+
+void
+rf__pyramid_free(struct rf__pyramid *p)
+{
+	free(p->data);
+	p->data = NULL;
+}
+
+struct rf__lod
+rf__pyramid_lod(const struct rf__pyramid *p, float lod)
+{
+	struct rf__lod r;
+	float top = (float)(p->nlevels - 1);
+
+	if (!(lod > 0.0f))
+		lod = 0.0f;
+	if (lod > top)
+		lod = top;
+	r.l0 = (uint32_t)lod;
+	r.w1 = lod - (float)r.l0;
+	r.l1 = r.l0 + 1 < p->nlevels ? r.l0 + 1 : r.l0;
+	if (r.l1 == r.l0)
+		r.w1 = 0.0f;
+	r.w0 = 1.0f - r.w1;
+	return r;
+}
