@@ -9,40 +9,19 @@
 static inline int
 rf__cube_face(const float d[3], float *u, float *v)
 {
-	float ax = fabsf(d[0]), ay = fabsf(d[1]), az = fabsf(d[2]), inv;
+	float ax = fabsf(d[0]), ay = fabsf(d[1]), az = fabsf(d[2]);
+	/* Selects instead of branches: a lobe's samples cross faces at
+	 * random, and mispredicted branches cost more than the arithmetic. */
+	int on_x = ax >= ay && ax >= az, on_y = !on_x && ay >= az;
+	int pos = on_x ? d[0] > 0.0f : on_y ? d[1] > 0.0f : d[2] > 0.0f;
+	float major = on_x ? ax : on_y ? ay : az;
+	float across = on_x ? (pos ? d[2] : -d[2]) : on_y ? d[0] : (pos ? -d[0] : d[0]);
+	float down = on_y ? (pos ? -d[2] : d[2]) : -d[1];
+	float inv = major > 0.0f ? 0.5f / major : 0.0f;
 
-	if (ax >= ay && ax >= az) {
-		if (ax == 0.0f) {
-			*u = *v = 0.5f;
-			return 0;
-		}
-		inv = 0.5f / ax;
-		*v = 0.5f - d[1] * inv;
-		if (d[0] > 0.0f) {
-			*u = 0.5f + d[2] * inv;
-			return 0;
-		}
-		*u = 0.5f - d[2] * inv;
-		return 1;
-	}
-	if (ay >= az) {
-		inv = 0.5f / ay;
-		*u = 0.5f + d[0] * inv;
-		if (d[1] > 0.0f) {
-			*v = 0.5f - d[2] * inv;
-			return 2;
-		}
-		*v = 0.5f + d[2] * inv;
-		return 3;
-	}
-	inv = 0.5f / az;
-	*v = 0.5f - d[1] * inv;
-	if (d[2] > 0.0f) {
-		*u = 0.5f - d[0] * inv;
-		return 4;
-	}
-	*u = 0.5f + d[0] * inv;
-	return 5;
+	*u = 0.5f + across * inv;
+	*v = 0.5f + down * inv;
+	return 2 * (on_x ? 0 : on_y ? 1 : 2) + !pos;
 }
 
 #endif

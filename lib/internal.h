@@ -28,6 +28,12 @@ int rf__mul3(size_t x, size_t y, size_t z, size_t *out);
 /* A face of a cube level with its one-texel border: (n + 2)^2 RGB
  * texels, rows top first, starting at border texel (-1, -1). */
 struct rf_cubemap;
+/* Fills level k of a cube from an N x 6N image of that level's size,
+ * texel for texel (first 3 channels; non-finite values become 0 and are
+ * counted). */
+int rf__cube_level_from_pixels(struct rf_cubemap *c, size_t level, const float *px,
+                               size_t w, size_t h, size_t nch, size_t *nonfinite,
+                               char *err, size_t errlen);
 const float *rf__cubemap_padded_face(const struct rf_cubemap *c, size_t level,
                                      int face);
 

@@ -246,24 +246,36 @@ source_tables(const rf_cubemap *src, size_t sub, float **dirs, float **omega,
 	return 0;
 }
 
+int
+rf_prefilter_brute_texels(const rf_cubemap *src, const float *dirs, size_t count,
+                          float roughness, float *rgb)
+{
+	float *pts, *omega, *radiance;
+	double alpha = (double)roughness * roughness;
+	size_t npts, k;
+	int rc;
+
+	if ((rc = source_tables(src, brute_subdivision(rf_cubemap_size(src), alpha), &pts,
+	                        &omega, &radiance, &npts)) < 0)
+		return rc;
+	for (k = 0; k < count; k++) {
+		float n[3] = { dirs[3 * k], dirs[3 * k + 1], dirs[3 * k + 2] };
+
+		normalize3(n);
+		brute_texel(pts, omega, radiance, npts, n, alpha, rgb + 3 * k);
+	}
+	free(pts);
+	free(omega);
+	free(radiance);
+	return 0;
+}
+
 void
 rf_prefilter_brute_texel(const rf_cubemap *src, const float n[3], float roughness,
                          float rgb[3])
 {
-	float *dirs, *omega, *radiance, nn[3] = { n[0], n[1], n[2] };
-	double alpha = (double)roughness * roughness;
-	size_t count;
-
-	normalize3(nn);
-	if (source_tables(src, brute_subdivision(rf_cubemap_size(src), alpha), &dirs,
-	                  &omega, &radiance, &count) < 0) {
+	if (rf_prefilter_brute_texels(src, n, 1, roughness, rgb) < 0)
 		rgb[0] = rgb[1] = rgb[2] = NAN;
-		return;
-	}
-	brute_texel(dirs, omega, radiance, count, nn, alpha, rgb);
-	free(dirs);
-	free(omega);
-	free(radiance);
 }
 
 static void *
@@ -301,8 +313,8 @@ work(void *arg)
  * by +-4% for a sun near a cube corner; doubling leaves +-3%, tripling
  * under 1%, for about twice the work of a fixed count.
  */
-static size_t
-level_samples(unsigned base, size_t k)
+size_t
+rf_prefilter_level_samples(unsigned base, size_t k)
 {
 	size_t n = base;
 
@@ -378,7 +390,7 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 	}
 	copy_level(chain, base, out, 0);
 	if (o->method == RF_PREFILTER_FILTERED &&
-	    !(samples = malloc(level_samples(o->samples, levels - 1) * sizeof(*samples)))) {
+	    !(samples = malloc(rf_prefilter_level_samples(o->samples, levels - 1) * sizeof(*samples)))) {
 		rc = RF_ENOMEM;
 		goto out;
 	}
@@ -417,7 +429,7 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 			jb.src_count = count;
 		} else {
 			jb.samples = samples;
-			jb.nsamples = make_samples(samples, level_samples(o->samples, k),
+			jb.nsamples = make_samples(samples, rf_prefilter_level_samples(o->samples, k),
 			                           (double)jb.roughness * jb.roughness, n0,
 			                           o->lod_bias, &jb.weight_sum);
 			jb.pyramid = &pyramid;

@@ -86,6 +86,56 @@ RF_EXTERN void rf_cubemap_sample(const rf_cubemap *c, const float dir[3], float 
 /* Solid-angle-weighted mean of a level, per channel. */
 RF_EXTERN void rf_cubemap_level_mean(const rf_cubemap *c, size_t level, double rgb[3]);
 
+/* ---- environment images ---------------------------------------------- */
+
+enum rf_layout {
+	RF_LAYOUT_AUTO = 0,
+	RF_LAYOUT_LATLONG,   /* 2:1 equirectangular */
+	RF_LAYOUT_CUBE,      /* N x 6N, faces +X -X +Y -Y +Z -Z top to bottom */
+	RF_LAYOUT_VCROSS,    /* 3N x 4N vertical cross */
+	RF_LAYOUT_HCROSS     /* 4N x 3N horizontal cross */
+};
+
+RF_EXTERN int rf_layout_parse(const char *name, enum rf_layout *out);
+RF_EXTERN const char *rf_layout_name(enum rf_layout layout);
+/* The layout of a w x h image: from its OpenEXR envmap attribute
+ * ("latlong" or "cube", may be NULL), else from its aspect ratio.
+ * RF_EINVAL with a message when neither tells. */
+RF_EXTERN int rf_layout_detect(size_t w, size_t h, const char *envmap_attribute,
+                               enum rf_layout *out, char *err, size_t errlen);
+/* Checks that a w x h image can hold the layout; the face size in *face
+ * (for lat-long, the face size a cube of it gets by default: a quarter
+ * of the width, rounded down to a power of two). */
+RF_EXTERN int rf_layout_check(enum rf_layout layout, size_t w, size_t h,
+                              size_t *face, char *err, size_t errlen);
+
+/* How the pixels' channels become radiance. */
+struct rf_decode {
+	int srgb;          /* 1: the colour channels are sRGB-encoded */
+	int rgbm;          /* 1: RGBM: rgb * multiplier * a^exponent */
+	float multiplier;  /* RGBM range (Unity's DecodeHDR x) */
+	float exponent;    /* RGBM alpha exponent (Unity's DecodeHDR y) */
+	float intensity;   /* a scale applied last (1) */
+};
+
+/* Fills level 0 of c (whose face size decides the resolution) from an
+ * image in a layout: cube layouts are copied texel for texel (resampled
+ * when the sizes differ); lat-long is area-filtered, with more taps
+ * where the image's pixels crowd (toward the poles).  Non-finite values
+ * become 0 and are counted in *nonfinite.  nch is 1 (grey), 3 or 4. */
+RF_EXTERN int rf_envmap_from_pixels(rf_cubemap *c, const float *pixels, size_t w,
+                                    size_t h, size_t nch, enum rf_layout layout,
+                                    const struct rf_decode *decode,
+                                    size_t *nonfinite, char *err, size_t errlen);
+/* Writes level `level` of c into an image of a layout (w x h computed
+ * from the level's face size, or given for lat-long): RGB, nch = 3. */
+RF_EXTERN int rf_envmap_to_pixels(const rf_cubemap *c, size_t level,
+                                  enum rf_layout layout, float *pixels, size_t w,
+                                  size_t h);
+/* The image size a level takes in a layout (lat-long: 4N x 2N). */
+RF_EXTERN void rf_layout_size(enum rf_layout layout, size_t face, size_t *w,
+                              size_t *h);
+
 /* ---- prefiltering ----------------------------------------------------- */
 
 enum rf_prefilter_method {
@@ -118,6 +168,46 @@ RF_EXTERN int rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
  * tests and the bench). */
 RF_EXTERN void rf_prefilter_brute_texel(const rf_cubemap *src, const float n[3],
                                         float roughness, float rgb[3]);
+/* The same for count directions at once (the source tables are built
+ * once): rgb[3 * count]. */
+RF_EXTERN int rf_prefilter_brute_texels(const rf_cubemap *src, const float *dirs,
+                                        size_t count, float roughness, float *rgb);
+/* GGX samples a texel of level k >= 1 takes when level 1 takes `base`. */
+RF_EXTERN size_t rf_prefilter_level_samples(unsigned base, size_t level);
+
+/* ---- chains as streams and files -------------------------------------- */
+
+/* What a chain is: read from and written to its metadata. */
+struct rf_chain_info {
+	int prefiltered;          /* 1: levels are GGX-convolved (else plain) */
+	enum rf_mapping mapping;  /* the roughness-to-lod mapping it was made with */
+	float steps;              /* the lod of its roughest level */
+	unsigned samples;         /* GGX samples at level 1 (0: brute force) */
+	int base_copied;          /* 1: level 0 is the source as it was */
+};
+
+/* Writes every level as one frame of a stream: NCOLS=N NROWS=6N,
+ * channels R G B, keys ENVMAP=CUBE LEVEL LEVELS and the chain's info. */
+RF_EXTERN int rf_chain_write_stream(const rf_cubemap *c, const struct rf_chain_info *info,
+                                    rf_writer *w, const rf_header *base, char *err,
+                                    size_t errlen);
+/* Reads a chain from a stream: frames with ENVMAP=CUBE, one per level
+ * (LEVEL 0, 1, ...), or one frame of a raw environment. */
+RF_EXTERN int rf_chain_read_stream(rf_cubemap **c, struct rf_chain_info *info,
+                                   rf_reader *r, char *err, size_t errlen);
+
+/* Writes a chain as a MIP-mapped OpenEXR cube (N x 6N, envmap=cube):
+ * the chain's levels first, then box-filtered levels down to 1x1 that
+ * OpenEXR requires and readers ignore; the chain's info goes into
+ * reflect:* attributes. */
+RF_EXTERN int rf_chain_write_file(const rf_cubemap *c, const struct rf_chain_info *info,
+                                  const char *path, char *err, size_t errlen);
+/* Reads a MIP-mapped OpenEXR cube: its cube levels (N x 6N) as a chain,
+ * the non-cube tail ignored.  *is_reflect is 1 for files this library
+ * wrote (then info is filled from their attributes). */
+RF_EXTERN int rf_chain_read_file(rf_cubemap **c, struct rf_chain_info *info,
+                                 int *is_reflect, const char *path, char *err,
+                                 size_t errlen);
 
 /* ---- the embedded environment ----------------------------------------- */
 

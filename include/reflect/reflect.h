@@ -232,6 +232,22 @@ RF_EXTERN int rf_image_writer_close(rf_image_writer *w, char *err, size_t errlen
  * JPEG, float for EXR and HDR), or -1 for an extension no plugin writes. */
 RF_EXTERN int rf_image_type_for_path(const char *path);
 
+/* A MIP-mapped image (OpenEXR, tiled): levels 0..nlevels-1 of sizes
+ * w[k] x h[k], all with the same channels; string attributes as
+ * NULL-terminated key, value pairs. */
+RF_EXTERN int rf_image_write_levels(const char *path, size_t nlevels, const size_t *w,
+                                    const size_t *h, size_t nchannels,
+                                    const char *const *names,
+                                    const float *const *pixels,
+                                    const char *const *attributes,
+                                    enum rf_pixel_type type, char *err, size_t errlen);
+/* The number of MIP levels of a file's first image (1 when it has none). */
+RF_EXTERN int rf_image_count_levels(const char *path, size_t *nlevels, char *err,
+                                    size_t errlen);
+/* Reads one MIP level of a file's first image. */
+RF_EXTERN int rf_image_read_level(rf_image **img, const char *path, size_t level,
+                                  char *err, size_t errlen);
+
 /* Display encoding: exposure scale, an optional tone curve, sRGB. */
 enum rf_tone {
 	RF_TONE_NONE = 0,  /* clamp to [0, 1] only */

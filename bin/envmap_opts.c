@@ -1,0 +1,316 @@
+/* Loading an environment from the options every tool shares. */
+#include <errno.h>
+#include <math.h>
+#include <string.h>
+#include <strings.h>
+
+#include "envmap_opts.h"
+
+void
+envmap_opts_init(struct envmap_opts *o)
+{
+	memset(o, 0, sizeof(*o));
+	o->layout = RF_LAYOUT_AUTO;
+	o->srgb = -1;
+	o->decode.multiplier = 1.0f;
+	o->decode.exponent = 1.0f;
+	o->decode.intensity = 1.0f;
+}
+
+static float
+parse_positive(const char *name, const char *arg)
+{
+	char *end;
+	double v;
+
+	errno = 0;
+	v = strtod(arg, &end);
+	if (end == arg || *end || errno || !isfinite(v) || v <= 0.0)
+		die("--%s: '%s' is not a positive number", name, arg);
+	return (float)v;
+}
+
+int
+envmap_opts_parse(struct envmap_opts *o, const char *name, const char *arg)
+{
+	if (!strcmp(name, "env")) {
+		o->path = arg;
+	} else if (!strcmp(name, "layout")) {
+		if (rf_layout_parse(arg, &o->layout) < 0)
+			die("--layout: '%s' is not auto, latlong, cube, vcross or hcross", arg);
+	} else if (!strcmp(name, "prefiltered")) {
+		o->prefiltered = 1;
+	} else if (!strcmp(name, "srgb")) {
+		if (!strcmp(arg, "on"))
+			o->srgb = 1;
+		else if (!strcmp(arg, "off"))
+			o->srgb = 0;
+		else if (!strcmp(arg, "auto"))
+			o->srgb = -1;
+		else
+			die("--srgb: '%s' is not auto, on or off", arg);
+	} else if (!strcmp(name, "rgbm")) {
+		float v[2];
+		const char *comma = strchr(arg, ',');
+
+		if (comma) {
+			parse_floats(arg, "--rgbm", v, 2);
+		} else {
+			v[0] = parse_positive("rgbm", arg);
+			v[1] = 1.0f;
+		}
+		if (!(v[0] > 0.0f) || !(v[1] > 0.0f))
+			die("--rgbm: multiplier and exponent must be positive, not '%s'", arg);
+		o->decode.rgbm = 1;
+		o->decode.multiplier = v[0];
+		o->decode.exponent = v[1];
+	} else if (!strcmp(name, "intensity")) {
+		o->decode.intensity = parse_positive(name, arg);
+	} else if (!strcmp(name, "size")) {
+		o->size = parse_count(arg, 's', 1, 1 << 14);
+		if (o->size & (o->size - 1))
+			die("--size: %zu is not a power of two", o->size);
+	} else {
+		return 0;
+	}
+	return 1;
+}
+
+static void
+report_nonfinite(const struct envmap_opts *o, const char *path, size_t bad)
+{
+	if (!bad)
+		return;
+	if (o->strict)
+		die("'%s': %zu texel values are NaN or infinite (-S refuses them)", path, bad);
+	warn("'%s': replaced %zu NaN or infinite texel values with 0", path, bad);
+}
+
+/* An image of one face: checks it is square and of size n (0: any). */
+static rf_image *
+read_face(const char *path, size_t *n)
+{
+	char err[1024];
+	rf_image *img;
+	int rc;
+
+	if ((rc = rf_image_read(&img, path, err, sizeof(err))) < 0)
+		die_status(rc == RF_ENOMEM ? rc : RF_EINVAL, err);
+	if (rf_image_width(img) != rf_image_height(img))
+		die("'%s': a face must be square, not %zux%zu", path, rf_image_width(img),
+		    rf_image_height(img));
+	if (*n && rf_image_width(img) != *n)
+		die("'%s': faces differ in size (%zu, not %zu like the first)", path,
+		    rf_image_width(img), *n);
+	*n = rf_image_width(img);
+	return img;
+}
+
+/* "%d" takes 0..5, "%s" takes px nx py ny pz nz. */
+static void
+face_path(char *buf, size_t size, const char *pattern, int face)
+{
+	static const char *const names[6] = { "px", "nx", "py", "ny", "pz", "nz" };
+	const char *pct = strchr(pattern, '%');
+
+	if (!pct || (pct[1] != 'd' && pct[1] != 's') || strchr(pct + 1, '%'))
+		die("--env: '%s' needs one %%d (faces 0..5) or %%s (px nx py ny pz nz)",
+		    pattern);
+	if (pct[1] == 'd')
+		snprintf(buf, size, "%.*s%d%s", (int)(pct - pattern), pattern, face, pct + 2);
+	else
+		snprintf(buf, size, "%.*s%s%s", (int)(pct - pattern), pattern, names[face],
+		         pct + 2);
+}
+
+static int
+is_srgb(const struct envmap_opts *o, const rf_image *img)
+{
+	const char *cs = rf_image_attribute(img, "oiio:ColorSpace");
+
+	if (o->srgb >= 0)
+		return o->srgb;
+	return cs && !strcasecmp(cs, "sRGB");
+}
+
+static rf_cubemap *
+load_pixels(const struct envmap_opts *o, const char *path, const float *px, size_t w,
+            size_t h, size_t nch, enum rf_layout layout, int srgb)
+{
+	struct rf_decode dc = o->decode;
+	char err[1024];
+	rf_cubemap *c;
+	size_t face, bad;
+	int rc;
+
+	dc.srgb = srgb;
+	if (layout == RF_LAYOUT_AUTO)
+		layout = o->layout;
+	if (layout == RF_LAYOUT_AUTO &&
+	    rf_layout_detect(w, h, NULL, &layout, err, sizeof(err)) < 0)
+		die("'%s': %s", path, err);
+	if (rf_layout_check(layout, w, h, &face, err, sizeof(err)) < 0)
+		die("'%s': %s", path, err);
+	if (o->size)
+		face = o->size;
+	if ((rc = rf_cubemap_new(&c, face, 1)) < 0)
+		die_status(rc, NULL);
+	if ((rc = rf_envmap_from_pixels(c, px, w, h, nch, layout, &dc, &bad, err,
+	                                sizeof(err))) < 0)
+		die("'%s': %s", path, err);
+	report_nonfinite(o, path, bad);
+	return c;
+}
+
+static rf_cubemap *
+load_faces(const struct envmap_opts *o)
+{
+	char path[4096];
+	rf_image *faces[6];
+	size_t n = 0, nch, f, j;
+	float *px;
+	rf_cubemap *c;
+	int srgb;
+
+	for (f = 0; f < 6; f++) {
+		face_path(path, sizeof(path), o->path, (int)f);
+		faces[f] = read_face(path, &n);
+		if (f && rf_image_nchannels(faces[f]) != rf_image_nchannels(faces[0]))
+			die("'%s': faces differ in channels", path);
+	}
+	nch = rf_image_nchannels(faces[0]);
+	if (nch != 1 && nch != 3 && nch != 4)
+		die("'%s': a face has 1, 3 or 4 channels, not %zu", path, nch);
+	px = emalloc(n * 6 * n * nch * sizeof(float));
+	for (f = 0; f < 6; f++)
+		for (j = 0; j < n; j++)
+			memcpy(px + ((f * n + j) * n) * nch,
+			       rf_image_pixels(faces[f]) + j * n * nch, n * nch * sizeof(float));
+	srgb = is_srgb(o, faces[0]);
+	for (f = 0; f < 6; f++)
+		rf_image_free(faces[f]);
+	c = load_pixels(o, o->path, px, n, 6 * n, nch, RF_LAYOUT_CUBE, srgb);
+	free(px);
+	return c;
+}
+
+static rf_cubemap *
+load_stream(const struct envmap_opts *o, FILE *fp, const char *name,
+            struct rf_chain_info *info)
+{
+	char err[1024];
+	rf_reader *r;
+	rf_cubemap *c;
+	int rc;
+
+	if ((rc = rf_reader_open(&r, fp, name, NULL)) < 0)
+		die_status(rc, NULL);
+	if ((rc = rf_chain_read_stream(&c, info, r, err, sizeof(err))) < 0)
+		die_status(rc, err);
+	rf_reader_close(r);
+	if (o->prefiltered)
+		info->prefiltered = 1;
+	return c;
+}
+
+/* A MIP-mapped N x 6N file: a chain when reflect wrote it or the user
+ * says it is one (--prefiltered); NULL to read it as a raw image. */
+static rf_cubemap *
+load_chain_file(const struct envmap_opts *o, struct rf_chain_info *info)
+{
+	char err[1024];
+	size_t levels;
+	rf_cubemap *c;
+	int rc, ours;
+
+	if (rf_image_count_levels(o->path, &levels, err, sizeof(err)) < 0 || levels < 2)
+		return NULL;
+	if ((rc = rf_chain_read_file(&c, info, &ours, o->path, err, sizeof(err))) < 0) {
+		if (o->prefiltered)
+			die_status(rc == RF_ENOMEM ? rc : RF_EINVAL, err);
+		return NULL; /* not a cube chain: an ordinary image */
+	}
+	if (!ours && !o->prefiltered) {
+		rf_cubemap_free(c);
+		memset(info, 0, sizeof(*info));
+		info->mapping = RF_MAPPING_DEFAULT;
+		info->base_copied = 1;
+		return NULL;
+	}
+	if (o->prefiltered)
+		info->prefiltered = 1;
+	if (!info->steps)
+		info->steps = (float)(rf_cubemap_levels(c) - 1);
+	return c;
+}
+
+rf_cubemap *
+envmap_load(const struct envmap_opts *o, struct rf_chain_info *info)
+{
+	char err[1024], magic[10] = "";
+	rf_image *img;
+	rf_cubemap *c;
+	FILE *fp;
+	int rc;
+
+	memset(info, 0, sizeof(*info));
+	info->mapping = RF_MAPPING_DEFAULT;
+	info->base_copied = 1;
+	if (!o->path || !strcmp(o->path, "default")) {
+		if ((rc = rf_cubemap_new(&c, o->size ? o->size : 256, 1)) < 0)
+			die_status(rc, NULL);
+		rf_default_environment_cube(c);
+		return c;
+	}
+	if (!strcmp(o->path, "-"))
+		return load_stream(o, stdin, "<stdin>", info);
+	if (strchr(o->path, '%'))
+		return load_faces(o);
+	if (!(fp = fopen(o->path, "rb")))
+		die("cannot open '%s':", o->path);
+	if (fread(magic, 1, 9, fp) == 9 && !memcmp(magic, "#?REFLECT", 9)) {
+		rewind(fp);
+		c = load_stream(o, fp, o->path, info);
+		fclose(fp);
+		return c;
+	}
+	fclose(fp);
+	if ((c = load_chain_file(o, info)))
+		return c;
+	if ((rc = rf_image_read(&img, o->path, err, sizeof(err))) < 0)
+		die_status(rc == RF_ENOMEM ? rc : RF_EINVAL, err);
+	{
+		const char *envmap = rf_image_attribute(img, "envmap");
+		enum rf_layout layout = o->layout;
+
+		if (layout == RF_LAYOUT_AUTO &&
+		    rf_layout_detect(rf_image_width(img), rf_image_height(img), envmap,
+		                     &layout, err, sizeof(err)) < 0)
+			die("'%s': %s", o->path, err);
+		c = load_pixels(o, o->path, rf_image_pixels(img), rf_image_width(img),
+		                rf_image_height(img), rf_image_nchannels(img), layout,
+		                is_srgb(o, img));
+	}
+	rf_image_free(img);
+	if (o->prefiltered)
+		info->prefiltered = 1;
+	return c;
+}
+
+size_t
+envmap_chain_levels(size_t size, size_t want, size_t min_size)
+{
+	size_t levels = 1, n = size;
+
+	if (want) {
+		for (levels = 1; levels < want; levels++, n /= 2)
+			if (n & 1 || n / 2 < 1)
+				die("a %zu-texel cube has no %zu levels (it halves to %zu)", size,
+				    want, n);
+		return levels;
+	}
+	while (levels < (size_t)RF_STEPS_DEFAULT + 1 && !((size >> (levels - 1)) & 1) &&
+	       (size >> levels) >= min_size)
+		levels++;
+	return levels;
+}

@@ -1,0 +1,309 @@
+/* reflect-prefilter: an environment to a GGX-convolved mip chain. */
+#include <getopt.h>
+#include <math.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "envmap_opts.h"
+
+static void
+usage(void)
+{
+	fprintf(stderr, "usage: %s [-SvV] [-o OUT] [-s SAMPLES] [-j THREADS] "
+	        "[--levels=N] [--min-size=N] [--mapping=unity|linear|exact] "
+	        "[--steps=N] [--method=filtered|brute] [--plain] [--lod-bias=B] "
+	        "[--layout=L] [--size=N] [--srgb=auto|on|off] [--rgbm=M[,E]] "
+	        "[--intensity=X] [--dump=latlong|cube|vcross|hcross] [-f a|f] [-h] "
+	        "[ENV]\n", argv0);
+	exit(EXIT_BAD_INPUT);
+}
+
+struct prefilter_opts {
+	const char *output;
+	const char *dump;
+	struct rf_prefilter_options pf;
+	size_t levels, min_size;
+	int plain, verbose;
+	enum rf_format format;
+	int no_header;
+};
+
+static double
+now(clockid_t clock)
+{
+	struct timespec t;
+
+	clock_gettime(clock, &t);
+	return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static void
+progress(void *arg, double done, double total)
+{
+	fprintf(stderr, "\r%s: %3.0f%%", argv0, 100.0 * done / total);
+	if (done >= total)
+		fputc('\n', stderr);
+}
+
+static double
+parse_number(const char *name, const char *arg, double lo, double hi)
+{
+	char *end;
+	double v = strtod(arg, &end);
+
+	if (end == arg || *end || !isfinite(v) || v < lo || v > hi)
+		die("--%s: '%s' is not a number in [%g, %g]", name, arg, lo, hi);
+	return v;
+}
+
+/* Levels of the chain: at most steps + 1 (7 by default, Unity's), never
+ * below the minimum face size, never odd. */
+static size_t
+chain_levels(const struct prefilter_opts *o, size_t size)
+{
+	size_t levels = 1;
+
+	if (o->levels) {
+		size_t n = size;
+
+		for (levels = 1; levels < o->levels; levels++, n /= 2)
+			if (n & 1 || n / 2 < 1)
+				die("a %zu-texel cube has no %zu levels (it halves to %zu)", size,
+				    o->levels, n);
+		return levels;
+	}
+	while (levels < (size_t)RF_STEPS_DEFAULT + 1 && !((size >> (levels - 1)) & 1) &&
+	       (size >> levels) >= o->min_size)
+		levels++;
+	return levels;
+}
+
+static void
+dump_levels(const rf_cubemap *c, const char *spec)
+{
+	enum rf_layout layout;
+	char path[4096], err[1024];
+	static const char *const names[] = { "R", "G", "B" };
+	size_t k;
+	int rc;
+
+	if (rf_layout_parse(spec, &layout) < 0 || layout == RF_LAYOUT_AUTO)
+		die("--dump: '%s' is not latlong, cube, vcross or hcross", spec);
+	for (k = 0; k < rf_cubemap_levels(c); k++) {
+		size_t n = rf_cubemap_level_size(c, k), w, h;
+		rf_image_writer *iw;
+		float *px;
+
+		rf_layout_size(layout, n, &w, &h);
+		if (layout == RF_LAYOUT_LATLONG && n < 8)
+			rf_layout_size(layout, 8, &w, &h); /* small levels still legible */
+		px = emalloc(w * h * 3 * sizeof(float));
+		rf_envmap_to_pixels(c, k, layout, px, w, h);
+		snprintf(path, sizeof(path), "level%zu-%s.exr", k, spec);
+		if ((rc = rf_image_writer_open(&iw, path, w, h, 3, names, RF_PIXEL_HALF, err,
+		                               sizeof(err))) < 0 ||
+		    (rc = rf_image_writer_write_rows(iw, 0, h, px, err, sizeof(err))) < 0 ||
+		    (rc = rf_image_writer_close(iw, err, sizeof(err))) < 0)
+			die_status(rc, err);
+		fprintf(stderr, "%s: wrote '%s'\n", argv0, path);
+		free(px);
+	}
+}
+
+static void
+write_chain(const struct prefilter_opts *o, const rf_cubemap *c,
+            const struct rf_chain_info *info, int argc, char **argv)
+{
+	struct rf_writer_options wopt = { o->format, o->no_header };
+	char err[1024];
+	rf_header *base = rf_header_new();
+	rf_writer *w;
+	FILE *fp = stdout;
+	const char *name = "<stdout>";
+	int rc;
+
+	if (o->output) {
+		const char *dot = strrchr(o->output, '.');
+
+		if (dot && strcmp(dot, ".rfl") && strcmp(dot, ".stream")) {
+			if ((rc = rf_chain_write_file(c, info, o->output, err, sizeof(err))) < 0)
+				die_status(rc, err);
+			rf_header_free(base);
+			return;
+		}
+		if (!(fp = fopen(o->output, "wb")))
+			die("cannot open '%s':", o->output);
+		name = o->output;
+	}
+	rf_header_add_command(base, argc, argv);
+	if ((rc = rf_writer_open(&w, fp, name, &wopt)) < 0)
+		die_status(rc, NULL);
+	if ((rc = rf_chain_write_stream(c, info, w, base, err, sizeof(err))) < 0)
+		die_status(rc, err);
+	rf_writer_close(w);
+	rf_header_free(base);
+	if (fp != stdout)
+		fshut(fp, name);
+}
+
+int
+main(int argc, char **argv)
+{
+	static const struct option long_options[] = {
+		{ "env", required_argument, NULL, 0 },
+		{ "layout", required_argument, NULL, 0 },
+		{ "srgb", required_argument, NULL, 0 },
+		{ "rgbm", required_argument, NULL, 0 },
+		{ "intensity", required_argument, NULL, 0 },
+		{ "size", required_argument, NULL, 0 },
+		{ "prefiltered", no_argument, NULL, 0 },
+		{ "levels", required_argument, NULL, 'L' },
+		{ "min-size", required_argument, NULL, 'M' },
+		{ "mapping", required_argument, NULL, 'P' },
+		{ "steps", required_argument, NULL, 'T' },
+		{ "method", required_argument, NULL, 'X' },
+		{ "plain", no_argument, NULL, 'N' },
+		{ "lod-bias", required_argument, NULL, 'B' },
+		{ "dump", required_argument, NULL, 'D' },
+		{ "help", no_argument, NULL, 'Q' },
+		{ NULL, 0, NULL, 0 },
+	};
+	struct prefilter_opts o;
+	struct envmap_opts eo;
+	struct rf_chain_info info;
+	rf_cubemap *src, *out;
+	const char *threads = NULL;
+	char err[1024];
+	int c, idx, rc;
+
+	cli_init(argc, argv);
+	memset(&o, 0, sizeof(o));
+	rf_prefilter_defaults(&o.pf);
+	o.min_size = 1;
+	envmap_opts_init(&eo);
+	while ((c = getopt_long(argc, argv, "SvVo:s:j:f:h", long_options, &idx)) != -1) {
+		switch (c) {
+		case 0:
+			envmap_opts_parse(&eo, long_options[idx].name, optarg);
+			break;
+		case 'S': eo.strict = 1; break;
+		case 'v': o.verbose = 1; break;
+		case 'V': print_version(); break;
+		case 'o': o.output = optarg; break;
+		case 's': o.pf.samples = (unsigned)parse_count(optarg, 's', 1, 1 << 16); break;
+		case 'j': threads = optarg; break;
+		case 'f':
+			if (!strcmp(optarg, "a")) o.format = RF_FORMAT_ASCII;
+			else if (strcmp(optarg, "f")) die("option -f: '%s' is not a or f", optarg);
+			break;
+		case 'h': o.no_header = 1; break;
+		case 'L': o.levels = parse_count(optarg, 'L', 2, 16); break;
+		case 'M': o.min_size = parse_count(optarg, 'M', 1, 1 << 14); break;
+		case 'P':
+			if (rf_mapping_parse(optarg, &o.pf.mapping) < 0)
+				die("--mapping: '%s' is not unity, linear or exact", optarg);
+			break;
+		case 'T': o.pf.steps = (float)parse_number("steps", optarg, 0.5, 64); break;
+		case 'X':
+			if (!strcmp(optarg, "filtered")) o.pf.method = RF_PREFILTER_FILTERED;
+			else if (!strcmp(optarg, "brute")) o.pf.method = RF_PREFILTER_BRUTE;
+			else die("--method: '%s' is not filtered or brute", optarg);
+			break;
+		case 'N': o.plain = 1; break;
+		case 'B': o.pf.lod_bias = (float)parse_number("lod-bias", optarg, -4, 4); break;
+		case 'D': o.dump = optarg; break;
+		case 'Q':
+			printf("usage: %s [options] [ENV]\n"
+			       "Convolves an environment (lat-long, N x 6N cube, cross, six faces\n"
+			       "with %%d or %%s in the name, a stream, or the embedded room when\n"
+			       "none is given) into a GGX mip chain. See reflect-prefilter(1).\n"
+			       "  -o OUT  .exr: MIP-mapped OpenEXR cube; .rfl: stream (stdout without -o)\n"
+			       "  -s N  GGX samples at level 1 (64), x3 per rougher level\n"
+			       "  --levels=N --min-size=N --mapping=unity|linear|exact --steps=N\n"
+			       "  --method=filtered|brute  --plain (box mips)  --lod-bias=B\n"
+			       "  --dump=latlong|cube|vcross|hcross  each level to levelK-LAYOUT.exr\n"
+			       "  -j N threads  -S refuse NaN/Inf  -v  -V\n", argv0);
+			fshut(stdout, "<stdout>");
+			return 0;
+		default: usage();
+		}
+	}
+	if (argc - optind > 1 || (argc - optind == 1 && eo.path))
+		usage();
+	if (optind < argc)
+		eo.path = argv[optind];
+	o.pf.nthreads = cli_threads(threads);
+	if (isatty(STDERR_FILENO))
+		o.pf.progress = progress;
+	src = envmap_load(&eo, &info);
+	if (info.prefiltered || rf_cubemap_levels(src) > 1) {
+		/* A chain is written as it is: a change of form, not of content. */
+		fprintf(stderr, "%s: '%s' is already a %s chain of %zu levels; writing it "
+		        "as it is\n", argv0, eo.path, info.prefiltered ? "prefiltered" : "plain",
+		        rf_cubemap_levels(src));
+		if (o.dump)
+			dump_levels(src, o.dump);
+		if (!o.dump || o.output)
+			write_chain(&o, src, &info, argc, argv);
+		rf_cubemap_free(src);
+		fshut(stdout, "<stdout>");
+		return 0;
+	}
+	if ((rc = rf_cubemap_new(&out, rf_cubemap_size(src),
+	                         chain_levels(&o, rf_cubemap_size(src)))) < 0)
+		die_status(rc, NULL);
+	info.mapping = o.pf.mapping;
+	info.steps = o.pf.steps > 0 ? o.pf.steps : (float)(rf_cubemap_levels(out) - 1);
+	info.base_copied = 1;
+	if (o.plain) {
+		size_t f, i, j;
+
+		for (f = 0; f < 6; f++)
+			for (j = 0; j < rf_cubemap_size(src); j++)
+				for (i = 0; i < rf_cubemap_size(src); i++)
+					memcpy(rf_cubemap_texel(out, 0, (enum rf_face)f, i, j),
+					       rf_cubemap_texel_const(src, 0, (enum rf_face)f, i, j),
+					       3 * sizeof(float));
+		rf_cubemap_seal_level(out, 0);
+		rf_cubemap_box_chain(out, 0);
+		info.prefiltered = 0;
+	} else {
+		if (rf_cubemap_levels(out) < 2)
+			die("a chain of one level has nothing to convolve: the cube is %zu "
+			    "texels (use a larger --size or a smaller --min-size)",
+			    rf_cubemap_size(src));
+		double wall = now(CLOCK_MONOTONIC), cpu = now(CLOCK_PROCESS_CPUTIME_ID);
+		double samples = 0;
+		size_t k;
+
+		if ((rc = rf_prefilter(src, out, &o.pf, err, sizeof(err))) < 0)
+			die_status(rc, err);
+		wall = now(CLOCK_MONOTONIC) - wall;
+		cpu = now(CLOCK_PROCESS_CPUTIME_ID) - cpu;
+		for (k = 1; k < rf_cubemap_levels(out); k++)
+			samples += 6.0 * (double)rf_cubemap_level_size(out, k) *
+			           (double)rf_cubemap_level_size(out, k) *
+			           (double)rf_prefilter_level_samples(o.pf.samples, k);
+		if (o.verbose && o.pf.method == RF_PREFILTER_FILTERED)
+			fprintf(stderr, "%s: %.1f M GGX samples in %.3f s (%.3f s cpu, %d "
+			        "threads): %.1f M samples per cpu second\n", argv0,
+			        samples / 1e6, wall, cpu, o.pf.nthreads, samples / cpu / 1e6);
+		info.prefiltered = 1;
+		info.samples = o.pf.method == RF_PREFILTER_BRUTE ? 0 : o.pf.samples;
+	}
+	if (o.verbose)
+		fprintf(stderr, "%s: %zu levels of %zu..%zu texels, mapping %s, steps %g, %s\n",
+		        argv0, rf_cubemap_levels(out), rf_cubemap_size(out),
+		        rf_cubemap_level_size(out, rf_cubemap_levels(out) - 1),
+		        rf_mapping_name(info.mapping), (double)info.steps,
+		        o.plain ? "box-filtered" : "GGX-prefiltered");
+	if (o.dump)
+		dump_levels(out, o.dump);
+	if (!o.dump || o.output)
+		write_chain(&o, out, &info, argc, argv);
+	rf_cubemap_free(src);
+	rf_cubemap_free(out);
+	fshut(stdout, "<stdout>");
+	return 0;
+}

@@ -1,0 +1,161 @@
+#!/bin/sh
+test_description='reflect-prefilter: inputs in every layout, chains out, bad input'
+. "$srcdir/tests/lib.sh"
+
+# header values of the frames of an ascii chain, one line per frame
+frame_keys () {
+	awk -v key="$1" 'index($0, key "=") == 1 { sub(key "=", ""); print }' "$2"
+}
+
+# a constant-colour image: constant_image FILE W H R G B
+constant_image () {
+	awk -v w="$2" -v h="$3" -v r="$4" -v g="$5" -v b="$6" 'BEGIN {
+		printf "#?REFLECT1\nNCOLS=%d\nNROWS=%d\nNCOMP=3\nCHANNELS=R G B\nFORMAT=ascii\n\n", w, h
+		for (i = 0; i < w * h; i++) printf "%s\t%s\t%s\n", r, g, b
+	}' | reflect-export -c all -o "$1"
+}
+
+# level 0 texels of an ascii chain (data lines of the first frame)
+level0 () {
+	awk 'BEGIN { f = 0 } /^#\?REFLECT1/ { f++; d = 0; next } f == 1 && d { print } f == 1 && /^$/ { d = 1 }' "$1"
+}
+
+test_expect_success 'default chain: levels, mapping and steps in the headers' '
+	reflect-prefilter --size=16 -fa >chain.txt &&
+	test "$(frame_keys LEVEL chain.txt | tr "\n" " ")" = "0 1 2 3 4 " &&
+	test "$(frame_keys LEVELS chain.txt | sort -u)" = 5 &&
+	test "$(frame_keys NCOLS chain.txt | tr "\n" " ")" = "16 8 4 2 1 " &&
+	test "$(frame_keys MAPPING chain.txt | sort -u)" = unity &&
+	test "$(frame_keys STEPS chain.txt | sort -u)" = 4 &&
+	test "$(frame_keys SAMPLES chain.txt | sort -u)" = 64 &&
+	test "$(frame_keys BASE chain.txt | sort -u)" = copied &&
+	test "$(frame_keys PREFILTER chain.txt | sort -u)" = ggx
+'
+
+test_expect_success 'a 256 cube makes the 7 levels of Unity, 256 to 4' '
+	reflect-prefilter -s 1 -fa -h >/dev/null &&
+	reflect-prefilter -s 1 >big.rfl &&
+	test "$(reflect-info big.rfl | grep -c "^frame")" = 7 &&
+	reflect-info big.rfl | grep "NCOLS=4$"
+'
+
+test_expect_success '--min-size and --levels choose the chain' '
+	reflect-prefilter --size=16 --min-size=4 -fa >min.txt &&
+	test "$(frame_keys NCOLS min.txt | tr "\n" " ")" = "16 8 4 " &&
+	test "$(frame_keys STEPS min.txt | sort -u)" = 2 &&
+	reflect-prefilter --size=16 --levels=2 --steps=6 --mapping=linear -fa >lev.txt &&
+	test "$(frame_keys NCOLS lev.txt | tr "\n" " ")" = "16 8 " &&
+	test "$(frame_keys STEPS lev.txt | sort -u)" = 6 &&
+	test "$(frame_keys MAPPING lev.txt | sort -u)" = linear
+'
+
+test_expect_success 'the same bytes with one thread and with two' '
+	reflect-prefilter --size=16 -h -j 1 >j1.rfl &&
+	reflect-prefilter --size=16 -h -j 2 >j2.rfl &&
+	cmp j1.rfl j2.rfl
+'
+
+for layout in cube vcross hcross
+do
+	test_expect_success "a $layout image reads back texel for texel" '
+		reflect-prefilter --size=16 --plain --levels=2 --dump=$layout 2>log &&
+		test_grep "wrote .level0-$layout.exr." log &&
+		reflect-prefilter --plain --levels=2 -fa level0-$layout.exr >back.txt &&
+		reflect-prefilter --size=16 --plain --levels=2 -fa >orig.txt &&
+		level0 back.txt >back0 && level0 orig.txt >orig0 &&
+		test_line_count 1536 back0 &&
+		test_cmp_numbers orig0 back0 0.02
+	'
+done
+
+test_expect_success 'a lat-long image is recognised and resampled' '
+	reflect-prefilter --size=16 --plain --levels=2 --dump=latlong 2>log &&
+	reflect-prefilter -v --size=16 --plain --levels=2 -fa level0-latlong.exr >ll.txt 2>log &&
+	test_grep "2 levels of 16..8 texels" log &&
+	level0 ll.txt >ll0 &&
+	test_line_count 1536 ll0
+'
+
+test_expect_success 'six face files by %d and by %s' '
+	for f in 0 1 2 3 4 5
+	do
+		constant_image face$f.exr 4 4 $f 1 2 || return 1
+	done &&
+	reflect-prefilter --plain --levels=2 -fa "face%d.exr" >six.txt &&
+	level0 six.txt | awk "{ print \$1 }" | uniq -c | awk "{ print \$1, \$2 }" >counts &&
+	printf "16 0\n16 1\n16 2\n16 3\n16 4\n16 5\n" >expect &&
+	test_cmp_numbers expect counts 0 &&
+	i=0 &&
+	for f in px nx py ny pz nz
+	do
+		cp face$i.exr side-$f.exr && i=$((i + 1)) || return 1
+	done &&
+	reflect-prefilter --plain --levels=2 -fa "side-%s.exr" >six2.txt &&
+	level0 six2.txt >a && level0 six.txt >b && cmp a b
+'
+
+test_expect_success 'a MIP-mapped EXR cube round-trips and is recognised' '
+	reflect-prefilter --size=16 --mapping=exact -o probe.exr &&
+	reflect-prefilter -fa probe.exr >again.txt 2>log &&
+	test_grep "already a prefiltered chain of 5 levels" log &&
+	test "$(frame_keys MAPPING again.txt | sort -u)" = exact &&
+	test "$(frame_keys NCOLS again.txt | tr "\n" " ")" = "16 8 4 2 1 " &&
+	reflect-prefilter --size=16 --mapping=exact -fa >direct.txt &&
+	level0 direct.txt >d0 && level0 again.txt >a0 &&
+	test_cmp_numbers d0 a0 0.02
+'
+
+test_expect_success 'NaN and Inf texels are counted and zeroed, or refused with -S' '
+	awk "BEGIN {
+		printf \"#?REFLECT1\nNCOLS=2\nNROWS=12\nNCOMP=3\nCHANNELS=R G B\nFORMAT=ascii\n\n\"
+		for (i = 0; i < 24; i++) printf \"%s\t1\t1\n\", (i == 5 ? \"nan\" : (i == 9 ? \"inf\" : \"0.5\"))
+	}" >nan.txt &&
+	reflect-export -c all -o nan.exr nan.txt &&
+	reflect-prefilter --plain --levels=2 -fa nan.exr >out.txt 2>err &&
+	test_grep "replaced 2 NaN or infinite texel values with 0" err &&
+	level0 out.txt >data && test_line_count 24 data && ! grep -E "nan|inf" data &&
+	test_must_fail 1 reflect-prefilter -S --plain --levels=2 nan.exr >/dev/null 2>err &&
+	test_one_line_message reflect-prefilter err &&
+	test_grep "2 texel values are NaN or infinite" err
+'
+
+test_expect_success 'bad input: each a one-line message and exit 1' '
+	test_must_fail 1 reflect-prefilter nope.exr 2>err &&
+	test_grep "^reflect-prefilter: cannot open .nope.exr.: No such file or directory$" err &&
+	test_must_fail 1 reflect-prefilter --layout=cube level0-latlong.exr 2>err &&
+	test_one_line_message reflect-prefilter err &&
+	test_grep "a cube image of faces N is N x 6N, not 64x32" err &&
+	test_must_fail 1 reflect-prefilter --layout=strip x.exr 2>err &&
+	test_grep "is not auto, latlong, cube, vcross or hcross" err &&
+	constant_image odd.exr 3 18 1 1 1 &&
+	test_must_fail 1 reflect-prefilter odd.exr 2>err &&
+	test_grep "odd size" err &&
+	constant_image skew.exr 100 37 1 1 1 &&
+	test_must_fail 1 reflect-prefilter skew.exr 2>err &&
+	test_grep "cannot tell the layout of a 100x37 image" err &&
+	constant_image big5.exr 8 8 1 1 1 &&
+	cp face0.exr f-0.exr && cp face1.exr f-1.exr && cp face2.exr f-2.exr &&
+	cp face3.exr f-3.exr && cp face4.exr f-4.exr && cp big5.exr f-5.exr &&
+	test_must_fail 1 reflect-prefilter "f-%d.exr" 2>err &&
+	test_grep "faces differ in size (8, not 4" err &&
+	test_must_fail 1 reflect-prefilter -s 0 2>err &&
+	test_grep "option -s: 0 is out of range" err &&
+	test_must_fail 1 reflect-prefilter --levels=1 2>err &&
+	test_must_fail 1 reflect-prefilter --steps=0 2>err &&
+	test_grep "steps" err &&
+	test_must_fail 1 reflect-prefilter --size=1 2>err &&
+	test_grep "a chain of one level has nothing to convolve" err &&
+	printf "not an image at all\n" >junk.exr &&
+	test_must_fail 1 reflect-prefilter junk.exr 2>err &&
+	test_one_line_message reflect-prefilter err &&
+	test_grep "junk.exr" err
+'
+
+test_expect_success 'a stream cube on stdin is an environment' '
+	reflect-prefilter --size=8 --plain --levels=2 >plain.rfl &&
+	reflect-prefilter -fa - <plain.rfl >from-stdin.txt 2>log &&
+	test_grep "already a plain chain of 2 levels" log &&
+	test "$(frame_keys NCOLS from-stdin.txt | tr "\n" " ")" = "8 4 "
+'
+
+test_done
