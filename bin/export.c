@@ -1,4 +1,5 @@
 /* reflect-export: write a stream's channels as an image file. */
+#include <ctype.h>
 #include <getopt.h>
 #include <math.h>
 #include <string.h>
@@ -9,63 +10,150 @@ static void
 usage(void)
 {
 	fprintf(stderr, "usage: %s -o FILE [-V] [-c CHANNELS] [-e STOPS] "
-	        "[--tone=none|filmic] [--srgb=on|off] [--half] "
-	        "[-H -x W -y H -c CHANNELS] [file]\n", argv0);
+	        "[--tone=none|filmic] [--srgb=on|off] [--depth=8|16|half|float] "
+	        "[--half] [-H -x W -y H -c CHANNELS] [file]\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
+
+/* Bits of the pixel types a file format stores. */
+#define D8 (1u << RF_PIXEL_UINT8)
+#define D16 (1u << RF_PIXEL_UINT16)
+#define DHALF (1u << RF_PIXEL_HALF)
+#define DFLOAT (1u << RF_PIXEL_FLOAT)
+
+/* What each file type takes: the pixel types it stores (its default comes
+ * from rf_image_type_for_path) and, as bit n, the channel counts n it
+ * holds at its integer depths (or, for .hdr, at all); 0 means any. */
+static const struct format {
+	const char *ext;
+	unsigned depths;
+	unsigned counts;
+	int nonneg; /* stores no negative values (RGBE) */
+} formats[] = {
+	{ "exr", DHALF | DFLOAT, 0, 0 },
+	{ "hdr", DFLOAT, 1u << 3, 1 },
+	{ "png", D8 | D16, 1u << 1 | 1u << 3 | 1u << 4, 0 },
+	{ "jpg", D8, 1u << 1 | 1u << 3, 0 },
+	{ "jpeg", D8, 1u << 1 | 1u << 3, 0 },
+	{ "tif", D8 | D16 | DHALF | DFLOAT, 1u << 1 | 1u << 3 | 1u << 4, 0 },
+	{ "tiff", D8 | D16 | DHALF | DFLOAT, 1u << 1 | 1u << 3 | 1u << 4, 0 },
+	{ "bmp", D8, 1u << 1 | 1u << 3 | 1u << 4, 0 },
+	{ "tga", D8, 1u << 1 | 1u << 3 | 1u << 4, 0 },
+	{ "ppm", D8 | D16, 1u << 1 | 1u << 3, 0 },
+	{ NULL, 0, 0, 0 },
+};
+
+/* Indexed by enum rf_pixel_type. */
+static const char *const depth_names[] = { "float", "half", "8", "16" };
 
 struct export_opts {
 	const char *output;
 	const char *channels; /* -c: "spec", "R,G,B", "all" */
-	float scale;
+	float scale;          /* 2^stops */
 	enum rf_tone tone;
-	int srgb; /* -1: by file type */
-	int half;
+	int srgb;  /* -1: on for 8- and 16-bit files, off for half and float */
+	int depth; /* -1: the file type's own; else an rf_pixel_type */
+	/* Resolved once from the output name. */
+	const struct format *format;
+	int type;
 };
 
-/* "spec" -> spec.R spec.G spec.B (or .X .Y .Z); "a,b" -> a b. */
+static int
+is_integer(int type)
+{
+	return type == RF_PIXEL_UINT8 || type == RF_PIXEL_UINT16;
+}
+
+/* The output's file type and pixel type, checked before any data is read. */
+static void
+resolve_format(struct export_opts *o)
+{
+	const char *dot = strrchr(o->output, '.');
+	char ext[8];
+	size_t i;
+
+	o->type = rf_image_type_for_path(o->output);
+	o->format = NULL;
+	if (dot && o->type >= 0 && strlen(dot + 1) < sizeof(ext)) {
+		for (i = 0; dot[1 + i]; i++)
+			ext[i] = (char)tolower((unsigned char)dot[1 + i]);
+		ext[i] = '\0';
+		for (i = 0; formats[i].ext; i++)
+			if (!strcmp(formats[i].ext, ext))
+				o->format = &formats[i];
+	}
+	if (!o->format)
+		die("cannot write '%s': unknown image type (use .exr, .hdr, .png, "
+		    ".jpg, .tif, .bmp, .tga or .ppm)", o->output);
+	if (o->depth >= 0) {
+		if (!(o->format->depths & (1u << o->depth)))
+			die("cannot write '%s': a .%s file does not store %s%s pixels",
+			    o->output, o->format->ext, depth_names[o->depth],
+			    is_integer(o->depth) ? "-bit" : "");
+		o->type = o->depth;
+	}
+}
+
+/* Appends channel c to the selection. */
+static void
+pick(int *map, size_t *n, int c)
+{
+	if (*n >= RF_CHANNELS_MAX)
+		die("-c: more than %d channels", RF_CHANNELS_MAX);
+	map[(*n)++] = c;
+}
+
+/* "all"; or names separated by commas, where a layer name such as "spec"
+ * stands for spec.R spec.G spec.B (or spec.X spec.Y spec.Z). */
 static size_t
-select_channels(const rf_header *h, const char *spec, int *map, size_t max)
+select_channels(const rf_header *h, const char *spec, int *map)
 {
 	static const char *const colour[] = { "R", "G", "B" };
 	static const char *const vector[] = { "X", "Y", "Z" };
 	const char *p = spec;
 	size_t n = 0, len, k;
-	char name[RF_CHANNEL_NAME_MAX + 8];
+	char name[RF_CHANNEL_NAME_MAX + 1];
 	int c;
 
 	if (!strcmp(spec, "all")) {
-		for (k = 0; k < rf_header_nchannels(h) && k < max; k++)
-			map[n++] = (int)k;
+		for (k = 0; k < rf_header_nchannels(h); k++)
+			pick(map, &n, (int)k);
 		return n;
 	}
 	while (*p) {
 		len = strcspn(p, ",");
 		if (len == 0 || len > RF_CHANNEL_NAME_MAX)
-			die("-c: bad channel list '%s'", spec);
-		snprintf(name, sizeof(name), "%.*s", (int)len, p);
+			die("-c: bad channel list '%s' (names separated by commas, "
+			    "a layer name such as spec, or all)", spec);
+		memcpy(name, p, len);
+		name[len] = '\0';
 		p += len + (p[len] == ',');
 		if ((c = rf_header_find_channel(h, name)) >= 0) {
-			if (n < max)
-				map[n++] = c;
+			pick(map, &n, c);
 			continue;
 		}
 		/* A layer name stands for its three components. */
 		for (k = 0; k < 3; k++) {
-			char full[2 * RF_CHANNEL_NAME_MAX];
+			char full[RF_CHANNEL_NAME_MAX + 3];
 			int cc, cv;
 
 			snprintf(full, sizeof(full), "%s.%s", name, colour[k]);
 			cc = rf_header_find_channel(h, full);
 			snprintf(full, sizeof(full), "%s.%s", name, vector[k]);
 			cv = rf_header_find_channel(h, full);
-			if (cc < 0 && cv < 0)
-				die("input has no channel '%s' (nor %s.%s)", name, name,
-				    colour[k]);
-			if (n < max)
-				map[n++] = cc >= 0 ? cc : cv;
+			if (cc < 0 && cv < 0) {
+				if (k == 0)
+					die("input has no channel '%s' (nor %s.R %s.G "
+					    "%s.B or %s.X %s.Y %s.Z)", name, name, name,
+					    name, name, name, name);
+				die("input has no channel '%s.%s' (nor %s.%s) for "
+				    "layer '%s'", name, colour[k], name, vector[k], name);
+			}
+			pick(map, &n, cc >= 0 ? cc : cv);
 		}
 	}
+	if (!n)
+		die("-c: no channel chosen");
 	return n;
 }
 
@@ -75,7 +163,9 @@ default_channels(const rf_header *h)
 	if (rf_header_find_channel(h, "R") >= 0 && rf_header_find_channel(h, "G") >= 0 &&
 	    rf_header_find_channel(h, "B") >= 0)
 		return "R,G,B";
-	if (rf_header_find_channel(h, "spec.R") >= 0)
+	if (rf_header_find_channel(h, "spec.R") >= 0 &&
+	    rf_header_find_channel(h, "spec.G") >= 0 &&
+	    rf_header_find_channel(h, "spec.B") >= 0)
 		return "spec";
 	die("input has neither R G B nor spec.R spec.G spec.B; choose channels with -c");
 }
@@ -101,58 +191,116 @@ output_name(char *buf, size_t size, const char *pattern, size_t frame)
 	         frame, p + 1);
 }
 
+static int
+is_alpha_name(const char *name)
+{
+	size_t n = strlen(name);
+
+	return !strcmp(name, "A") || (n > 2 && !strcmp(name + n - 2, ".A"));
+}
+
+/* Exposure, tone curve and sRGB for one block of pixels, channel by
+ * channel, after un-premultiplying for integer files: colour channels are
+ * encoded, alpha channels only clamped (at integer depths) or left alone
+ * (at float depths).  Float output that asks for no tone curve and no
+ * sRGB is only scaled: no clamp, so HDR values survive into EXR. */
+static void
+encode_block(float *out, size_t npix, size_t nch, const unsigned char *alpha,
+             const struct export_opts *o, int srgb, float *scratch)
+{
+	int integer = is_integer(o->type);
+	size_t i, c;
+
+	/* Stream colour is premultiplied by A (OpenEXR's convention); 8- and
+	 * 16-bit files hold straight colour, so divide where A > 0. */
+	if (integer && nch == 4)
+		for (i = 0; i < npix; i++) {
+			float a = out[i * nch + 3];
+
+			if (a > 0.0f)
+				for (c = 0; c < 3; c++)
+					out[i * nch + c] /= a;
+		}
+	for (c = 0; c < nch; c++) {
+		if (!integer && (alpha[c] || (o->tone == RF_TONE_NONE && !srgb))) {
+			if (!alpha[c] && o->scale != 1.0f)
+				for (i = 0; i < npix; i++)
+					out[i * nch + c] *= o->scale;
+			continue;
+		}
+		for (i = 0; i < npix; i++)
+			scratch[i] = out[i * nch + c];
+		rf_display_encode(scratch, npix, 1, alpha[c] ? 0 : 1, o->scale, o->tone,
+		                  srgb);
+		for (i = 0; i < npix; i++)
+			out[i * nch + c] = scratch[i];
+	}
+	if (o->format->nonneg)
+		for (i = 0; i < npix * nch; i++)
+			if (!(out[i] > 0.0f))
+				out[i] = 0.0f; /* RGBE would make garbage of it */
+}
+
 static void
 export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
              size_t frame)
 {
-	const char *names[RF_CHANNELS_MAX];
-	int map[RF_CHANNELS_MAX];
+	static int map[RF_CHANNELS_MAX];
+	static const char *names[RF_CHANNELS_MAX];
+	static unsigned char alpha[RF_CHANNELS_MAX];
 	char path[4096], err[1024];
 	size_t nch, ncomp = rf_header_nchannels(h), ncols = rf_header_ncols(h);
-	size_t rows, y, n, i, c, ncolour;
-	int type = rf_image_type_for_path(o->output), srgb, rc;
+	size_t nrows = rf_header_nrows(h), rows, y, n, i, c, k;
+	int integer = is_integer(o->type), srgb, rc;
 	rf_image_writer *w;
-	float *in, *out;
+	float *in, *out, *scratch;
 
-	if (type < 0)
-		die("cannot write '%s': unknown image type (use .exr, .hdr, .png, "
-		    ".jpg or .tif)", o->output);
-	if (type == RF_PIXEL_FLOAT && o->half)
-		type = RF_PIXEL_HALF;
-	nch = select_channels(h, o->channels ? o->channels : default_channels(h), map,
-	                      RF_CHANNELS_MAX);
-	if (type == RF_PIXEL_UINT8 && nch != 1 && nch != 3 && nch != 4)
-		die("cannot write %zu channels to '%s': 8-bit images take 1, 3 or 4",
-		    nch, o->output);
-	for (c = 0; c < nch; c++)
+	nch = select_channels(h, o->channels ? o->channels : default_channels(h), map);
+	if (o->format->counts && (integer || !(o->format->depths & (D8 | D16))) &&
+	    (nch > 31 || !(o->format->counts & (1u << nch))))
+		die("cannot write %zu channels to '%s': %s%s.%s files take %s "
+		    "channels; choose them with -c", nch, o->output,
+		    integer ? depth_names[o->type] : "", integer ? "-bit " : "",
+		    o->format->ext, !integer ? "3" : o->format->counts & (1u << 4)
+		    ? "1, 3 or 4" : "1 or 3");
+	for (c = 0; c < nch; c++) {
 		names[c] = rf_header_channel(h, (size_t)map[c]);
-	if (type == RF_PIXEL_UINT8 && nch >= 3) {
+		alpha[c] = (unsigned char)is_alpha_name(names[c]);
+	}
+	if (integer && nch >= 3) {
+		/* 8- and 16-bit files are pictures: R G B and alpha. */
 		static const char *const rgba[] = { "R", "G", "B", "A" };
 
-		for (c = 0; c < nch; c++)
+		for (c = 0; c < nch; c++) {
 			names[c] = rgba[c];
+			alpha[c] = c == 3;
+		}
 	}
-	srgb = o->srgb >= 0 ? o->srgb : type == RF_PIXEL_UINT8;
-	ncolour = nch == 4 ? 3 : nch;
+	if (!strcmp(o->format->ext, "exr"))
+		for (c = 0; c < nch; c++)
+			for (k = 0; k < c; k++)
+				if (!strcmp(names[c], names[k]))
+					die("-c: channel '%s' is chosen twice; an EXR file "
+					    "holds each name once", names[c]);
+	srgb = o->srgb >= 0 ? o->srgb : integer;
 	output_name(path, sizeof(path), o->output, frame);
-	if ((rc = rf_image_writer_open(&w, path, ncols, rf_header_nrows(h), nch, names,
-	                               (enum rf_pixel_type)type, err, sizeof(err))) < 0)
+	if ((rc = rf_image_writer_open(&w, path, ncols, nrows, nch, names,
+	                               (enum rf_pixel_type)o->type, err,
+	                               sizeof(err))) < 0)
 		die_status(rc, err);
 	rows = rf_block_rows(ncols, ncomp, CLI_BLOCK_BYTES);
-	if (rows > rf_header_nrows(h))
-		rows = rf_header_nrows(h);
+	if (rows > nrows)
+		rows = nrows;
 	in = emalloc(rows * ncols * ncomp * sizeof(float));
 	out = emalloc(rows * ncols * nch * sizeof(float));
-	for (y = 0; y < rf_header_nrows(h); y += n) {
-		n = rf_header_nrows(h) - y < rows ? rf_header_nrows(h) - y : rows;
+	scratch = emalloc(rows * ncols * sizeof(float));
+	for (y = 0; y < nrows; y += n) {
+		n = nrows - y < rows ? nrows - y : rows;
 		cli_io_read(io, in, n);
 		for (i = 0; i < n * ncols; i++)
 			for (c = 0; c < nch; c++)
 				out[i * nch + c] = in[i * ncomp + (size_t)map[c]];
-		if (type == RF_PIXEL_UINT8)
-			rf_display_encode(out, n * ncols, nch, ncolour, o->scale, o->tone, srgb);
-		else if (o->scale != 1.0f || o->tone != RF_TONE_NONE || srgb)
-			rf_display_encode(out, n * ncols, nch, ncolour, o->scale, o->tone, srgb);
+		encode_block(out, n * ncols, nch, alpha, o, srgb, scratch);
 		if ((rc = rf_image_writer_write_rows(w, y, n, out, err, sizeof(err))) < 0)
 			die_status(rc, err);
 	}
@@ -160,6 +308,7 @@ export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
 		die_status(rc, err);
 	free(in);
 	free(out);
+	free(scratch);
 }
 
 int
@@ -168,15 +317,16 @@ main(int argc, char **argv)
 	static const struct option long_options[] = {
 		{ "tone", required_argument, NULL, 'T' },
 		{ "srgb", required_argument, NULL, 'S' },
+		{ "depth", required_argument, NULL, 'D' },
 		{ "half", no_argument, NULL, 'F' },
 		{ "help", no_argument, NULL, 'Q' },
 		{ NULL, 0, NULL, 0 },
 	};
-	struct export_opts o = { NULL, NULL, 1.0f, RF_TONE_NONE, -1, 0 };
+	struct export_opts o = { NULL, NULL, 1.0f, RF_TONE_NONE, -1, -1, NULL, 0 };
 	struct cli_io io = { 0 };
 	const rf_header *h;
-	const char *raw_channels = NULL;
-	size_t frames = 0;
+	const char *channels = NULL;
+	size_t frames = 0, k;
 	double stops;
 	char *end;
 	int c;
@@ -186,7 +336,7 @@ main(int argc, char **argv)
 		switch (c) {
 		case 'V': print_version(); break;
 		case 'o': o.output = optarg; break;
-		case 'c': o.channels = optarg; raw_channels = optarg; break;
+		case 'c': channels = optarg; break;
 		case 'e':
 			stops = strtod(optarg, &end);
 			if (end == optarg || *end || !isfinite(stops) || fabs(stops) > 64)
@@ -203,16 +353,27 @@ main(int argc, char **argv)
 			else if (!strcmp(optarg, "off")) o.srgb = 0;
 			else die("--srgb: '%s' is not on or off", optarg);
 			break;
-		case 'F': o.half = 1; break;
+		case 'D':
+			for (k = 0; k < 4 && strcmp(optarg, depth_names[k]); k++)
+				;
+			if (k == 4)
+				die("--depth: '%s' is not 8, 16, half or float", optarg);
+			o.depth = (int)k;
+			break;
+		case 'F': o.depth = RF_PIXEL_HALF; break;
 		case 'H': case 'x': case 'y':
 			cli_io_option(&io, c, optarg);
 			break;
 		case 'Q':
 			printf("usage: %s -o FILE [options] [file]\n"
 			       "Writes the channels of each frame as an image (EXR, HDR, PNG, JPEG,\n"
-			       "TIFF). -c spec | R,G,B | all picks channels; -e exposure in stops;\n"
-			       "--tone=filmic; --srgb=on|off (on for 8-bit files); --half for EXR.\n"
-			       "A %%d in FILE numbers the frames. See reflect-export(1).\n", argv0);
+			       "TIFF, BMP, TGA, PPM) through OpenImageIO. See reflect-export(1).\n"
+			       "  -o FILE  the image; a %%d in FILE numbers the frames\n"
+			       "  -c spec | R,G,B | all  the channels (default R,G,B, else spec)\n"
+			       "  -e STOPS  exposure   --tone=none|filmic   --srgb=on|off\n"
+			       "  --depth=8|16|half|float  pixel type   --half  same as --depth=half\n"
+			       "  -H -x W -y H -c CHANNELS  headerless input (all channels written)\n"
+			       "  -V  versions\n", argv0);
 			fshut(stdout, "<stdout>");
 			return 0;
 		default: usage();
@@ -221,9 +382,14 @@ main(int argc, char **argv)
 	if (!o.output || argc - optind > 1)
 		usage();
 	if (io.headerless) {
-		io.channels = raw_channels;
-		o.channels = NULL;
+		/* -c names the input's channels; all of them are written. */
+		if (channels)
+			cli_io_option(&io, 'c', channels);
+		o.channels = "all";
+	} else {
+		o.channels = channels;
 	}
+	resolve_format(&o);
 	cli_io_open(&io, optind < argc ? argv[optind] : NULL);
 	while (cli_io_next(&io, &h)) {
 		if (frames && !strchr(o.output, '%'))

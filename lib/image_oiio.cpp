@@ -1,6 +1,9 @@
 // The bridge from OpenImageIO (C++) to libreflect's C image API.
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <cctype>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -20,10 +23,62 @@ struct rf_image {
 	std::vector<std::pair<std::string, std::string>> attributes;
 };
 
+// The file an image is written to: OpenImageIO's stdio proxy, remembering
+// the first failed write (some format writers do not check theirs), so a
+// full disk is an error and not a silently short file.
+class checked_file : public Filesystem::IOFile {
+public:
+	explicit checked_file(FILE *fp) : IOFile(fp, Write), fp_(fp) {}
+	// Not "file": a writer that sees a "file" proxy may take its FILE
+	// and write to it directly, past the checks below.
+	const char *proxytype() const override { return "reflect-checked-file"; }
+	// After a failure, writes are skipped and reported as done: some
+	// format libraries (libjpeg) end the process on a short write, and
+	// the error is reported when the image is closed.
+	size_t write(const void *buf, size_t size) override
+	{
+		if (error_) {
+			m_pos += (int64_t)size;
+			return size;
+		}
+		return note(IOFile::write(buf, size), size);
+	}
+	size_t pwrite(const void *buf, size_t size, int64_t offset) override
+	{
+		if (error_)
+			return size;
+		return note(IOFile::pwrite(buf, size, offset), size);
+	}
+	FILE *handle_() const { return fp_; }
+	int error_ = 0; // errno of the first failed write
+
+private:
+	size_t note(size_t n, size_t size)
+	{
+		if (n != size) {
+			error_ = errno ? errno : EIO;
+			return size;
+		}
+		return n;
+	}
+	FILE *fp_;
+};
+
 struct rf_image_writer {
+	// Declared before out, so the image is closed before its file.
+	std::unique_ptr<checked_file> file;
 	std::unique_ptr<ImageOutput> out;
 	std::string path;
 	size_t width, height, nchannels, next_row;
+	~rf_image_writer()
+	{
+		out.reset();
+		if (file) {
+			FILE *fp = file->handle_();
+			file.reset();
+			fclose(fp);
+		}
+	}
 };
 
 static void
@@ -42,13 +97,56 @@ set_error(char *err, size_t errlen, const char *what, const std::string &path,
 	           r.empty() ? "unknown error" : r.c_str());
 }
 
-extern "C" int
-rf_image_read(rf_image **imgp, const char *path, char *err, size_t errlen)
+// When OpenImageIO cannot open a file, the reason is often the file
+// system's (no such directory, permission denied) and its own message
+// hides that.  Asks the system with the same access; returns errno, or 0
+// when the system would allow it.  A file created only to ask is removed.
+static int
+system_reason(const char *path, bool write)
+{
+	FILE *fp;
+	int e;
+
+	if (!write) {
+		fp = fopen(path, "rb");
+		e = errno;
+		if (fp)
+			fclose(fp);
+		return fp ? 0 : e;
+	}
+	FILE *old = fopen(path, "rb");
+	if (old)
+		fclose(old);
+	fp = fopen(path, "ab");
+	e = errno;
+	if (!fp)
+		return e;
+	fclose(fp);
+	if (!old)
+		remove(path);
+	return 0;
+}
+
+// Reads MIP level `level` of the first image.
+static int
+read_level(rf_image **imgp, const char *path, size_t level, char *err, size_t errlen)
 {
 	*imgp = nullptr;
-	auto in = ImageInput::open(path);
+	// Values as stored: no premultiplying of 8- and 16-bit files that
+	// keep straight alpha (PNG, TIFF).
+	ImageSpec config;
+	config.attribute("oiio:UnassociatedAlpha", 1);
+	auto in = ImageInput::open(path, &config);
 	if (!in) {
-		set_error(err, errlen, "cannot open", path, OIIO::geterror());
+		std::string reason = OIIO::geterror();
+		int e = system_reason(path, false);
+
+		set_error(err, errlen, "cannot open", path, e ? strerror(e) : reason);
+		return RF_EIMAGE;
+	}
+	if (level > 0 && !in->seek_subimage(0, (int)level)) {
+		set_error(err, errlen, "cannot read", path,
+		          "no MIP level " + std::to_string(level));
 		return RF_EIMAGE;
 	}
 	const ImageSpec &spec = in->spec();
@@ -80,7 +178,8 @@ rf_image_read(rf_image **imgp, const char *path, char *err, size_t errlen)
 	for (const auto &p : spec.extra_attribs)
 		if (p.type() == TypeString)
 			img->attributes.emplace_back(p.name().string(), p.get_string());
-	if (!in->read_image(0, 0, 0, spec.nchannels, TypeFloat, img->pixels.data())) {
+	if (!in->read_image(0, (int)level, 0, spec.nchannels, TypeFloat,
+	                    img->pixels.data())) {
 		set_error(err, errlen, "cannot read", path, in->geterror());
 		delete img;
 		return RF_EIMAGE;
@@ -88,6 +187,19 @@ rf_image_read(rf_image **imgp, const char *path, char *err, size_t errlen)
 	in->close();
 	*imgp = img;
 	return 0;
+}
+
+extern "C" int
+rf_image_read(rf_image **imgp, const char *path, char *err, size_t errlen)
+{
+	return read_level(imgp, path, 0, err, errlen);
+}
+
+extern "C" int
+rf_image_read_level(rf_image **imgp, const char *path, size_t level, char *err,
+                    size_t errlen)
+{
+	return read_level(imgp, path, level, err, errlen);
 }
 
 extern "C" void
@@ -132,22 +244,65 @@ oiio_type(enum rf_pixel_type type)
 	}
 }
 
-extern "C" int
-rf_image_type_for_path(const char *path)
+// Whether this OpenImageIO has a writer for files with the extension ext
+// (lowercase), from its lists of formats: asked without creating a writer.
+static bool
+can_write(const std::string &ext)
+{
+	std::string exts, writers, format;
+
+	if (!OIIO::getattribute("extension_list", exts) ||
+	    !OIIO::getattribute("output_format_list", writers))
+		return false;
+	// "openexr:exr,sxr;tiff:tif,tiff;..."
+	for (size_t p = 0; p < exts.size();) {
+		size_t end = exts.find(';', p), colon = exts.find(':', p);
+		if (end == std::string::npos)
+			end = exts.size();
+		if (colon != std::string::npos && colon < end) {
+			std::string list = "," + exts.substr(colon + 1, end - colon - 1) + ",";
+			if (list.find("," + ext + ",") != std::string::npos) {
+				format = exts.substr(p, colon - p);
+				break;
+			}
+		}
+		p = end + 1;
+	}
+	return !format.empty() &&
+	       ("," + writers + ",").find("," + format + ",") != std::string::npos;
+}
+
+// The extension of a file name in lowercase, "" when it has none.
+static std::string
+extension(const char *path)
 {
 	std::string p(path);
 	size_t dot = p.rfind('.');
-	if (dot == std::string::npos)
-		return -1;
+
+	if (dot == std::string::npos || p.find('/', dot) != std::string::npos)
+		return "";
 	std::string ext = p.substr(dot + 1);
 	for (char &c : ext)
 		c = (char)tolower((unsigned char)c);
-	if (ext == "exr" || ext == "hdr" || ext == "pfm")
-		return RF_PIXEL_FLOAT;
-	if (ext == "png" || ext == "jpg" || ext == "jpeg" || ext == "tif" ||
-	    ext == "tiff" || ext == "bmp" || ext == "tga" || ext == "ppm")
-		return RF_PIXEL_UINT8;
-	return -1;
+	return ext;
+}
+
+extern "C" int
+rf_image_type_for_path(const char *path)
+{
+	std::string ext = extension(path);
+	int type;
+
+	// PFM is left out: OpenImageIO lists it under a format it can write
+	// but (2.4) cannot write it.
+	if (ext == "exr" || ext == "hdr")
+		type = RF_PIXEL_FLOAT;
+	else if (ext == "png" || ext == "jpg" || ext == "jpeg" || ext == "tif" ||
+	         ext == "tiff" || ext == "bmp" || ext == "tga" || ext == "ppm")
+		type = RF_PIXEL_UINT8;
+	else
+		return -1;
+	return can_write(ext) ? type : -1;
 }
 
 extern "C" int
@@ -161,10 +316,48 @@ rf_image_writer_open(rf_image_writer **wp, const char *path, size_t width,
 		set_error(err, errlen, "cannot write", path, "bad image size");
 		return RF_EINVAL;
 	}
-	auto out = ImageOutput::create(path);
-	if (!out) {
+	rf_image_writer *w = new (std::nothrow) rf_image_writer;
+	if (!w)
+		return RF_ENOMEM;
+	w->path = path;
+	w->width = width;
+	w->height = height;
+	w->nchannels = nchannels;
+	w->next_row = 0;
+	// We open the file ourselves, before anything else, so that the
+	// system's reason for a failure is reported and every write checked.
+	// Not for TIFF: OpenImageIO 2.4 writes a broken file through a proxy
+	// when it adds the EXIF colour space.
+	std::string ext = extension(path);
+	if (ext != "tif" && ext != "tiff") {
+		FILE *fp = fopen(path, "wb");
+
+		if (!fp) {
+			set_error(err, errlen, "cannot write", path, strerror(errno));
+			delete w;
+			return RF_EIO;
+		}
+		w->file.reset(new (std::nothrow) checked_file(fp));
+		if (!w->file) {
+			fclose(fp);
+			delete w;
+			return RF_ENOMEM;
+		}
+	}
+	w->out = ImageOutput::create(path);
+	if (!w->out) {
 		set_error(err, errlen, "cannot write", path, OIIO::geterror());
+		delete w;
 		return RF_EIMAGE;
+	}
+	if (w->file && (!w->out->supports("ioproxy") ||
+	                !w->out->set_ioproxy(w->file.get()))) {
+		// No proxy for this format: OpenImageIO opens the file by name.
+		FILE *fp = w->file->handle_();
+
+		(void)w->out->geterror();
+		w->file.reset();
+		fclose(fp);
 	}
 	ImageSpec spec((int)width, (int)height, (int)nchannels, oiio_type(type));
 	if (names) {
@@ -176,21 +369,21 @@ rf_image_writer_open(rf_image_writer **wp, const char *path, size_t width,
 			if (!strcmp(names[c], "A"))
 				spec.alpha_channel = (int)c;
 	}
-	if (type == RF_PIXEL_UINT8 || type == RF_PIXEL_UINT16)
+	if (type == RF_PIXEL_UINT8 || type == RF_PIXEL_UINT16) {
 		spec.attribute("oiio:ColorSpace", "sRGB");
-	if (!out->open(path, spec)) {
-		set_error(err, errlen, "cannot write", path, out->geterror());
-		return RF_EIMAGE;
+		// Integer files get their alpha as given (straight, not
+		// premultiplied): OpenImageIO must not divide by it again.
+		spec.attribute("oiio:UnassociatedAlpha", 1);
 	}
-	rf_image_writer *w = new (std::nothrow) rf_image_writer;
-	if (!w)
-		return RF_ENOMEM;
-	w->out = std::move(out);
-	w->path = path;
-	w->width = width;
-	w->height = height;
-	w->nchannels = nchannels;
-	w->next_row = 0;
+	if (!w->out->open(path, spec)) {
+		std::string reason = w->out->geterror();
+		int e = w->file ? w->file->error_ : system_reason(path, true);
+
+		// A file the system will not let us write is a system error.
+		set_error(err, errlen, "cannot write", path, e ? strerror(e) : reason);
+		delete w;
+		return e ? RF_EIO : RF_EIMAGE;
+	}
 	*wp = w;
 	return 0;
 }
@@ -204,8 +397,19 @@ rf_image_writer_write_rows(rf_image_writer *w, size_t y, size_t nrows,
 		return RF_EINVAL;
 	}
 	if (!w->out->write_scanlines((int)y, (int)(y + nrows), 0, TypeFloat, pixels)) {
-		set_error(err, errlen, "cannot write", w->path, w->out->geterror());
+		std::string reason = w->out->geterror();
+
+		if (w->file && w->file->error_) {
+			set_error(err, errlen, "cannot write", w->path,
+			          strerror(w->file->error_));
+			return RF_EIO;
+		}
+		set_error(err, errlen, "cannot write", w->path, reason);
 		return RF_EIMAGE;
+	}
+	if (w->file && w->file->error_) {
+		set_error(err, errlen, "cannot write", w->path, strerror(w->file->error_));
+		return RF_EIO;
 	}
 	w->next_row += nrows;
 	return 0;
@@ -223,9 +427,93 @@ rf_image_writer_close(rf_image_writer *w, char *err, size_t errlen)
 		rc = RF_EINVAL;
 	}
 	if (!w->out->close() && !rc) {
-		set_error(err, errlen, "cannot write", w->path, w->out->geterror());
-		rc = RF_EIMAGE;
+		std::string reason = w->out->geterror();
+
+		if (w->file && w->file->error_) {
+			set_error(err, errlen, "cannot write", w->path,
+			          strerror(w->file->error_));
+			rc = RF_EIO;
+		} else {
+			set_error(err, errlen, "cannot write", w->path, reason);
+			rc = RF_EIMAGE;
+		}
+	}
+	w->out.reset();
+	if (w->file) {
+		FILE *fp = w->file->handle_();
+		int e = w->file->error_;
+
+		w->file.reset();
+		if (fflush(fp) != 0 || ferror(fp))
+			e = e ? e : (errno ? errno : EIO);
+		if (fclose(fp) != 0)
+			e = e ? e : errno;
+		if (e && !rc) {
+			set_error(err, errlen, "cannot write", w->path, strerror(e));
+			rc = RF_EIO;
+		}
 	}
 	delete w;
 	return rc;
+}
+
+// MIP-mapped files (OpenEXR keeps MIP levels only in tiled files).
+extern "C" int
+rf_image_write_levels(const char *path, size_t nlevels, const size_t *w, const size_t *h,
+                      size_t nch, const char *const *names, const float *const *pixels,
+                      const char *const *attributes, enum rf_pixel_type type,
+                      char *err, size_t errlen)
+{
+	auto out = ImageOutput::create(path);
+
+	if (!out) {
+		set_error(err, errlen, "cannot write", path, OIIO::geterror());
+		return RF_EIMAGE;
+	}
+	if (nlevels > 1 && !out->supports("mipmap")) {
+		set_error(err, errlen, "cannot write", path,
+		            "this file type holds no MIP levels (use .exr)");
+		return RF_EIMAGE;
+	}
+	for (size_t k = 0; k < nlevels; k++) {
+		TypeDesc t = type == RF_PIXEL_HALF ? TypeDesc::HALF : TypeDesc::FLOAT;
+		ImageSpec spec((int)w[k], (int)h[k], (int)nch, t);
+
+		spec.channelnames.clear();
+		for (size_t c = 0; c < nch; c++)
+			spec.channelnames.push_back(names[c]);
+		if (nlevels > 1) {
+			// OpenEXR keeps MIP levels only in tiled files.
+			spec.tile_width = spec.tile_height = 64;
+			spec.attribute("openexr:roundingmode", 0); // ROUND_DOWN
+		}
+		for (size_t a = 0; attributes && attributes[a]; a += 2)
+			spec.attribute(attributes[a], attributes[a + 1]);
+		if (!out->open(path, spec, k ? ImageOutput::AppendMIPLevel : ImageOutput::Create) ||
+		    !out->write_image(TypeFloat, pixels[k])) {
+			set_error(err, errlen, "cannot write", path, out->geterror());
+			return RF_EIMAGE;
+		}
+	}
+	if (!out->close()) {
+		set_error(err, errlen, "cannot write", path, out->geterror());
+		return RF_EIMAGE;
+	}
+	return 0;
+}
+
+extern "C" int
+rf_image_count_levels(const char *path, size_t *nlevels, char *err, size_t errlen)
+{
+	auto in = ImageInput::open(path);
+	size_t n = 1;
+
+	if (!in) {
+		set_error(err, errlen, "cannot open", path, OIIO::geterror());
+		return RF_EIMAGE;
+	}
+	while (n < 32 && in->seek_subimage(0, (int)n))
+		n++;
+	*nlevels = n;
+	return 0;
 }

@@ -1,0 +1,76 @@
+#!/bin/sh
+test_description='the man pages render cleanly and document every option'
+. "$srcdir/tests/lib.sh"
+
+# Every option in a tool's usage line: -x letters (split when bundled, as
+# in [-lvV]) and --long names, one a line.
+usage_options () {
+	"$1" --no-such-option 2>&1 >/dev/null |
+	sed -n 's/^usage: //p' |
+	awk '{
+		for (i = 1; i <= NF; i++) {
+			w = $i
+			gsub(/[][]/, "", w)
+			if (w ~ /^--[a-z]/) {
+				sub(/[^a-z-].*$/, "", w)
+				print w
+			} else if (w ~ /^-[A-Za-z]/) {
+				for (j = 2; j <= length(w); j++)
+					if (substr(w, j, 1) ~ /[A-Za-z]/)
+						print "-" substr(w, j, 1)
+					else
+						break
+			}
+		}
+	}' |
+	sort -u
+}
+
+if command -v groff >/dev/null 2>&1
+then
+	for page in "$srcdir"/doc/*.[157]
+	do
+		name=$(basename "$page")
+		test_expect_success "$name renders without warnings" '
+			groff -man -ww -z "$page" 2>err &&
+			! test -s err
+		'
+	done
+else
+	test_skip 'the pages render without warnings' 'no groff'
+fi
+
+for tool in reflect-info reflect-project reflect-export
+do
+	test_expect_success "$tool(1) documents every option of its usage line" '
+		page="$srcdir/doc/$tool.1" &&
+		usage_options $tool >options &&
+		test -s options &&
+		echo --help >>options &&
+		missing= &&
+		while read -r opt
+		do
+			roff=$(printf "%s" "$opt" | sed "s/-/\\\\\\\\-/g") &&
+			grep -e "$roff" "$page" >/dev/null ||
+			missing="$missing $opt"
+		done <options &&
+		if test -n "$missing"
+		then
+			echo "$page does not document:$missing" >&2
+			false
+		fi
+	'
+done
+
+test_expect_success 'every page is installed (in a dist_man_MANS)' '
+	for page in "$srcdir"/doc/*.[157]
+	do
+		cat "$srcdir"/Makefile.am "$srcdir"/*/*.am |
+		grep -e "doc/$(basename "$page")" >/dev/null || {
+			echo "$page is in no dist_man_MANS" >&2
+			exit 1
+		}
+	done
+'
+
+test_done
