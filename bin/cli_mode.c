@@ -7,7 +7,47 @@
 struct listing {
 	unsigned kind;
 	int count;
+	char **first; /* the path that won, for each file name seen */
+	size_t nfirst;
 };
+
+static const char *
+base_name(const char *path)
+{
+	const char *slash = strrchr(path, '/');
+
+	return slash ? slash + 1 : path;
+}
+
+/* The earlier file of the same name that hides this one. */
+static const char *
+winner(struct listing *l, const char *path, int shadowed)
+{
+	size_t i;
+
+	for (i = 0; i < l->nfirst; i++)
+		if (!strcmp(base_name(l->first[i]), base_name(path)))
+			return l->first[i];
+	if (!shadowed) {
+		l->first = realloc(l->first, (l->nfirst + 1) * sizeof(*l->first));
+		if (!l->first)
+			die_sys("out of memory");
+		l->first[l->nfirst++] = estrdup(path);
+	}
+	return NULL;
+}
+
+/* The name of choice number `value` of a RF_PARAM_CHOICE parameter. */
+static void
+print_choice(FILE *fp, const struct rf_param *q, double value)
+{
+	const char *c = q->choices;
+	int i;
+
+	for (i = 0; i < (int)value && strchr(c, '|'); i++)
+		c = strchr(c, '|') + 1;
+	fprintf(fp, "%.*s", (int)strcspn(c, "|"), c);
+}
 
 static void
 print_param(const struct rf_param *q)
@@ -15,13 +55,9 @@ print_param(const struct rf_param *q)
 	char range[96];
 
 	if (q->flags & RF_PARAM_CHOICE) {
-		const char *c = q->choices;
-		int i;
-
-		for (i = 0; i < (int)q->def && strchr(c, '|'); i++)
-			c = strchr(c, '|') + 1;
-		printf("    %s=%.*s\t%s (%s)\n", q->name, (int)strcspn(c, "|"), c,
-		       q->help, q->choices);
+		printf("    %s=", q->name);
+		print_choice(stdout, q, q->def);
+		printf("\t%s (%s)\n", q->help, q->choices);
 		return;
 	}
 	if (q->flags & RF_PARAM_BOOL)
@@ -49,6 +85,7 @@ static void
 list_one(void *arg, const char *path, int shadowed)
 {
 	struct listing *l = arg;
+	const char *first = winner(l, path, shadowed);
 	char err[1024];
 	rf_module *m;
 	const struct rf_plugin *p;
@@ -64,8 +101,8 @@ list_one(void *arg, const char *path, int shadowed)
 		return;
 	}
 	if (shadowed) {
-		printf("# %s: shadowed by an earlier '%s' in the search path\n", path,
-		       p->name);
+		printf("# %s: shadowed by %s, earlier in the search path\n", path,
+		       first ? first : "an earlier file");
 		rf_module_unload(m);
 		return;
 	}
@@ -86,14 +123,21 @@ list_one(void *arg, const char *path, int shadowed)
 void
 mode_list(unsigned kind)
 {
-	struct listing l = { kind, 0 };
+	struct listing l = { kind, 0, NULL, 0 };
+	const char *dirs;
 	int rc = rf_plugin_scan(list_one, &l);
+	size_t i;
 
 	if (rc < 0)
 		die_status(rc, NULL);
+	for (i = 0; i < l.nfirst; i++)
+		free(l.first[i]);
+	free(l.first);
+	dirs = rf_plugin_search_path();
 	if (!l.count)
-		warn("no %s modes in '%s'", rf_plugin_kind_name(kind),
-		     rf_plugin_search_path());
+		warn("no %s modes in %s%s%s", rf_plugin_kind_name(kind),
+		     *dirs ? "'" : "", *dirs ? dirs : "an empty search path",
+		     *dirs ? "'" : "");
 	fshut(stdout, "<stdout>");
 	exit(l.count ? 0 : EXIT_BAD_INPUT);
 }
@@ -118,9 +162,23 @@ mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose)
 	m->values = ecalloc(m->plugin->nparams + 1, sizeof(double));
 	if (rf_plugin_parse_params(m->plugin, params, m->values, err, sizeof(err)) < 0)
 		die("%s", err);
-	if (verbose)
-		fprintf(stderr, "%s: mode '%s' from '%s'\n", argv0, m->plugin->name,
+	if (verbose) {
+		const struct rf_plugin *p = m->plugin;
+		uint32_t i;
+
+		fprintf(stderr, "%s: mode '%s' from '%s'", argv0, p->name,
 		        rf_module_path(m->module));
+		for (i = 0; i < p->nparams; i++) {
+			const struct rf_param *q = &p->params[i];
+
+			fprintf(stderr, "%s%s=", i ? " " : " (", q->name);
+			if (q->flags & RF_PARAM_CHOICE)
+				print_choice(stderr, q, m->values[i]);
+			else
+				fprintf(stderr, "%.9g", m->values[i]);
+		}
+		fprintf(stderr, "%s\n", p->nparams ? ")" : "");
+	}
 	free(name);
 }
 

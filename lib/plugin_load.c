@@ -12,8 +12,12 @@
 #include "reflect/plugin.h"
 
 #ifndef REFLECT_PLUGINDIR
-#define REFLECT_PLUGINDIR "/usr/local/lib/reflect"
+#define REFLECT_PLUGINDIR "/usr/local/lib/reflect-1"
 #endif
+
+/* A sanity bound on a descriptor's parameter count (a garbage nparams
+ * would otherwise walk far past the table). */
+#define RF_PARAMS_MAX 256
 
 struct rf_module {
 	void *handle;
@@ -21,11 +25,33 @@ struct rf_module {
 	const struct rf_plugin *plugin;
 };
 
+/* The end of a member: what a descriptor of some minor version must hold. */
+#define END_OF(type, member) (offsetof(type, member) + sizeof(((type *)0)->member))
+
 /* Size of the descriptor at each minor version of the current major: a
- * plugin must be at least as large as its own minor version says. */
+ * plugin must be at least as large as its own minor version says.  Each
+ * entry is the end of the last field of that version, never sizeof, so
+ * that appending fields for 1.1 leaves the 1.0 entry as it was. */
 static const size_t descriptor_size[RF_PLUGIN_ABI_MINOR + 1] = {
-	sizeof(struct rf_plugin), /* 1.0 */
+	END_OF(struct rf_plugin, destroy), /* 1.0 */
 };
+
+/* The tool that loads each kind, for the advice in messages. */
+static const char *
+kind_tool(unsigned kind)
+{
+	switch (kind) {
+	case RF_KIND_PROJECTION:
+		return "reflect-project";
+	case RF_KIND_SHADE:
+		return "reflect-shade";
+	case RF_KIND_OCCLUSION:
+		return "reflect-occlude";
+	case RF_KIND_ACCUMULATE:
+		return "reflect-accumulate";
+	}
+	return "another tool";
+}
 
 const char *
 rf_plugin_kind_name(unsigned kind)
@@ -70,13 +96,17 @@ count_choices(const char *choices)
 static int
 channel_list_valid(const char *const *list)
 {
-	size_t i;
+	size_t i, j;
 
 	if (!list)
 		return 0;
-	for (i = 0; list[i]; i++)
+	for (i = 0; list[i]; i++) {
 		if (i >= RF_CHANNELS_MAX || !rf_channel_name_valid(list[i]))
 			return 0;
+		for (j = 0; j < i; j++)
+			if (!strcmp(list[i], list[j]))
+				return 0; /* two columns of one name */
+	}
 	return 1;
 }
 
@@ -97,14 +127,24 @@ file_stem(const char *path, char *out, size_t size)
 	out[n] = '\0';
 }
 
+/* Every message below reads "plugin 'PATH': what is wrong; the fix", so
+ * that a tool can print it as it is (-m) or after "ignoring " (-l). */
+
 static int
 check_params(const struct rf_plugin *p, const char *path, char *err, size_t errlen)
 {
 	uint32_t i, j;
 
 	if (p->nparams && !p->params) {
-		rf__format(err, errlen, "'%s': descriptor declares %u parameters but "
-		           "no table; fix the plugin", path, p->nparams);
+		rf__format(err, errlen, "plugin '%s': its descriptor declares %u "
+		           "parameters but no table; fix the plugin and rebuild it",
+		           path, p->nparams);
+		return RF_EPLUGIN;
+	}
+	if (p->nparams > RF_PARAMS_MAX) {
+		rf__format(err, errlen, "plugin '%s': it declares %u parameters, more "
+		           "than the %d a mode may have; fix the plugin and rebuild it",
+		           path, p->nparams, RF_PARAMS_MAX);
 		return RF_EPLUGIN;
 	}
 	for (i = 0; i < p->nparams; i++) {
@@ -112,31 +152,40 @@ check_params(const struct rf_plugin *p, const char *path, char *err, size_t errl
 		int n = count_choices(q->choices);
 
 		if (!param_name_valid(q->name) || !q->help || !*q->help) {
-			rf__format(err, errlen, "'%s': parameter %u has no valid name "
-			           "([a-z][a-z0-9_]*) or no help text; fix the plugin",
-			           path, i + 1);
+			rf__format(err, errlen, "plugin '%s': parameter %u has no valid "
+			           "name ([a-z][a-z0-9_]*) or no help text; fix the "
+			           "plugin and rebuild it", path, i + 1);
 			return RF_EPLUGIN;
 		}
 		if (q->flags & ~RF_PARAM_KNOWN_FLAGS) {
-			rf__format(err, errlen, "'%s': parameter '%s' has unknown flags "
-			           "0x%x; it needs a newer reflect than %s, or rebuild "
-			           "it for this one", path, q->name,
-			           q->flags & ~RF_PARAM_KNOWN_FLAGS, RF_VERSION_STRING);
+			rf__format(err, errlen, "plugin '%s': built for plugin ABI "
+			           "%u.%u, its parameter '%s' sets flag bits 0x%x that "
+			           "this ABI does not define (this reflect (%s) supports "
+			           "ABI %d.%d); use only RF_PARAM_INTEGER, RF_PARAM_BOOL "
+			           "and RF_PARAM_CHOICE and rebuild it", path, p->abi_major,
+			           p->abi_minor, q->name, q->flags & ~RF_PARAM_KNOWN_FLAGS,
+			           RF_VERSION_STRING, RF_PLUGIN_ABI_MAJOR,
+			           RF_PLUGIN_ABI_MINOR);
 			return RF_EPLUGIN;
 		}
 		if (isnan(q->min) || isnan(q->max) || isnan(q->def) || q->min > q->max ||
 		    q->def < q->min || q->def > q->max || !isfinite(q->def) ||
+		    ((q->flags & (RF_PARAM_INTEGER | RF_PARAM_CHOICE)) &&
+		     q->def != floor(q->def)) ||
+		    ((q->flags & RF_PARAM_BOOL) && (q->flags & RF_PARAM_CHOICE)) ||
 		    ((q->flags & RF_PARAM_CHOICE) &&
 		     (n == 0 || q->min != 0 || q->max != n - 1)) ||
 		    ((q->flags & RF_PARAM_BOOL) && (q->min != 0 || q->max != 1))) {
-			rf__format(err, errlen, "'%s': parameter '%s' has an inconsistent "
-			           "range or default; fix the plugin", path, q->name);
+			rf__format(err, errlen, "plugin '%s': parameter '%s' has an "
+			           "inconsistent range, default or flags; fix the plugin "
+			           "and rebuild it", path, q->name);
 			return RF_EPLUGIN;
 		}
 		for (j = 0; j < i; j++)
 			if (!strcmp(p->params[j].name, q->name)) {
-				rf__format(err, errlen, "'%s': parameter '%s' is declared "
-				           "twice; fix the plugin", path, q->name);
+				rf__format(err, errlen, "plugin '%s': parameter '%s' is "
+				           "declared twice; fix the plugin and rebuild it",
+				           path, q->name);
 				return RF_EPLUGIN;
 			}
 	}
@@ -150,27 +199,32 @@ check_descriptor(const struct rf_plugin *p, const char *path, unsigned kind,
 	char stem[256];
 	const char *missing = NULL;
 
+	/* Only the first three fields may be read before these checks. */
 	if (p->abi_major != RF_PLUGIN_ABI_MAJOR) {
-		rf__format(err, errlen, "'%s' was built for plugin ABI %u.%u, but "
-		           "this reflect (%s) supports %d.%d; rebuild it against "
-		           "this reflect or remove it", path, p->abi_major, p->abi_minor,
-		           RF_VERSION_STRING, RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR);
+		rf__format(err, errlen, "plugin '%s': built for plugin ABI %u.%u, but "
+		           "this reflect (%s) supports ABI %d.%d; rebuild it against "
+		           "this reflect's <reflect/plugin.h>, or remove it", path,
+		           p->abi_major, p->abi_minor, RF_VERSION_STRING,
+		           RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR);
 		return RF_EPLUGIN;
 	}
 	if (p->abi_minor > RF_PLUGIN_ABI_MINOR) {
-		rf__format(err, errlen, "'%s' needs plugin ABI %u.%u, newer than the "
-		           "%d.%d of this reflect (%s); upgrade reflect or rebuild the "
-		           "plugin against this one", path, p->abi_major, p->abi_minor,
-		           RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR, RF_VERSION_STRING);
+		rf__format(err, errlen, "plugin '%s': built for plugin ABI %u.%u, newer "
+		           "than the ABI %d.%d of this reflect (%s); upgrade reflect, or "
+		           "rebuild the plugin against this reflect's <reflect/plugin.h>",
+		           path, p->abi_major, p->abi_minor, RF_PLUGIN_ABI_MAJOR,
+		           RF_PLUGIN_ABI_MINOR, RF_VERSION_STRING);
 		return RF_EPLUGIN;
 	}
 	if (p->size < descriptor_size[p->abi_minor]) {
-		rf__format(err, errlen, "'%s': its descriptor is %u bytes, less than "
-		           "the %zu bytes of plugin ABI %u.%u (this reflect supports "
-		           "%d.%d); it was built with a wrong header: rebuild it or "
-		           "remove it", path, p->size, descriptor_size[p->abi_minor],
-		           p->abi_major, p->abi_minor, RF_PLUGIN_ABI_MAJOR,
-		           RF_PLUGIN_ABI_MINOR);
+		rf__format(err, errlen, "plugin '%s': built for plugin ABI %u.%u, its "
+		           "descriptor is %u bytes, less than the %zu bytes of that ABI "
+		           "(this reflect (%s) supports ABI %d.%d); it was built with a "
+		           "wrong header: set size to sizeof(struct rf_plugin) from "
+		           "this reflect's <reflect/plugin.h> and rebuild it, or remove "
+		           "it", path, p->abi_major, p->abi_minor, p->size,
+		           descriptor_size[p->abi_minor], RF_VERSION_STRING,
+		           RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR);
 		return RF_EPLUGIN;
 	}
 	if (!p->name || !*p->name)
@@ -186,36 +240,44 @@ check_descriptor(const struct rf_plugin *p, const char *path, unsigned kind,
 	else if (!p->create || !p->run || !p->destroy)
 		missing = "create, run or destroy function";
 	else if (!channel_list_valid(p->inputs))
-		missing = "valid input channel list";
+		missing = "valid input channel list (NULL-terminated, names unique)";
 	else if (!channel_list_valid(p->outputs) || !p->outputs[0])
-		missing = "valid output channel list";
+		missing = "valid output channel list (NULL-terminated, names unique, "
+		          "at least one)";
 	if (missing) {
-		rf__format(err, errlen, "'%s': its descriptor has no %s; fix the plugin",
-		           path, missing);
+		rf__format(err, errlen, "plugin '%s': its descriptor has no %s; fill "
+		           "it in and rebuild the plugin", path, missing);
 		return RF_EPLUGIN;
 	}
 	file_stem(path, stem, sizeof(stem));
 	if (strcmp(stem, p->name)) {
-		rf__format(err, errlen, "'%s' calls itself '%.60s', but a plugin's "
-		           "name must match its file name; rename the file to "
-		           "'%.60s.so' or fix the name", path, p->name, p->name);
+		rf__format(err, errlen, "plugin '%s': its descriptor is named '%.60s', "
+		           "but a plugin's name must equal its file name; rename the "
+		           "file to '%.60s.so' or set the name to '%.60s'", path,
+		           p->name, p->name, stem);
 		return RF_EPLUGIN;
 	}
 	if (p->flags) {
-		rf__format(err, errlen, "'%s' sets descriptor flags 0x%x unknown to "
-		           "this reflect (%s, plugin ABI %d.%d); upgrade reflect or "
-		           "rebuild the plugin", path, p->flags, RF_VERSION_STRING,
-		           RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR);
+		rf__format(err, errlen, "plugin '%s': built for plugin ABI %u.%u, its "
+		           "descriptor sets flags 0x%x that this ABI does not define "
+		           "(this reflect (%s) supports ABI %d.%d); set flags to 0 and "
+		           "rebuild it", path, p->abi_major, p->abi_minor, p->flags,
+		           RF_VERSION_STRING, RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR);
 		return RF_EPLUGIN;
 	}
 	if (!rf_plugin_kind_name(p->kind)) {
-		rf__format(err, errlen, "'%s' is of an unknown kind (%u); upgrade "
-		           "reflect or fix the plugin", path, p->kind);
+		rf__format(err, errlen, "plugin '%s': built for plugin ABI %u.%u, its "
+		           "descriptor has kind %u, which this ABI does not define "
+		           "(this reflect (%s) supports ABI %d.%d); set an RF_KIND_* "
+		           "value and rebuild it", path, p->abi_major, p->abi_minor,
+		           p->kind, RF_VERSION_STRING, RF_PLUGIN_ABI_MAJOR,
+		           RF_PLUGIN_ABI_MINOR);
 		return RF_EPLUGIN;
 	}
 	if (kind && p->kind != kind) {
-		rf__format(err, errlen, "'%s' is a %s plugin, not a %s plugin", path,
-		           rf_plugin_kind_name(p->kind), rf_plugin_kind_name(kind));
+		rf__format(err, errlen, "plugin '%s': it is a %s mode, not a %s mode; "
+		           "use it with %s", path, rf_plugin_kind_name(p->kind),
+		           rf_plugin_kind_name(kind), kind_tool(p->kind));
 		return RF_EPLUGIN;
 	}
 	return check_params(p, path, err, errlen);
@@ -238,33 +300,39 @@ rf_module_load_file(rf_module **mp, const char *path, unsigned kind, char *err,
 		return RF_ENOTFOUND;
 	}
 	if (!S_ISREG(st.st_mode)) {
-		rf__format(err, errlen, "cannot load plugin '%s': not a regular file",
-		           path);
+		rf__format(err, errlen, "plugin '%s': not a regular file; give the "
+		           "path of a .so file", path);
 		return RF_EPLUGIN;
 	}
 	if (!(m = calloc(1, sizeof(*m))) || !(m->path = strdup(path))) {
 		free(m);
+		rf__format(err, errlen, "plugin '%s': %s", path, rf_strerror(RF_ENOMEM));
 		return RF_ENOMEM;
 	}
 	if (!(m->handle = dlopen(path, RTLD_NOW | RTLD_LOCAL))) {
-		rf__format(err, errlen, "cannot load plugin '%s': %s (ldd(1) shows "
-		           "which libraries it needs)", path, dlerror());
+		const char *why = dlerror();
+
+		rf__format(err, errlen, "plugin '%s': cannot load it: %s; if a "
+		           "library is missing, ldd(1) shows which", path,
+		           why ? why : "unknown error");
 		rc = RF_EPLUGIN;
 		goto fail;
 	}
 	dlerror();
 	sym = dlsym(m->handle, RF_PLUGIN_ENTRY);
 	if (!sym) {
-		rf__format(err, errlen, "'%s' is not a reflect plugin: it exports no "
-		           "%s function", path, RF_PLUGIN_ENTRY);
+		rf__format(err, errlen, "plugin '%s': not a reflect plugin, it exports "
+		           "no %s(); define it with RF_PLUGIN_DEFINE(descriptor) from "
+		           "<reflect/plugin.h>, or remove the file from the plugin path",
+		           path, RF_PLUGIN_ENTRY);
 		rc = RF_EPLUGIN;
 		goto fail;
 	}
 	/* dlsym gives an object pointer; POSIX makes it callable. */
 	memcpy(&entry, &sym, sizeof(entry));
 	if (!(m->plugin = entry())) {
-		rf__format(err, errlen, "'%s': %s returned no descriptor", path,
-		           RF_PLUGIN_ENTRY);
+		rf__format(err, errlen, "plugin '%s': %s() returned no descriptor; "
+		           "fix the plugin and rebuild it", path, RF_PLUGIN_ENTRY);
 		rc = RF_EPLUGIN;
 		goto fail;
 	}
@@ -338,7 +406,8 @@ rf_module_load(rf_module **mp, const char *name, unsigned kind, char *err,
 	if (strchr(name, '/'))
 		return rf_module_load_file(mp, name, kind, err, errlen);
 	if (!mode_name_valid(name)) {
-		rf__format(err, errlen, "'%.80s' is not a valid mode name", name);
+		rf__format(err, errlen, "'%.80s' is not a valid mode name (letters, "
+		           "digits, '_', '-' and '.'; a path needs a '/')", name);
 		return RF_EINVAL;
 	}
 	dirs = rf_plugin_search_path();
@@ -350,9 +419,14 @@ rf_module_load(rf_module **mp, const char *name, unsigned kind, char *err,
 		if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
 			return rf_module_load_file(mp, path, kind, err, errlen);
 	}
-	rf__format(err, errlen, "unknown %s mode '%s': no %s.so in '%s' (-l lists "
-	           "the modes)", kind ? rf_plugin_kind_name(kind) : "plugin", name,
-	           name, *dirs ? dirs : "an empty search path");
+	n = strlen(name);
+	rf__format(err, errlen, "unknown %s mode '%s': no %s.so in %s%s%s%s%s (-l "
+	           "lists the modes)", kind ? rf_plugin_kind_name(kind) : "plugin",
+	           name, name, *dirs ? "'" : "", *dirs ? dirs : "an empty search path",
+	           *dirs ? "'" : "",
+	           n > 3 && !strcmp(name + n - 3, ".so")
+	           ? "; a path to a file needs a '/', as in ./" : "",
+	           n > 3 && !strcmp(name + n - 3, ".so") ? name : "");
 	return RF_ENOTFOUND;
 }
 
@@ -366,16 +440,29 @@ int
 rf_plugin_scan(rf_plugin_visit_fn fn, void *arg)
 {
 	char *dirs, *dir, *save = NULL, **seen = NULL, **files = NULL;
-	size_t nseen = 0, nfiles = 0, i, j;
+	size_t nseen = 0, nfiles = 0, ndirs = 0, i, j;
+	struct stat dirst[64];
 	int rc = 0;
 
 	if (!(dirs = strdup(rf_plugin_search_path())))
 		return RF_ENOMEM;
 	for (dir = strtok_r(dirs, ":", &save); dir; dir = strtok_r(NULL, ":", &save)) {
-		DIR *d = opendir(dir);
 		struct dirent *e;
+		struct stat ds;
+		DIR *d;
 
-		if (!d)
+		/* A directory named twice (or through a link) is scanned once:
+		 * its files would otherwise shadow themselves. */
+		if (stat(dir, &ds) < 0 || !S_ISDIR(ds.st_mode))
+			continue;
+		for (i = 0; i < ndirs; i++)
+			if (dirst[i].st_dev == ds.st_dev && dirst[i].st_ino == ds.st_ino)
+				break;
+		if (i < ndirs)
+			continue;
+		if (ndirs < sizeof(dirst) / sizeof(dirst[0]))
+			dirst[ndirs++] = ds;
+		if (!(d = opendir(dir)))
 			continue;
 		nfiles = 0;
 		while ((e = readdir(d))) {

@@ -65,21 +65,115 @@ parse_bool(const char *v, double *out)
 	return -1;
 }
 
+/* A decimal number as strtod reads it, without its hexadecimal, inf and
+ * nan forms or surrounding blanks. */
+static int
+parse_number(const char *v, double *out)
+{
+	char *end;
+
+	if (!((*v >= '0' && *v <= '9') || *v == '-' || *v == '+' || *v == '.') ||
+	    strpbrk(v, "xX"))
+		return -1;
+	errno = 0;
+	*out = strtod(v, &end);
+	if (end == v || *end || errno == ERANGE || !isfinite(*out))
+		return -1;
+	return 0;
+}
+
+static const struct rf_param *
+find_param(const struct rf_plugin *p, const char *name)
+{
+	uint32_t i;
+
+	for (i = 0; i < p->nparams; i++)
+		if (!strcmp(p->params[i].name, name))
+			return &p->params[i];
+	return NULL;
+}
+
+static void
+unknown_param(const struct rf_plugin *p, const char *name, char *err, size_t errlen)
+{
+	char known[512] = "";
+	size_t k = 0;
+	uint32_t i;
+
+	for (i = 0; i < p->nparams && k + 2 < sizeof(known); i++)
+		k += (size_t)snprintf(known + k, sizeof(known) - k, "%s%s",
+		                      i ? ", " : "", p->params[i].name);
+	if (p->nparams)
+		rf__format(err, errlen, "mode '%s' has no parameter '%s' (it has: %s)",
+		           p->name, name, known);
+	else
+		rf__format(err, errlen, "mode '%s' has no parameter '%s' (it takes none)",
+		           p->name, name);
+}
+
+/* One "key=value" item; q is its parameter. */
+static int
+parse_value(const struct rf_plugin *p, const struct rf_param *q, const char *v,
+            double *out, char *err, size_t errlen)
+{
+	char range[160];
+
+	format_range(range, sizeof(range), q);
+	if (q->flags & RF_PARAM_CHOICE) {
+		if (parse_choice(q, v, out) < 0) {
+			rf__format(err, errlen, "mode '%s': parameter '%s' must be %s, "
+			           "not '%s'", p->name, q->name, range, v);
+			return RF_EINVAL;
+		}
+		return 0;
+	}
+	if (q->flags & RF_PARAM_BOOL) {
+		if (parse_bool(v, out) < 0) {
+			rf__format(err, errlen, "mode '%s': parameter '%s' must be 0 or 1 "
+			           "(or off/on, no/yes, false/true), not '%s'", p->name,
+			           q->name, v);
+			return RF_EINVAL;
+		}
+		return 0;
+	}
+	if (parse_number(v, out) < 0) {
+		rf__format(err, errlen, "mode '%s': parameter '%s' needs a number (%s), "
+		           "not '%s'", p->name, q->name, range, v);
+		return RF_EINVAL;
+	}
+	if ((q->flags & RF_PARAM_INTEGER) && *out != floor(*out)) {
+		rf__format(err, errlen, "mode '%s': parameter '%s' must be %s, not %s",
+		           p->name, q->name, range, v);
+		return RF_EINVAL;
+	}
+	if (*out < q->min || *out > q->max) {
+		rf__format(err, errlen, "mode '%s': parameter '%s' is %s, out of its "
+		           "range (%s)", p->name, q->name, v, range);
+		return RF_EINVAL;
+	}
+	return 0;
+}
+
 int
 rf_plugin_parse_params(const struct rf_plugin *p, const char *spec,
                        double *values, char *err, size_t errlen)
 {
 	char item[512];
-	unsigned char given[256] = { 0 };
+	unsigned char *given;
 	const char *s = spec ? spec : "";
 	uint32_t i;
+	int rc = 0;
 
 	for (i = 0; i < p->nparams; i++)
 		values[i] = p->params[i].def;
-	while (*s) {
+	if (!(given = calloc(p->nparams + 1, 1))) {
+		rf__format(err, errlen, "%s", rf_strerror(RF_ENOMEM));
+		return RF_ENOMEM;
+	}
+	while (*s && !rc) {
 		size_t len = strcspn(s, ":");
-		const struct rf_param *q = NULL;
-		char *eq, *end, range[128];
+		const struct rf_param *q;
+		char *eq;
 		double v;
 
 		if (len == 0) {
@@ -89,78 +183,35 @@ rf_plugin_parse_params(const struct rf_plugin *p, const char *spec,
 		if (len >= sizeof(item)) {
 			rf__format(err, errlen, "mode '%s': parameter '%.40s...' is too "
 			           "long", p->name, s);
-			return RF_EINVAL;
+			rc = RF_EINVAL;
+			break;
 		}
 		memcpy(item, s, len);
 		item[len] = '\0';
 		s += len + (s[len] == ':');
-		if (!(eq = strchr(item, '='))) {
+		if ((eq = strchr(item, '=')))
+			*eq = '\0';
+		if (!(q = find_param(p, item))) {
+			unknown_param(p, item, err, errlen);
+			rc = RF_EINVAL;
+			break;
+		}
+		if (!eq) {
 			rf__format(err, errlen, "mode '%s': parameter '%s' has no value "
 			           "(write %s=VALUE)", p->name, item, item);
-			return RF_EINVAL;
-		}
-		*eq = '\0';
-		for (i = 0; i < p->nparams; i++)
-			if (!strcmp(p->params[i].name, item))
-				q = &p->params[i];
-		if (!q) {
-			char known[256] = "";
-			size_t k = 0;
-
-			for (i = 0; i < p->nparams && k + 2 < sizeof(known); i++)
-				k += (size_t)snprintf(known + k, sizeof(known) - k, "%s%s",
-				                      i ? ", " : "", p->params[i].name);
-			if (p->nparams)
-				rf__format(err, errlen, "mode '%s' has no parameter '%s' "
-				           "(it has: %s)", p->name, item, known);
-			else
-				rf__format(err, errlen, "mode '%s' has no parameter '%s' "
-				           "(it takes none)", p->name, item);
-			return RF_EINVAL;
+			rc = RF_EINVAL;
+			break;
 		}
 		i = (uint32_t)(q - p->params);
-		if (i < sizeof(given) && given[i]++) {
+		if (given[i]++) {
 			rf__format(err, errlen, "mode '%s': parameter '%s' is given twice",
 			           p->name, q->name);
-			return RF_EINVAL;
+			rc = RF_EINVAL;
+			break;
 		}
-		format_range(range, sizeof(range), q);
-		if (q->flags & RF_PARAM_CHOICE) {
-			if (parse_choice(q, eq + 1, &v) < 0) {
-				rf__format(err, errlen, "mode '%s': parameter '%s' must be "
-				           "%s, not '%s'", p->name, q->name, range, eq + 1);
-				return RF_EINVAL;
-			}
+		if ((rc = parse_value(p, q, eq + 1, &v, err, errlen)) == 0)
 			values[i] = v;
-			continue;
-		}
-		if (q->flags & RF_PARAM_BOOL) {
-			if (parse_bool(eq + 1, &v) < 0) {
-				rf__format(err, errlen, "mode '%s': parameter '%s' must be "
-				           "0 or 1, not '%s'", p->name, q->name, eq + 1);
-				return RF_EINVAL;
-			}
-			values[i] = v;
-			continue;
-		}
-		errno = 0;
-		v = strtod(eq + 1, &end);
-		if (end == eq + 1 || *end || errno == ERANGE || !isfinite(v)) {
-			rf__format(err, errlen, "mode '%s': parameter '%s' needs a "
-			           "number (%s), not '%s'", p->name, q->name, range, eq + 1);
-			return RF_EINVAL;
-		}
-		if ((q->flags & RF_PARAM_INTEGER) && v != floor(v)) {
-			rf__format(err, errlen, "mode '%s': parameter '%s' must be %s, "
-			           "not %s", p->name, q->name, range, eq + 1);
-			return RF_EINVAL;
-		}
-		if (v < q->min || v > q->max) {
-			rf__format(err, errlen, "mode '%s': parameter '%s' is %s, out of "
-			           "its range (%s)", p->name, q->name, eq + 1, range);
-			return RF_EINVAL;
-		}
-		values[i] = v;
 	}
-	return 0;
+	free(given);
+	return rc;
 }

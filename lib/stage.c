@@ -39,6 +39,19 @@ list_length(const char *const *list)
 	return n;
 }
 
+/* A plugin's message as one line: terminated even when the plugin filled
+ * the whole buffer, control characters (newlines) made spaces. */
+static void
+one_line(char *msg, size_t size)
+{
+	char *c;
+
+	msg[size - 1] = '\0';
+	for (c = msg; *c; c++)
+		if ((unsigned char)*c < 0x20 || *c == 0x7f)
+			*c = ' ';
+}
+
 int
 rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
                 const struct rf_host *host, int nthreads, char *err, size_t errlen)
@@ -67,6 +80,7 @@ rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
 
 		s->workers[i].s = s;
 		if (p->create(host, values, &s->workers[i].state, msg, sizeof(msg))) {
+			one_line(msg, sizeof(msg));
 			rf__format(err, errlen, "mode '%s': %s", p->name,
 			           *msg ? msg : "cannot create an instance");
 			s->workers[i].state = NULL;
@@ -237,8 +251,10 @@ rf_stage_run(rf_stage *s, const float *in, float *out, size_t y, size_t nrows)
 	int n = s->nthreads, t;
 	size_t per, done = 0;
 
-	if (!s->out_h || y + nrows > s->nrows)
+	if (!s->out_h || y + nrows > s->nrows || y + nrows < y)
 		return RF_EINVAL;
+	if (nrows == 0)
+		return 0; /* worker 0 would otherwise rerun its last rows */
 	if ((size_t)n > nrows)
 		n = nrows ? (int)nrows : 1;
 	if (n > 256)

@@ -13,10 +13,13 @@
  * from create() through its message buffer.
  *
  * History of the ABI version:
- *   1.0  first version.
- * A minor bump only appends fields at the end of a struct; a major bump is
- * anything else.  The host accepts a plugin when its major equals the
- * host's and its minor is not newer.
+ *   1.0  first version (reflect 0.1.0).
+ * A minor bump only appends fields at the end of a struct, or defines new
+ * flag bits or kinds; a major bump is anything else.  The host accepts a
+ * plugin when its major equals the host's and its minor is not newer, and
+ * never reads a descriptor past its size.  tests/unit/test-abi.c pins the
+ * layout: a change that fails it needs a version bump and a new entry
+ * here.  The full guide is reflect-plugin(7).
  */
 #ifndef REFLECT_PLUGIN_H
 #define REFLECT_PLUGIN_H
@@ -48,7 +51,7 @@ enum rf_plugin_kind {
 };
 
 /* Parameter flags; a bit the host does not know makes it refuse the plugin. */
-#define RF_PARAM_INTEGER 0x1u /* value is rounded to an integer */
+#define RF_PARAM_INTEGER 0x1u /* only whole numbers are accepted */
 #define RF_PARAM_BOOL 0x2u    /* 0 or 1; min 0, max 1 */
 #define RF_PARAM_CHOICE 0x4u  /* value is an index into `choices` */
 #define RF_PARAM_KNOWN_FLAGS (RF_PARAM_INTEGER | RF_PARAM_BOOL | RF_PARAM_CHOICE)
@@ -70,7 +73,10 @@ struct rf_probe {
 	int box_projection; /* 0: directions are used as they are */
 };
 
-/* Services of the host; a member is NULL when the tool cannot offer it. */
+/* Services of the host; a member is NULL when the tool cannot offer it.
+ * The table and all it points to stay valid until the instance's
+ * destroy().  Read a member added in a later minor version only when
+ * size covers it. */
 struct rf_host {
 	uint32_t size; /* sizeof(struct rf_host) as the host was built */
 	uint32_t abi_major, abi_minor;
@@ -89,7 +95,8 @@ struct rf_host {
 };
 
 /* A span of pixels along one row, channels interleaved in the order the
- * descriptor declares them. */
+ * descriptor declares them.  It need not be a whole row (x need not be
+ * 0); run() writes every output of every pixel and keeps no pointer. */
 struct rf_span {
 	uint32_t size;          /* sizeof(struct rf_span) as the host was built */
 	uint32_t npix;          /* pixels in this span */
@@ -132,9 +139,18 @@ typedef const struct rf_plugin *(*rf_plugin_entry_fn)(void);
 /* Declare the entry point in a plugin:
  *   RF_PLUGIN_DEFINE(my_descriptor)
  */
+#ifdef __cplusplus
+#define RF_PLUGIN_EXTERN_C extern "C"
+#else
+#define RF_PLUGIN_EXTERN_C
+#endif
 #define RF_PLUGIN_DEFINE(descriptor)                                       \
-	RF_PLUGIN_EXPORT const struct rf_plugin *rf_plugin_entry(void);     \
-	const struct rf_plugin *rf_plugin_entry(void) { return &(descriptor); }
+	RF_PLUGIN_EXTERN_C RF_PLUGIN_EXPORT const struct rf_plugin *        \
+	rf_plugin_entry(void);                                              \
+	RF_PLUGIN_EXTERN_C const struct rf_plugin *rf_plugin_entry(void)    \
+	{                                                                   \
+		return &(descriptor);                                       \
+	}
 
 #ifdef __cplusplus
 }

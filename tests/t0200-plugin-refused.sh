@@ -1,0 +1,136 @@
+#!/bin/sh
+test_description='broken plugins are refused, each with a message naming the file, the versions and the fix'
+. "$srcdir/tests/lib.sh"
+
+P=$REFLECT_TEST_PLUGINS
+
+# refused NAME REGEX: reflect-project refuses the test plugin NAME given
+# as a path and given by name through REFLECT_PLUGIN_PATH: exit status 1,
+# nothing on stdout, one line on stderr naming the file, whose rest
+# matches REGEX; both ways give the same message.
+refused () {
+	test_must_fail 1 reflect-project -m "$P/$1.so" <gbuf >out 2>err &&
+	test_line_count 0 out &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: plugin '$P/$1\.so': $2$" err &&
+	test_must_fail 1 env REFLECT_PLUGIN_PATH="$P" \
+		reflect-project -m "$1" <gbuf >out 2>err.name &&
+	test_line_count 0 out &&
+	cmp err err.name
+}
+
+test_expect_success 'setup: versions and a G-buffer' '
+	reflect-project -V >version &&
+	sed -n "s/^reflect-project (reflect) //p" version >release &&
+	sed -n "s/^plugin ABI //p" version >abi &&
+	test_line_count 1 release &&
+	test "$(cat abi)" = 1.0 &&
+	cat >gbuf <<-\EOF
+	#?REFLECT1
+	NCOLS=1
+	NROWS=1
+	NCOMP=9
+	CHANNELS=P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z
+	FORMAT=ascii
+
+	0	0	0	0	1	0	0	1	0
+	EOF
+'
+
+test_expect_success 'the test plugins were built' '
+	for p in bad_major bad_minor bad_size no_entry bad_name \
+		bad_param_flags bad_flags no_summary shade_kind echo_params
+	do
+		test -f "$P/$p.so" || return 1
+	done
+'
+
+test_expect_success 'a good plugin loads both ways (the harness works)' '
+	reflect-project -fa -m "$P/echo_params.so" <gbuf >out &&
+	test_grep "^CHANNELS=.* echo.scale" out &&
+	REFLECT_PLUGIN_PATH="$P" reflect-project -fa -m echo_params <gbuf >out &&
+	test_grep "^CHANNELS=.* echo.scale" out
+'
+
+test_expect_success 'major version 2.0: names both versions, rebuild or remove' '
+	rel=$(cat release) &&
+	refused bad_major "built for plugin ABI 2\.0, but this reflect ($rel) supports ABI 1\.0; rebuild it against this reflect.s <reflect/plugin\.h>, or remove it"
+'
+
+test_expect_success 'newer minor 1.99: names both versions, upgrade or rebuild' '
+	rel=$(cat release) &&
+	refused bad_minor "built for plugin ABI 1\.99, newer than the ABI 1\.0 of this reflect ($rel); upgrade reflect, or rebuild the plugin against this reflect.s <reflect/plugin\.h>"
+'
+
+test_expect_success 'descriptor smaller than its ABI says: sizes and versions' '
+	rel=$(cat release) &&
+	refused bad_size "built for plugin ABI 1\.0, its descriptor is 20 bytes, less than the 120 bytes of that ABI (this reflect ($rel) supports ABI 1\.0); it was built with a wrong header: set size to sizeof(struct rf_plugin) from this reflect.s <reflect/plugin\.h> and rebuild it, or remove it"
+'
+
+test_expect_success 'no rf_plugin_entry: not a reflect plugin, how to define it' '
+	refused no_entry "not a reflect plugin, it exports no rf_plugin_entry(); define it with RF_PLUGIN_DEFINE(descriptor) from <reflect/plugin\.h>, or remove the file from the plugin path"
+'
+
+test_expect_success 'name differs from the file: both names, rename the file or the name' '
+	refused bad_name "its descriptor is named .other_name., but a plugin.s name must equal its file name; rename the file to .other_name\.so. or set the name to .bad_name."
+'
+
+test_expect_success 'unknown parameter flag bits: the bits, versions, allowed flags' '
+	rel=$(cat release) &&
+	refused bad_param_flags "built for plugin ABI 1\.0, its parameter .gain. sets flag bits 0x10 that this ABI does not define (this reflect ($rel) supports ABI 1\.0); use only RF_PARAM_INTEGER, RF_PARAM_BOOL and RF_PARAM_CHOICE and rebuild it"
+'
+
+test_expect_success 'unknown descriptor flags: the bits, versions, set them to 0' '
+	rel=$(cat release) &&
+	refused bad_flags "built for plugin ABI 1\.0, its descriptor sets flags 0x4 that this ABI does not define (this reflect ($rel) supports ABI 1\.0); set flags to 0 and rebuild it"
+'
+
+test_expect_success 'missing summary: which field, fill it in' '
+	refused no_summary "its descriptor has no summary; fill it in and rebuild the plugin"
+'
+
+test_expect_success 'a shade plugin is not a projection mode: which tool takes it' '
+	refused shade_kind "it is a shade mode, not a projection mode; use it with reflect-shade"
+'
+
+test_expect_success 'a real plugin under another file name is refused' '
+	cp "$builddir/plugins/.libs/box.so" mybox.so &&
+	test_must_fail 1 reflect-project -m ./mybox.so <gbuf >out 2>err &&
+	test_line_count 0 out &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: plugin .\./mybox\.so.: its descriptor is named .box., but a plugin.s name must equal its file name; rename the file to .box\.so. or set the name to .mybox.$" err
+'
+
+test_expect_success 'a file that is not a shared object: the loader error and ldd' '
+	mkdir junk &&
+	echo "not an ELF file" >junk/garbage.so &&
+	test_must_fail 1 reflect-project -m junk/garbage.so <gbuf >out 2>err &&
+	test_line_count 0 out &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: plugin .junk/garbage\.so.: cannot load it: .*; if a library is missing, ldd(1) shows which$" err &&
+	test_must_fail 1 env REFLECT_PLUGIN_PATH="$PWD/junk" \
+		reflect-project -m garbage <gbuf >out 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: plugin .$PWD/junk/garbage\.so.: cannot load it: " err
+'
+
+test_expect_success 'a missing file and a directory given as paths' '
+	test_must_fail 1 reflect-project -m ./nosuch.so <gbuf >out 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: cannot open plugin .\./nosuch\.so.: No such file or directory$" err &&
+	mkdir dir.so &&
+	test_must_fail 1 reflect-project -m ./dir.so <gbuf >out 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: plugin .\./dir\.so.: not a regular file; give the path of a \.so file$" err
+'
+
+test_expect_success 'a refused plugin found first is not passed over for a later one' '
+	mkdir first &&
+	cp "$P/bad_major.so" first/box.so &&
+	test_must_fail 1 env REFLECT_PLUGIN_PATH="$PWD/first:$builddir/plugins/.libs" \
+		reflect-project -m box <gbuf >out 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: plugin .$PWD/first/box\.so.: built for plugin ABI 2\.0" err
+'
+
+test_done

@@ -1,0 +1,197 @@
+#!/bin/sh
+test_description='-l lists the modes; -m finds them along the search path; -v names the file'
+. "$srcdir/tests/lib.sh"
+
+B=$builddir/plugins/.libs
+P=$REFLECT_TEST_PLUGINS
+tab=$(printf '\t')
+
+test_expect_success 'setup: a G-buffer and directories of plugins' '
+	cat >gbuf <<-\EOF &&
+	#?REFLECT1
+	NCOLS=1
+	NROWS=1
+	NCOMP=9
+	CHANNELS=P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z
+	PROBE_BOX=-1 -1 -1 1 1 1
+	FORMAT=ascii
+
+	0	0	0	0	1	0	0	1	0
+	EOF
+	mkdir a b empty "we:ird" &&
+	cp "$B/box.so" a/box.so &&
+	cp "$B/box.so" "$B/infinite.so" b/ &&
+	cp "$B/box.so" "we:ird/box.so"
+'
+
+test_expect_success '-l lists box and infinite: summary, file, channels' '
+	reflect-project -l >out 2>err &&
+	test_line_count 0 err &&
+	cat >expect <<-EOF &&
+	box${tab}box projection: look up where the reflected ray leaves the probe box
+	  file: $B/box.so (version 1.0, plugin ABI 1.0, reflect developers, MIT)
+	  reads: P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z
+	  writes: R.X R.Y R.Z D.X D.Y D.Z hit.dist probe.dist
+	infinite${tab}no parallax: look up the reflection vector itself (distant environment)
+	  file: $B/infinite.so (version 1.0, plugin ABI 1.0, reflect developers, MIT)
+	  reads: N.X N.Y N.Z V.X V.Y V.Z
+	  writes: R.X R.Y R.Z D.X D.Y D.Z hit.dist probe.dist
+	EOF
+	diff -u expect out
+'
+
+test_expect_success '-l lists parameters with default, help and range' '
+	REFLECT_PLUGIN_PATH="$P" reflect-project -l >out 2>err &&
+	sed -n "/^echo_params$tab/,/^[^ ]/p" out >echo &&
+	cat >expect <<-EOF &&
+	echo_params${tab}test: echoes its parameters into its output channels
+	  file: $P/echo_params.so (version 1.0, plugin ABI 1.0, reflect tests, MIT)
+	  reads: N.X
+	  writes: echo.scale echo.offset echo.count echo.invert echo.shape echo.nx echo.y echo.frame
+	  parameters:
+	    scale=1${tab}a number with a range ([0.5, 4])
+	    offset=0${tab}a number without bounds ((-inf, inf))
+	    count=3${tab}an integer (integer [1, 8])
+	    invert=0${tab}a switch (0 or 1)
+	    shape=round${tab}a choice; fail makes create fail (round|square|fail)
+	EOF
+	diff -u expect echo
+'
+
+test_expect_success '-l warns about every broken plugin and lists the rest' '
+	REFLECT_PLUGIN_PATH="$P:$B" reflect-project -l >out 2>err &&
+	for p in bad_major bad_minor bad_size no_entry bad_name \
+		bad_param_flags bad_flags no_summary
+	do
+		test_grep "^reflect-project: ignoring plugin .$P/$p\.so.: " err ||
+		return 1
+	done &&
+	test_line_count 8 err &&
+	test_grep "^box$tab" out &&
+	test_grep "^infinite$tab" out &&
+	test_grep "^echo_params$tab" out
+'
+
+test_expect_success '-l: modes of another kind are left out silently' '
+	REFLECT_PLUGIN_PATH="$P:$B" reflect-project -l >out 2>err &&
+	! grep shade_kind out &&
+	! grep shade_kind err &&
+	grep -c "^[a-z_]*$tab" out >count &&
+	echo 3 >expect &&
+	diff expect count
+'
+
+test_expect_success '-l reports a shadowed duplicate and the file that wins' '
+	REFLECT_PLUGIN_PATH="$PWD/a:$PWD/b" reflect-project -l >out 2>err &&
+	test_line_count 0 err &&
+	test_grep "^box$tab" out &&
+	test_grep "^  file: $PWD/a/box\.so " out &&
+	test_grep "^# $PWD/b/box\.so: shadowed by $PWD/a/box\.so, earlier in the search path$" out &&
+	test_grep "^  file: $PWD/b/infinite\.so " out &&
+	! grep "shadowed.*infinite" out
+'
+
+test_expect_success '-l: a directory named twice does not shadow itself' '
+	REFLECT_PLUGIN_PATH="$PWD/a:$PWD/a/.:$PWD/a" reflect-project -l >out 2>err &&
+	test_line_count 0 err &&
+	! grep shadowed out &&
+	test_grep "^  file: $PWD/a/box\.so " out
+'
+
+test_expect_success '-v: REFLECT_PLUGIN_PATH in order, the first match wins' '
+	REFLECT_PLUGIN_PATH="$PWD/a:$PWD/b" reflect-project -v -m box <gbuf >/dev/null 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/a/box\.so.$" err &&
+	REFLECT_PLUGIN_PATH="$PWD/b:$PWD/a" reflect-project -v -m box <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/b/box\.so.$" err &&
+	REFLECT_PLUGIN_PATH="$PWD/a:$PWD/b" reflect-project -v -m infinite <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .infinite. from .$PWD/b/infinite\.so.$" err
+'
+
+test_expect_success 'REFLECT_PLUGIN_SYSTEM_PATH comes after REFLECT_PLUGIN_PATH' '
+	REFLECT_PLUGIN_PATH="$PWD/a" REFLECT_PLUGIN_SYSTEM_PATH="$PWD/b" \
+		reflect-project -v -m box <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/a/box\.so.$" err &&
+	REFLECT_PLUGIN_PATH="$PWD/a" REFLECT_PLUGIN_SYSTEM_PATH="$PWD/b" \
+		reflect-project -v -m infinite <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .infinite. from .$PWD/b/infinite\.so.$" err &&
+	REFLECT_PLUGIN_PATH= REFLECT_PLUGIN_SYSTEM_PATH="$PWD/b" \
+		reflect-project -v -m box <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/b/box\.so.$" err &&
+	REFLECT_PLUGIN_PATH="$PWD/a" REFLECT_PLUGIN_SYSTEM_PATH="$PWD/b" \
+		reflect-project -l >out &&
+	test_grep "^# $PWD/b/box\.so: shadowed by $PWD/a/box\.so, earlier in the search path$" out
+'
+
+test_expect_success 'an empty REFLECT_PLUGIN_SYSTEM_PATH means no system directory' '
+	test_must_fail 1 env REFLECT_PLUGIN_PATH="$PWD/empty" REFLECT_PLUGIN_SYSTEM_PATH= \
+		reflect-project -m box <gbuf >out 2>err &&
+	test_line_count 0 out &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: unknown projection mode .box.: no box\.so in .$PWD/empty. (-l lists the modes)$" err &&
+	test_must_fail 1 env REFLECT_PLUGIN_PATH= REFLECT_PLUGIN_SYSTEM_PATH= \
+		reflect-project -m box <gbuf >out 2>err &&
+	test_grep "^reflect-project: unknown projection mode .box.: no box\.so in an empty search path (-l lists the modes)$" err &&
+	test_must_fail 1 env REFLECT_PLUGIN_PATH= REFLECT_PLUGIN_SYSTEM_PATH= \
+		reflect-project -l >out 2>err &&
+	test_line_count 0 out &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: no projection modes in an empty search path$" err
+'
+
+test_expect_success 'an unset REFLECT_PLUGIN_SYSTEM_PATH means the installed plugin directory' '
+	plugindir=$(pkg-config --variable=plugindir "$builddir/reflect-plugin.pc") &&
+	test -n "$plugindir" &&
+	(
+		unset REFLECT_PLUGIN_SYSTEM_PATH &&
+		test_must_fail 1 env REFLECT_PLUGIN_PATH="$PWD/empty" \
+			reflect-project -m nosuch <gbuf >out 2>err
+	) &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: unknown projection mode .nosuch.: no nosuch\.so in .$PWD/empty:$plugindir. (-l lists the modes)$" err
+'
+
+test_expect_success 'a name with a slash is a path, not searched for' '
+	REFLECT_PLUGIN_PATH="$PWD/empty" reflect-project -v -m a/box.so <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .box. from .a/box\.so.$" err &&
+	REFLECT_PLUGIN_PATH="$PWD/empty" reflect-project -v -m "$PWD/b/box.so" <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/b/box\.so.$" err &&
+	test_must_fail 1 env REFLECT_PLUGIN_PATH="$PWD/a" \
+		reflect-project -m ./box.so <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: cannot open plugin .\./box\.so.: No such file or directory$" err
+'
+
+test_expect_success 'a path may hold a colon before its last slash' '
+	REFLECT_PLUGIN_PATH="$PWD/empty" reflect-project -v -m "$PWD/we:ird/box.so" <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/we:ird/box\.so.$" err
+'
+
+test_expect_success 'NAME.so without a slash: not found, with a hint' '
+	test_must_fail 1 reflect-project -m box.so <gbuf >out 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: unknown projection mode .box\.so.: no box\.so\.so in .$B.; a path to a file needs a ./., as in \./box\.so (-l lists the modes)$" err
+'
+
+test_expect_success 'an unknown mode: a clear message, exit 1' '
+	test_must_fail 1 reflect-project -m nosuch <gbuf >out 2>err &&
+	test_line_count 0 out &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: unknown projection mode .nosuch.: no nosuch\.so in .$B. (-l lists the modes)$" err &&
+	test_must_fail 1 reflect-project -m "no such" <gbuf >out 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: .no such. is not a valid mode name" err
+'
+
+test_expect_success '-v names the file and the parameter values' '
+	REFLECT_PLUGIN_PATH="$P" reflect-project -v -m echo_params:shape=square:count=5 \
+		<gbuf >/dev/null 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: mode .echo_params. from .$P/echo_params\.so. (scale=1 offset=0 count=5 invert=0 shape=square)$" err
+'
+
+test_expect_success 'without -v nothing goes to stderr' '
+	reflect-project -m box <gbuf >/dev/null 2>err &&
+	test_line_count 0 err
+'
+
+test_done

@@ -1,0 +1,186 @@
+#!/bin/sh
+test_description='a third-party plugin, built out of tree against the installed header only'
+. "$srcdir/tests/lib.sh"
+
+# The build tree is installed into a prefix under the trash directory.
+# The example plugin of reflect-plugin(7), doc/examples/sphere.c, is
+# copied to a directory outside the source and build trees and compiled
+# there with nothing but the installed header, found through pkg-config.
+#
+# `make install prefix=DIR` moves the files but not the paths recorded
+# at configure time (the .pc files' prefix= line, the tools' default
+# plugin directory).  So pkg-config runs with --define-prefix, which
+# takes the prefix from where the .pc file lies, as for any relocated
+# install, and the tools get their plugin directory from the environment.
+
+prefix=$PWD/prefix
+oot=$(mktemp -d "${TMPDIR:-/tmp}/reflect-oot.XXXXXX") || {
+	echo "Bail out! mktemp -d failed"
+	exit 1
+}
+
+pc () {
+	PKG_CONFIG_PATH="$prefix/lib/pkgconfig" PKG_CONFIG_LIBDIR= \
+		pkg-config --define-prefix "$@"
+}
+
+# The installed reflect-project, its plugin directory and the new one.
+installed () {
+	LD_LIBRARY_PATH="$prefix/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
+	REFLECT_PLUGIN_PATH="$oot" \
+	REFLECT_PLUGIN_SYSTEM_PATH="$(cat plugindir)" \
+		"$prefix/bin/reflect-project" "$@"
+}
+
+data () {
+	awk '/^#\?REFLECT1$/ { h = 1; next } h && /^$/ { h = 0; next } !h' "$1"
+}
+
+test_expect_success 'make install into a temporary prefix' '
+	if ! (
+		unset MAKEFLAGS MFLAGS MAKELEVEL &&
+		make -C "$builddir" install prefix="$prefix" >install.log 2>&1
+	)
+	then
+		tail -n 20 install.log &&
+		false
+	fi &&
+	test -x "$prefix/bin/reflect-project" &&
+	test -f "$prefix/lib/reflect-1/box.so" &&
+	test -f "$prefix/lib/pkgconfig/reflect-plugin.pc"
+'
+
+test_expect_success 'the headers are installed as <reflect/plugin.h>' '
+	if ! test -f "$prefix/include/reflect/plugin.h"
+	then
+		echo "no $prefix/include/reflect/plugin.h; installed headers:" &&
+		find "$prefix/include" -type f &&
+		false
+	fi &&
+	test -f "$prefix/include/reflect/reflect.h" &&
+	cmp "$srcdir/include/reflect/plugin.h" "$prefix/include/reflect/plugin.h"
+'
+
+test_expect_success 'pkg-config: plugindir and Cflags point inside the prefix' '
+	pc --variable=plugindir reflect-plugin >plugindir &&
+	echo "$prefix/lib/reflect-1" >expect &&
+	diff expect plugindir &&
+	pc --cflags reflect-plugin >cflags &&
+	test_grep "^-I$prefix/include *$" cflags &&
+	pc --libs reflect-plugin >libs &&
+	! grep -e -l libs
+'
+
+test_expect_success 'sphere.c builds outside the trees with only the installed header' '
+	cp "$srcdir/doc/examples/sphere.c" "$oot/" &&
+	(
+		cd "$oot" &&
+		cc -std=c11 -Wall -Wextra -pedantic -Werror -fPIC -shared \
+			$(pc --cflags reflect-plugin) sphere.c -o sphere.so -lm &&
+		cc -std=c11 -M $(pc --cflags reflect-plugin) sphere.c
+	) >deps &&
+	test -f "$oot/sphere.so" &&
+	tr " \\\\" "\\n\\n" <deps | grep "reflect/" >used &&
+	echo "$prefix/include/reflect/plugin.h" >expect &&
+	diff expect used
+'
+
+test_expect_success 'the installed reflect-project lists it with its parameter' '
+	installed -l >out 2>err &&
+	test_line_count 0 err &&
+	tab=$(printf "\\t") &&
+	test_grep "^sphere${tab}sphere proxy: look up where the reflected ray leaves a sphere around the capture point$" out &&
+	test_grep "^  file: $oot/sphere\.so (version 1\.0, plugin ABI 1\.0, reflect developers, public domain)$" out &&
+	test_grep "^  reads: P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z$" out &&
+	test_grep "^    radius=5${tab}radius of the proxy sphere around the capture point (\[0\.001, 1e+06\])$" out &&
+	test_grep "^box${tab}" out &&
+	test_grep "^  file: $(cat plugindir)/box\.so " out
+'
+
+# The G-buffer: probe centre C = (0,0,0), sphere radius r = 2.  For each
+# pixel R = 2 (N.V) N - V; with o = P - C, b = o.R, k = o.o - r^2 the hit
+# is t = -b + sqrt(b^2 - k) along R, D = (P + t R - C) / r.
+#
+# 1. P=(0,0,0) N=V=(0,1,0): R=(0,1,0); b=0, k=-4, t=2.
+#    D=(0,1,0), hit.dist 2, probe.dist 2.
+# 2. P=(1,0,0) N=V=(0,1,0): R=(0,1,0); b=0, k=1-4=-3, t=sqrt(3)=1.7320508.
+#    hit (1, 1.7320508, 0), D=(0.5, 0.8660254, 0), probe.dist 2.
+# 3. P=(0,-1,0) N=(0,1,0) V=(0.6,0.8,0): N.V=0.8, R=1.6 N - V =
+#    (-0.6, 0.8, 0); b=-0.8, k=1-4=-3, t=0.8+sqrt(0.64+3)=0.8+1.9078784
+#    =2.7078784; hit (-0.6t, -1+0.8t, 0) = (-1.6247270, 1.1663027, 0),
+#    D = hit/2 = (-0.8123635, 0.5831514, 0), probe.dist 2.
+# 4. P=(0,1,0) N=V=(0,1,0): R=(0,1,0); b=1, k=1-4=-3, t=-1+sqrt(1+3)=1.
+#    D=(0,1,0), hit.dist 1, probe.dist 2.
+# 5. P=(3,0,0): |P-C|=3 > r, outside: N=(1,0,0) V=(0,0,1): N.V=0,
+#    R=-V=(0,0,-1); D=R, both distances inf.
+test_expect_success 'sphere:radius=2 computes the hand-checked values' '
+	cat >gbuf <<-\EOF &&
+	#?REFLECT1
+	NCOLS=5
+	NROWS=1
+	NCOMP=9
+	CHANNELS=P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z
+	FORMAT=ascii
+
+	0	0	0	0	1	0	0	1	0
+	1	0	0	0	1	0	0	1	0
+	0	-1	0	0	1	0	0.6	0.8	0
+	0	1	0	0	1	0	0	1	0
+	3	0	0	1	0	0	0	0	1
+	EOF
+	installed -fa -m sphere:radius=2 --box=-10,-10,-10,10,10,10 \
+		--center=0,0,0 gbuf >out &&
+	test_grep "^CHANNELS=P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z R.X R.Y R.Z D.X D.Y D.Z hit.dist probe.dist$" out &&
+	test_grep "^PROJECTION=sphere:radius=2$" out &&
+	data out >got &&
+	cat >expect <<-\EOF &&
+	0 0 0 0 1 0 0 1 0       0 1 0       0 1 0                       2 2
+	1 0 0 0 1 0 0 1 0       0 1 0       0.5 0.8660254 0             1.7320508 2
+	0 -1 0 0 1 0 0.6 0.8 0  -0.6 0.8 0  -0.8123635 0.5831514 0      2.7078784 2
+	0 1 0 0 1 0 0 1 0       0 1 0       0 1 0                       1 2
+	3 0 0 1 0 0 0 0 1       0 0 -1      0 0 -1                      inf inf
+	EOF
+	test_cmp_numbers expect got 2e-6 &&
+	cp got full &&
+	installed -v -m sphere:radius=2 --box=-10,-10,-10,10,10,10 \
+		--center=0,0,0 gbuf >/dev/null 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: mode .sphere. from .$oot/sphere\.so. (radius=2)$" err
+'
+
+# The default radius is 5: pixel 1 then hits at (0,5,0).  With box
+# projection off every pixel looks up R itself, as the box mode does.
+test_expect_success 'the default radius; box projection off' '
+	sed -n "1,8p" gbuf | sed "s/^NCOLS=5/NCOLS=1/" >one &&
+	installed -fa -m sphere --box=-10,-10,-10,10,10,10 --center=0,0,0 one >out &&
+	data out | cut -f 10- >got &&
+	echo "0 1 0 0 1 0 5 5" >expect &&
+	test_cmp_numbers expect got &&
+	installed -fa -m sphere:radius=2 --box=-10,-10,-10,10,10,10 \
+		--center=0,0,0 --box-projection=off gbuf >out &&
+	data out | sed -n 3p | cut -f 10- >got &&
+	echo "-0.6 0.8 0 -0.6 0.8 0 inf inf" >expect &&
+	test_cmp_numbers expect got
+'
+
+test_expect_success 'its parameter is checked by the host; create() reports errors' '
+	test_must_fail 1 installed -m sphere:radius=0 --box=-1,-1,-1,1,1,1 gbuf >out 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: mode .sphere.: parameter .radius. is 0, out of its range (in \[0\.001, 1e+06\])$" err &&
+	test_must_fail 1 installed -m sphere gbuf >out 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: mode .sphere.: no probe: give --box and --center, or a stream with PROBE_BOX and PROBE_CENTER$" err
+'
+
+test_expect_success 'the uninstalled tools load it as well' '
+	REFLECT_PLUGIN_PATH="$oot" reflect-project -fa -m sphere:radius=2 \
+		--box=-10,-10,-10,10,10,10 --center=0,0,0 gbuf >out2 &&
+	data out2 >got2 &&
+	test_cmp_numbers full got2 0
+'
+
+test_expect_success 'clean up the out-of-tree directory' '
+	rm -rf "$oot"
+'
+
+test_done
