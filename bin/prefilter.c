@@ -14,7 +14,8 @@ usage(void)
 	        "[--levels=N] [--min-size=N] [--mapping=unity|linear|exact] "
 	        "[--steps=N] [--method=filtered|brute] [--plain] [--lod-bias=B] "
 	        "[--layout=L] [--size=N] [--srgb=auto|on|off] [--rgbm=M[,E]] "
-	        "[--intensity=X] [--dump=latlong|cube|vcross|hcross] [-f a|f] [-h] "
+	        "[--intensity=X] [--dump=latlong|cube|vcross|hcross] "
+	        "[--edge-fixup=none|average] [-f a|f] [-h] "
 	        "[ENV]\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
@@ -25,6 +26,7 @@ struct prefilter_opts {
 	struct rf_prefilter_options pf;
 	size_t levels, min_size;
 	int plain, verbose;
+	int edge_average; /* --edge-fixup=average */
 	enum rf_format format;
 	int no_header;
 };
@@ -166,6 +168,7 @@ main(int argc, char **argv)
 		{ "plain", no_argument, NULL, 'N' },
 		{ "lod-bias", required_argument, NULL, 'B' },
 		{ "dump", required_argument, NULL, 'D' },
+		{ "edge-fixup", required_argument, NULL, 'E' },
 		{ "help", no_argument, NULL, 'Q' },
 		{ NULL, 0, NULL, 0 },
 	};
@@ -213,6 +216,10 @@ main(int argc, char **argv)
 		case 'N': o.plain = 1; break;
 		case 'B': o.pf.lod_bias = (float)parse_number("lod-bias", optarg, -4, 4); break;
 		case 'D': o.dump = optarg; break;
+		case 'E':
+			if (!strcmp(optarg, "average")) o.edge_average = 1;
+			else if (strcmp(optarg, "none")) die("--edge-fixup: '%s' is not none or average", optarg);
+			break;
 		case 'Q':
 			printf("usage: %s [options] [ENV]\n"
 			       "Convolves an environment (lat-long, N x 6N cube, cross, six faces\n"
@@ -223,6 +230,7 @@ main(int argc, char **argv)
 			       "  --levels=N --min-size=N --mapping=unity|linear|exact --steps=N\n"
 			       "  --method=filtered|brute  --plain (box mips)  --lod-bias=B\n"
 			       "  --dump=latlong|cube|vcross|hcross  each level to levelK-LAYOUT.exr\n"
+			       "  --edge-fixup=none|average  equal edge texels for per-face readers\n"
 			       "  -j N threads  -S refuse NaN/Inf  -v  -V\n", argv0);
 			fshut(stdout, "<stdout>");
 			return 0;
@@ -291,6 +299,12 @@ main(int argc, char **argv)
 			        samples / 1e6, wall, cpu, o.pf.nthreads, samples / cpu / 1e6);
 		info.prefiltered = 1;
 		info.samples = o.pf.method == RF_PREFILTER_BRUTE ? 0 : o.pf.samples;
+	}
+	if (o.edge_average) {
+		size_t k;
+
+		for (k = 0; k < rf_cubemap_levels(out); k++)
+			rf_cubemap_average_edges(out, k);
 	}
 	if (o.verbose)
 		fprintf(stderr, "%s: %zu levels of %zu..%zu texels, mapping %s, steps %g, %s\n",

@@ -225,6 +225,64 @@ rf_cubemap_seal_level(rf_cubemap *c, size_t level)
 			}
 }
 
+void
+rf_cubemap_average_edges(rf_cubemap *c, size_t level)
+{
+	size_t n = c->size >> level;
+	long k;
+	int f, e, ch;
+
+	if (n == 1) {
+		/* Six single texels all touch each other: one value for all. */
+		float mean[3] = { 0, 0, 0 };
+
+		for (f = 0; f < 6; f++)
+			for (ch = 0; ch < 3; ch++)
+				mean[ch] += padded(c, level, f, 0, 0)[ch] / 6.0f;
+		for (f = 0; f < 6; f++)
+			memcpy(padded(c, level, f, 0, 0), mean, sizeof(mean));
+		rf_cubemap_seal_level(c, level);
+		return;
+	}
+	/* Each edge texel and the texel its border copies are the same pair
+	 * seen from both faces: average them once from each side, which
+	 * leaves both equal (the second visit averages equal values). */
+	for (f = 0; f < 6; f++)
+		for (k = 0; k < (long)n; k++) {
+			long pos[4][2] = { { -1, k }, { (long)n, k }, { k, -1 }, { k, (long)n } };
+
+			for (e = 0; e < 4; e++) {
+				long i = pos[e][0] < 0 ? 0 : pos[e][0] >= (long)n ? (long)n - 1 : pos[e][0];
+				long j = pos[e][1] < 0 ? 0 : pos[e][1] >= (long)n ? (long)n - 1 : pos[e][1];
+				long si, sj;
+				enum rf_face g = border_source((enum rf_face)f, n, pos[e][0], pos[e][1],
+				                               &si, &sj);
+				float *a = padded(c, level, f, i, j), *b = padded(c, level, g, si, sj);
+				int corner = (i == 0 || i == (long)n - 1) && (j == 0 || j == (long)n - 1);
+
+				if (corner)
+					continue; /* corners below */
+				for (ch = 0; ch < 3; ch++)
+					a[ch] = b[ch] = 0.5f * (a[ch] + b[ch]);
+			}
+		}
+	/* A corner texel meets two other faces' corner texels. */
+	rf_cubemap_seal_level(c, level);
+	for (f = 0; f < 6; f++)
+			for (k = 0; k < 4; k++) {
+				long i = k & 1 ? (long)n - 1 : 0, j = k & 2 ? (long)n - 1 : 0;
+				long bi = i ? (long)n : -1, bj = j ? (long)n : -1;
+				float *t = padded(c, level, f, i, j);
+				const float *m = padded(c, level, f, bi, bj);
+
+				/* The sealed corner border already holds the mean of the
+				 * three corner texels. */
+				for (ch = 0; ch < 3; ch++)
+					t[ch] = m[ch];
+			}
+	rf_cubemap_seal_level(c, level);
+}
+
 /*
  * Each texel of the next level is the solid-angle-weighted mean of its
  * four children: an unweighted mean would let the small texels near cube

@@ -74,6 +74,10 @@ RF_EXTERN const float *rf_cubemap_texel_const(const rf_cubemap *c, size_t level,
                                               enum rf_face f, size_t i, size_t j);
 /* Refreshes the borders of a level after its texels changed. */
 RF_EXTERN void rf_cubemap_seal_level(rf_cubemap *c, size_t level);
+/* Makes the texels along every edge equal to their neighbours across
+ * it (pairs averaged, corners the mean of three), for readers that filter
+ * each face on its own; reflect's own sampling needs no such fixup. */
+RF_EXTERN void rf_cubemap_average_edges(rf_cubemap *c, size_t level);
 /* Fills levels from+1 .. last by 2x2 box filtering (a plain mip chain). */
 RF_EXTERN void rf_cubemap_box_chain(rf_cubemap *c, size_t from);
 

@@ -377,6 +377,58 @@ TEST(chain_exr_roundtrip)
 	rf_cubemap_free(c);
 }
 
+/* After the edge fixup, the two texels on either side of every edge (and
+ * the three at every corner) hold one value, so a reader that clamps at
+ * each face's edge shows no seam there; nothing away from edges moves. */
+TEST(edge_fixup_makes_edges_equal)
+{
+	const size_t n = 8;
+	rf_cubemap *c, *orig;
+	size_t i, j;
+	int f, a, b, ch;
+
+	ASSERT_EQ(rf_cubemap_new(&c, n, 1), 0);
+	ASSERT_EQ(rf_cubemap_new(&orig, n, 1), 0);
+	rf_default_environment_cube(c);
+	rf_default_environment_cube(orig);
+	rf_cubemap_average_edges(c, 0);
+	/* Each edge texel, and the texel its direction lands in when pushed
+	 * just over the edge onto the neighbouring face. */
+	for (f = 0; f < 6; f++)
+		for (i = 0; i < n; i++) {
+			float e = 0.25f / n, t = (i + 0.5f) / n;
+			float inside[4][2] = { { e, t }, { 1 - e, t }, { t, e }, { t, 1 - e } };
+			float over[4][2] = { { -e, t }, { 1 + e, t }, { t, -e }, { t, 1 + e } };
+
+			for (a = 0; a < 4; a++) {
+				float d[3], u, v;
+				enum rf_face g;
+				const float *p, *q;
+				size_t gi, gj;
+
+				rf_cube_direction((enum rf_face)f, over[a][0], over[a][1], d);
+				g = rf_cube_face(d, &u, &v);
+				ASSERT(g != (enum rf_face)f);
+				gi = (size_t)(u * n);
+				gj = (size_t)(v * n);
+				p = rf_cubemap_texel_const(c, 0, (enum rf_face)f, (size_t)(inside[a][0] * n),
+				                           (size_t)(inside[a][1] * n));
+				q = rf_cubemap_texel_const(c, 0, g, gi < n ? gi : n - 1, gj < n ? gj : n - 1);
+				for (ch = 0; ch < 3; ch++)
+					ASSERT_NEAR(p[ch], q[ch], 1e-6);
+			}
+		}
+	/* interior texels are untouched */
+	for (f = 0; f < 6; f++)
+		for (j = 1; j + 1 < n; j++)
+			for (i = 1; i + 1 < n; i++)
+				for (b = 0; b < 3; b++)
+					ASSERT(rf_cubemap_texel_const(c, 0, (enum rf_face)f, i, j)[b] ==
+					       rf_cubemap_texel_const(orig, 0, (enum rf_face)f, i, j)[b]);
+	rf_cubemap_free(c);
+	rf_cubemap_free(orig);
+}
+
 int
 main(void)
 {
@@ -390,5 +442,6 @@ main(void)
 	RUN(decoding);
 	RUN(chain_stream_roundtrip);
 	RUN(chain_exr_roundtrip);
+	RUN(edge_fixup_makes_edges_equal);
 	TAP_DONE();
 }
