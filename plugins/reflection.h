@@ -29,6 +29,11 @@ reflection_vector(const float n[3], const float v[3], float r[3])
 	}
 }
 
+/* Points this far outside the box (relative to its size) still count as
+ * on its faces: walls of the room lie on the box, and their positions
+ * come rounded from a renderer. */
+#define BOX_TOLERANCE 1e-4f
+
 /* Distance from p along unit dir to where it leaves the box; -1 when p
  * is outside the box (no exit to speak of). */
 static inline int
@@ -39,19 +44,22 @@ box_exit(const struct rf_probe *probe, const float p[3], const float dir[3],
 	int i;
 
 	for (i = 0; i < 3; i++) {
-		float ti;
+		float lo = probe->box_min[i], hi = probe->box_max[i];
+		float slack = BOX_TOLERANCE * (hi - lo), ti;
 
-		if (p[i] < probe->box_min[i] || p[i] > probe->box_max[i])
+		if (p[i] < lo - slack || p[i] > hi + slack)
 			return -1;
 		if (dir[i] > AXIS_EPSILON)
-			ti = (probe->box_max[i] - p[i]) / dir[i];
+			ti = (hi - p[i]) / dir[i];
 		else if (dir[i] < -AXIS_EPSILON)
-			ti = (probe->box_min[i] - p[i]) / dir[i];
+			ti = (lo - p[i]) / dir[i];
 		else
 			continue;
 		if (ti < t)
 			t = ti;
 	}
+	if (t < 0.0f)
+		t = 0.0f; /* on a face (within the slack), leaving it */
 	if (!(t < INFINITY))
 		return -1; /* zero direction */
 	*dist = t;
