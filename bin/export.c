@@ -69,9 +69,11 @@ static void
 resolve_format(struct export_opts *o)
 {
 	const char *dot = strrchr(o->output, '.');
-	char ext[8];
+	char ext[8], err[1024];
 	size_t i;
 
+	if (rf_image_module_check(err, sizeof(err)) < 0)
+		die("%s", err);
 	o->type = rf_image_type_for_path(o->output);
 	o->format = NULL;
 	if (dot && o->type >= 0 && strlen(dot + 1) < sizeof(ext)) {

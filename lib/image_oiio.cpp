@@ -1,4 +1,5 @@
-// The bridge from OpenImageIO (C++) to libreflect's C image API.
+// The bridge from OpenImageIO (C++) to libreflect's C image API, built as
+// a module that libreflect loads on first use (see image.c).
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
@@ -11,7 +12,7 @@
 #include <vector>
 
 extern "C" {
-#include "internal.h"
+#include "image_module.h"
 }
 
 using namespace OIIO;
@@ -93,8 +94,9 @@ set_error(char *err, size_t errlen, const char *what, const std::string &path,
 			c = ' ';
 	while (!r.empty() && r.back() == ' ')
 		r.pop_back();
-	rf__format(err, errlen, "%s '%s': %s", what, path.c_str(),
-	           r.empty() ? "unknown error" : r.c_str());
+	if (errlen)
+		snprintf(err, errlen, "%s '%s': %s", what, path.c_str(),
+		         r.empty() ? "unknown error" : r.c_str());
 }
 
 // When OpenImageIO cannot open a file, the reason is often the file
@@ -189,43 +191,37 @@ read_level(rf_image **imgp, const char *path, size_t level, char *err, size_t er
 	return 0;
 }
 
-extern "C" int
-rf_image_read(rf_image **imgp, const char *path, char *err, size_t errlen)
-{
-	return read_level(imgp, path, 0, err, errlen);
-}
-
-extern "C" int
-rf_image_read_level(rf_image **imgp, const char *path, size_t level, char *err,
+static int
+module_read_level(rf_image **imgp, const char *path, size_t level, char *err,
                     size_t errlen)
 {
 	return read_level(imgp, path, level, err, errlen);
 }
 
-extern "C" void
-rf_image_free(rf_image *img)
+static void
+module_free(rf_image *img)
 {
 	delete img;
 }
 
-extern "C" size_t rf_image_width(const rf_image *img) { return img->width; }
-extern "C" size_t rf_image_height(const rf_image *img) { return img->height; }
-extern "C" size_t rf_image_nchannels(const rf_image *img) { return img->nchannels; }
+static size_t module_width(const rf_image *img) { return img->width; }
+static size_t module_height(const rf_image *img) { return img->height; }
+static size_t module_nchannels(const rf_image *img) { return img->nchannels; }
 
-extern "C" const char *
-rf_image_channel(const rf_image *img, size_t i)
+static const char *
+module_channel(const rf_image *img, size_t i)
 {
 	return i < img->names.size() ? img->names[i].c_str() : nullptr;
 }
 
-extern "C" const float *
-rf_image_pixels(const rf_image *img)
+static const float *
+module_pixels(const rf_image *img)
 {
 	return img->pixels.data();
 }
 
-extern "C" const char *
-rf_image_attribute(const rf_image *img, const char *name)
+static const char *
+module_attribute(const rf_image *img, const char *name)
 {
 	for (const auto &a : img->attributes)
 		if (a.first == name)
@@ -287,8 +283,8 @@ extension(const char *path)
 	return ext;
 }
 
-extern "C" int
-rf_image_type_for_path(const char *path)
+static int
+module_type_for_path(const char *path)
 {
 	std::string ext = extension(path);
 	int type;
@@ -305,8 +301,8 @@ rf_image_type_for_path(const char *path)
 	return can_write(ext) ? type : -1;
 }
 
-extern "C" int
-rf_image_writer_open(rf_image_writer **wp, const char *path, size_t width,
+static int
+module_writer_open(rf_image_writer **wp, const char *path, size_t width,
                      size_t height, size_t nchannels, const char *const *names,
                      enum rf_pixel_type type, char *err, size_t errlen)
 {
@@ -388,8 +384,8 @@ rf_image_writer_open(rf_image_writer **wp, const char *path, size_t width,
 	return 0;
 }
 
-extern "C" int
-rf_image_writer_write_rows(rf_image_writer *w, size_t y, size_t nrows,
+static int
+module_writer_write_rows(rf_image_writer *w, size_t y, size_t nrows,
                            const float *pixels, char *err, size_t errlen)
 {
 	if (y != w->next_row || y + nrows > w->height) {
@@ -415,8 +411,8 @@ rf_image_writer_write_rows(rf_image_writer *w, size_t y, size_t nrows,
 	return 0;
 }
 
-extern "C" int
-rf_image_writer_close(rf_image_writer *w, char *err, size_t errlen)
+static int
+module_writer_close(rf_image_writer *w, char *err, size_t errlen)
 {
 	int rc = 0;
 
@@ -458,8 +454,8 @@ rf_image_writer_close(rf_image_writer *w, char *err, size_t errlen)
 }
 
 // MIP-mapped files (OpenEXR keeps MIP levels only in tiled files).
-extern "C" int
-rf_image_write_levels(const char *path, size_t nlevels, const size_t *w, const size_t *h,
+static int
+module_write_levels(const char *path, size_t nlevels, const size_t *w, const size_t *h,
                       size_t nch, const char *const *names, const float *const *pixels,
                       const char *const *attributes, enum rf_pixel_type type,
                       char *err, size_t errlen)
@@ -502,8 +498,8 @@ rf_image_write_levels(const char *path, size_t nlevels, const size_t *w, const s
 	return 0;
 }
 
-extern "C" int
-rf_image_count_levels(const char *path, size_t *nlevels, char *err, size_t errlen)
+static int
+module_count_levels(const char *path, size_t *nlevels, char *err, size_t errlen)
 {
 	auto in = ImageInput::open(path);
 	size_t n = 1;
@@ -516,4 +512,29 @@ rf_image_count_levels(const char *path, size_t *nlevels, char *err, size_t errle
 		n++;
 	*nlevels = n;
 	return 0;
+}
+
+// The module's one exported symbol: its functions, for libreflect to call.
+static const struct rf__image_api api = {
+	sizeof(struct rf__image_api),
+	module_read_level,
+	module_count_levels,
+	module_free,
+	module_width,
+	module_height,
+	module_nchannels,
+	module_channel,
+	module_pixels,
+	module_attribute,
+	module_type_for_path,
+	module_writer_open,
+	module_writer_write_rows,
+	module_writer_close,
+	module_write_levels,
+};
+
+extern "C" __attribute__((visibility("default"))) const struct rf__image_api *
+rf__image_module(void)
+{
+	return &api;
 }

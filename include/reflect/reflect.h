@@ -196,6 +196,10 @@ RF_EXTERN int rf_plugin_parse_params(const struct rf_plugin *p, const char *spec
  */
 typedef struct rf_image rf_image;
 
+/* Image I/O lives in a module loaded on first use; 0 when it loads, else
+ * RF_EIMAGE and err saying why (the other functions report it too). */
+RF_EXTERN int rf_image_module_check(char *err, size_t errlen);
+
 RF_EXTERN int rf_image_read(rf_image **img, const char *path, char *err,
                             size_t errlen);
 RF_EXTERN void rf_image_free(rf_image *img);

@@ -1,0 +1,37 @@
+/* Internal: the image module's table, shared by image.c (the caller,
+ * in libreflect) and image_oiio.cpp (the module, which alone links
+ * OpenImageIO). */
+#ifndef REFLECT_IMAGE_MODULE_H
+#define REFLECT_IMAGE_MODULE_H
+
+#include "reflect/reflect.h"
+
+#define RF_IMAGE_MODULE_NAME "reflect-oiio.so"
+#define RF_IMAGE_MODULE_ENTRY "rf__image_module"
+
+struct rf__image_api {
+	size_t size; /* sizeof(struct rf__image_api) in the module */
+	int (*read_level)(rf_image **img, const char *path, size_t level, char *err,
+	                  size_t errlen);
+	int (*count_levels)(const char *path, size_t *nlevels, char *err, size_t errlen);
+	void (*free_image)(rf_image *img);
+	size_t (*width)(const rf_image *img);
+	size_t (*height)(const rf_image *img);
+	size_t (*nchannels)(const rf_image *img);
+	const char *(*channel)(const rf_image *img, size_t i);
+	const float *(*pixels)(const rf_image *img);
+	const char *(*attribute)(const rf_image *img, const char *name);
+	int (*type_for_path)(const char *path);
+	int (*writer_open)(rf_image_writer **w, const char *path, size_t width,
+	                   size_t height, size_t nchannels, const char *const *names,
+	                   enum rf_pixel_type type, char *err, size_t errlen);
+	int (*writer_write_rows)(rf_image_writer *w, size_t y, size_t nrows,
+	                         const float *pixels, char *err, size_t errlen);
+	int (*writer_close)(rf_image_writer *w, char *err, size_t errlen);
+	int (*write_levels)(const char *path, size_t nlevels, const size_t *w,
+	                    const size_t *h, size_t nchannels, const char *const *names,
+	                    const float *const *pixels, const char *const *attributes,
+	                    enum rf_pixel_type type, char *err, size_t errlen);
+};
+
+#endif

@@ -1,0 +1,48 @@
+#!/bin/sh
+test_description='image files go through a module loaded only when needed'
+. "$srcdir/tests/lib.sh"
+
+test_expect_success 'stages that touch no image file run without the module' '
+	cat >gb.txt <<-\EOF &&
+	#?REFLECT1
+	NCOLS=1
+	NROWS=1
+	NCOMP=9
+	CHANNELS=P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z
+	PROBE_BOX=-3 0 -2 3 3 2
+	FORMAT=ascii
+
+	0 1 0 0 1 0 0 1 0
+	EOF
+	REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so reflect-project gb.txt >out.rfl &&
+	REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so reflect-info -s out.rfl >info &&
+	test_grep "hit.dist" info &&
+	REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so reflect-prefilter --size=8 >/dev/null
+'
+
+test_expect_success 'a missing module is one clear message when an image is needed' '
+	reflect-project gb.txt >p.rfl &&
+	test_must_fail 1 env REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so \
+		reflect-export -c all -o x.exr p.rfl 2>err &&
+	test_one_line_message reflect-export err &&
+	test_grep "cannot load the image module ./nonexistent/reflect-oiio.so." err &&
+	echo "an image file" >some.exr &&
+	test_must_fail 1 env REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so \
+		reflect-prefilter some.exr 2>err &&
+	test_one_line_message reflect-prefilter err &&
+	test_grep "cannot load the image module" err
+'
+
+test_expect_success 'a library that is not the module is refused' '
+	lib=$(ls "$builddir"/plugins/.libs/box.so) &&
+	test_must_fail 1 env REFLECT_IMAGE_MODULE="$lib" reflect-export -c all -o x.exr p.rfl 2>err &&
+	test_grep "is not reflect.s image module" err
+'
+
+test_expect_success 'the module found next to libreflect works' '
+	reflect-export -c all -o x.exr p.rfl &&
+	reflect-prefilter --plain --levels=2 --size=8 --dump=cube 2>/dev/null &&
+	test -s level0-cube.exr
+'
+
+test_done
