@@ -164,7 +164,7 @@ filtered_texel(const struct job *jb, const float n[3], float rgb[3])
 		d[0] = s->l[0] * t[0] + s->l[1] * b[0] + s->l[2] * n[0];
 		d[1] = s->l[0] * t[1] + s->l[1] * b[1] + s->l[2] * n[1];
 		d[2] = s->l[0] * t[2] + s->l[1] * b[2] + s->l[2] * n[2];
-		acc += s->weight * rf__pyramid_fetch(jb->pyramid, d, &s->fetch);
+		acc += s->weight * rf__pyramid_fetch(d, &s->fetch);
 	}
 	rgb[0] = acc[0] / jb->weight_sum;
 	rgb[1] = acc[1] / jb->weight_sum;

@@ -21,9 +21,16 @@ struct rf__pyramid {
 	rf__v4 *data;
 };
 
-/* Where a sample reads: two levels and their weights. */
+typedef int rf__v4i __attribute__((vector_size(16)));
+
+/* Where a sample reads: two levels, their weights, and what the inner
+ * loop needs of each level, looked up once per sample instead of once
+ * per texel. */
 struct rf__lod {
-	uint32_t l0, l1;
+	rf__v4 scale;             /* face widths n0 n0 n1 n1 */
+	const rf__v4 *base[2];    /* face 0 of each level */
+	size_t face_stride[2];    /* vectors from one face to the next */
+	size_t row[2];            /* vectors from one row to the next */
 	float w0, w1;
 };
 
@@ -32,37 +39,37 @@ void rf__pyramid_free(struct rf__pyramid *p);
 struct rf__lod rf__pyramid_lod(const struct rf__pyramid *p, float lod);
 
 static inline rf__v4
-rf__pyramid_bilinear(const struct rf__pyramid *p, uint32_t l, int face, float u,
-                     float v)
+rf__pyramid_bilinear(const rf__v4 *q, size_t row, float a, float b)
 {
-	size_t n = p->size[l], row = n + 2;
-	float s = u * (float)n - 0.5f, t = v * (float)n - 0.5f;
-	float fs, ft, a, b;
-	const rf__v4 *q;
-
-	/* keep a rounding error from stepping past the border */
-	s = s < -0.5f ? -0.5f : s > (float)n - 0.5f ? (float)n - 0.5f : s;
-	t = t < -0.5f ? -0.5f : t > (float)n - 0.5f ? (float)n - 0.5f : t;
-	fs = floorf(s);
-	ft = floorf(t);
-	a = s - fs;
-	b = t - ft;
-	q = p->level[l] + (size_t)face * p->face_stride[l] +
-	    ((size_t)(ft + 1.0f) * row + (size_t)(fs + 1.0f));
 	return (1.0f - b) * ((1.0f - a) * q[0] + a * q[1]) +
 	       b * ((1.0f - a) * q[row] + a * q[row + 1]);
 }
 
-/* Trilinear fetch in direction d (need not be unit). */
+/*
+ * Trilinear fetch in direction d (need not be unit).  Both levels'
+ * texel coordinates are found at once in one vector: (s0, t0, s1, t1).
+ * u and v lie in [0, 1] (to an ulp), so s >= -0.5 and the truncation of
+ * s + 1 is floor(s) + 1, the index in the bordered face.
+ */
 static inline rf__v4
-rf__pyramid_fetch(const struct rf__pyramid *p, const float d[3], const struct rf__lod *lod)
+rf__pyramid_fetch(const float d[3], const struct rf__lod *lod)
 {
 	float u, v;
 	int face = rf__cube_face(d, &u, &v);
-	rf__v4 c = lod->w0 * rf__pyramid_bilinear(p, lod->l0, face, u, v);
+	rf__v4 uv = { u, v, u, v };
+	rf__v4 st = uv * lod->scale + 0.5f; /* coordinates + 1, in the border frame */
+	rf__v4i it = __builtin_convertvector(st, rf__v4i);
+	rf__v4 fr = st - __builtin_convertvector(it, rf__v4);
+	const rf__v4 *q0 = lod->base[0] + (size_t)face * lod->face_stride[0] +
+	                   (size_t)it[1] * lod->row[0] + (size_t)it[0];
+	rf__v4 c = lod->w0 * rf__pyramid_bilinear(q0, lod->row[0], fr[0], fr[1]);
 
-	if (lod->w1 > 0.0f)
-		c += lod->w1 * rf__pyramid_bilinear(p, lod->l1, face, u, v);
+	if (lod->w1 > 0.0f) {
+		const rf__v4 *q1 = lod->base[1] + (size_t)face * lod->face_stride[1] +
+		                   (size_t)it[3] * lod->row[1] + (size_t)it[2];
+
+		c += lod->w1 * rf__pyramid_bilinear(q1, lod->row[1], fr[2], fr[3]);
+	}
 	return c;
 }
 
