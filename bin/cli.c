@@ -20,6 +20,8 @@ cli_init(int argc, char **argv)
 		argv0 = slash ? slash + 1 : argv[0];
 		if (!strncmp(argv0, "lt-", 3))
 			argv0 += 3; /* libtool's uninstalled wrapper */
+		/* getopt names the program by argv[0] in its messages. */
+		argv[0] = (char *)argv0;
 	}
 	/* A closed downstream pipe ends us quietly, even when a parent
 	 * process left SIGPIPE ignored. */
@@ -113,9 +115,11 @@ estrdup(const char *s)
 void
 fshut(FILE *fp, const char *name)
 {
-	int err = fflush(fp) != 0 || ferror(fp);
-	int e = errno;
+	int err, e;
 
+	errno = 0;
+	err = fflush(fp) != 0 || ferror(fp);
+	e = errno;
 	if (fclose(fp) != 0 && !err) {
 		err = 1;
 		e = errno;
@@ -123,8 +127,8 @@ fshut(FILE *fp, const char *name)
 	if (!err)
 		return;
 	if (e == EPIPE)
-		exit(EXIT_SYSTEM);
-	errno = e;
+		exit(EXIT_SYSTEM); /* downstream closed: no message */
+	errno = e ? e : EIO;
 	die_sys("cannot write '%s':", name);
 }
 

@@ -13,9 +13,23 @@ usage(void)
 }
 
 struct stats {
-	double min, max, sum;
+	double min, max, sum, comp; /* comp: Neumaier's compensation */
 	size_t finite, nan, inf;
 };
+
+/* Adds v to the sum without losing small values next to large ones
+ * (1e30 + 0.25 - 1e30 is 0.25, not 0). */
+static void
+add(struct stats *s, double v)
+{
+	double t = s->sum + v;
+
+	if (fabs(s->sum) >= fabs(v))
+		s->comp += (s->sum - t) + v;
+	else
+		s->comp += (v - t) + s->sum;
+	s->sum = t;
+}
 
 static void
 print_header(const rf_header *h, size_t frame)
@@ -64,7 +78,7 @@ frame_stats(struct cli_io *io, const rf_header *h)
 					st[c].inf++;
 				} else {
 					st[c].finite++;
-					st[c].sum += v;
+					add(&st[c], v);
 					if (v < st[c].min)
 						st[c].min = v;
 					if (v > st[c].max)
@@ -78,7 +92,8 @@ frame_stats(struct cli_io *io, const rf_header *h)
 		if (st[c].finite)
 			printf("\t%-16s %14.7g %14.7g %14.7g %10zu %10zu\n",
 			       rf_header_channel(h, c), st[c].min, st[c].max,
-			       st[c].sum / (double)st[c].finite, st[c].nan, st[c].inf);
+			       (st[c].sum + st[c].comp) / (double)st[c].finite,
+			       st[c].nan, st[c].inf);
 		else
 			printf("\t%-16s %14s %14s %14s %10zu %10zu\n",
 			       rf_header_channel(h, c), "-", "-", "-", st[c].nan, st[c].inf);
@@ -106,9 +121,14 @@ main(int argc, char **argv)
 		case 's': stats = 1; break;
 		case 'V': print_version(); break;
 		case 'Q':
-			printf("usage: %s [-s] [file]\n"
-			       "Prints the header of every frame of a stream; -s adds per-channel\n"
-			       "min, max, mean and counts of NaN and Inf. See reflect-info(1).\n",
+			printf("usage: %s [-sV] [-H -x W -y H -c CHANNELS] [file]\n"
+			       "Prints the header of every frame of a stream (stdin when no file\n"
+			       "or '-'). See reflect-info(1).\n"
+			       "  -s  per-channel min, max and mean of the finite values, and\n"
+			       "      the counts of NaN and Inf\n"
+			       "  -H -x W -y H -c CHANNELS  headerless float input of W x H\n"
+			       "      pixels; CHANNELS is a list of names or a count\n"
+			       "  -V  versions of the tool, the library and the plugin ABI\n",
 			       argv0);
 			fshut(stdout, "<stdout>");
 			return 0;

@@ -217,27 +217,43 @@ rf_header_set_channels(rf_header *h, const char *names)
 {
 	char name[RF_CHANNEL_NAME_MAX + 1];
 	const char *p = names;
+	rf_header *t;
 	size_t i, n;
-	int rc;
+	int rc = 0;
 
-	for (i = 0; i < h->nchan; i++)
-		free(h->chan[i]);
-	h->nchan = 0;
+	/* Built aside, so that a bad list leaves the header as it was. */
+	if (!(t = rf_header_new()))
+		return RF_ENOMEM;
 	while (*p) {
 		while (*p == ' ' || *p == ',' || *p == '\t')
 			p++;
 		if (!*p)
 			break;
 		n = strcspn(p, " ,\t");
-		if (n > RF_CHANNEL_NAME_MAX)
-			return RF_ECHANNEL;
+		if (n > RF_CHANNEL_NAME_MAX) {
+			rc = RF_ECHANNEL;
+			break;
+		}
 		memcpy(name, p, n);
 		name[n] = '\0';
-		if ((rc = rf_header_add_channel(h, name)) < 0)
-			return rc;
+		if ((rc = rf_header_add_channel(t, name)) < 0)
+			break;
+		rc = 0;
 		p += n;
 	}
-	return h->nchan ? 0 : RF_ECHANNEL;
+	if (!rc && !t->nchan)
+		rc = RF_ECHANNEL;
+	if (!rc) {
+		for (i = 0; i < h->nchan; i++)
+			free(h->chan[i]);
+		free(h->chan);
+		h->chan = t->chan;
+		h->nchan = t->nchan;
+		t->chan = NULL;
+		t->nchan = 0;
+	}
+	rf_header_free(t);
+	return rc;
 }
 
 static int
@@ -366,6 +382,8 @@ append_word(char *buf, size_t *len, const char *s)
 			tmp[n++] = c < 0x20 || c == 0x7f ? '?' : (char)c;
 		}
 	}
+	if (s[i])
+		return -1; /* the word alone is too long: never cut it */
 	if (quote)
 		tmp[n++] = '\'';
 	if (*len + (*len ? 1 : 0) + n > RF_HEADER_LINE_MAX)
@@ -382,8 +400,8 @@ int
 rf_header_add_command(rf_header *h, int argc, char *const *argv)
 {
 	char line[RF_HEADER_LINE_MAX + 1];
-	size_t len = 0;
-	int i;
+	size_t len = 0, ends[3] = { 0, 0, 0 }; /* ends of the last words */
+	int i, k;
 
 	line[0] = '\0';
 	for (i = 0; i < argc; i++) {
@@ -394,12 +412,19 @@ rf_header_add_command(rf_header *h, int argc, char *const *argv)
 		if (i == 0 && !strncmp(arg, "lt-", 3))
 			arg += 3; /* libtool's uninstalled wrapper */
 		if (append_word(line, &len, arg) < 0) {
-			/* Too long for one header line: say so rather than cut a word. */
-			while (len + 4 > RF_HEADER_LINE_MAX)
-				len--;
-			memcpy(line + len, " ...", 5);
+			/* Too long for one header line: say so rather than cut a
+			 * word, dropping the last words to make room for " ...".
+			 * At most two go (a word and its space are 2 bytes or more),
+			 * and never the tool's name. */
+			for (k = 0; len + 4 > RF_HEADER_LINE_MAX && k < 2 && i - k > 1; k++)
+				len = ends[(i - 2 - k) % 3];
+			if (len && len + 4 <= RF_HEADER_LINE_MAX) {
+				memcpy(line + len, " ...", 5);
+				len += 4;
+			}
 			break;
 		}
+		ends[i % 3] = len;
 	}
 	if (!len)
 		return RF_EINVAL;

@@ -23,9 +23,19 @@ struct rf_reader {
 	size_t ncomp;
 	size_t row_floats; /* ncols * ncomp */
 	int swap;
-	size_t line;       /* ascii data: current line of the input */
+	int status; /* the first error: every later call returns it again */
 	char err[512];
 };
+
+/* A message is one line of text whatever the input held: control
+ * characters (a tab in a header value, say) become '?'. */
+static void
+printable(char *s)
+{
+	for (; *s; s++)
+		if ((unsigned char)*s < 0x20 || *s == 0x7f)
+			*s = '?';
+}
 
 static int
 fail(rf_reader *r, int status, const char *fmt, ...) RF__PRINTF(3, 4);
@@ -44,7 +54,23 @@ fail(rf_reader *r, int status, const char *fmt, ...)
 		           r->frame + 1, msg);
 	else
 		rf__format(r->err, sizeof(r->err), "'%s': %s", r->name, msg);
+	printable(r->err);
+	if (status != RF_EINVAL) /* a bad call leaves the stream as it was */
+		r->status = status;
 	return status;
+}
+
+/* A read error of the input (not bad data): "cannot read 'f': reason". */
+static int
+fail_read(rf_reader *r)
+{
+	int e = errno ? errno : EIO;
+
+	rf__format(r->err, sizeof(r->err), "cannot read '%s': %s", r->name,
+	           strerror(e));
+	printable(r->err);
+	errno = e;
+	return r->status = RF_EIO;
 }
 
 int
@@ -62,7 +88,11 @@ rf_reader_open(rf_reader **rp, FILE *fp, const char *name,
 	if (raw) {
 		r->headerless = 1;
 		r->raw = *raw;
-		if (!raw->channels || !(r->raw_channels = strdup(raw->channels)))
+		if (!raw->channels) {
+			rf_reader_close(r);
+			return RF_EINVAL;
+		}
+		if (!(r->raw_channels = strdup(raw->channels)))
 			goto nomem;
 		r->raw.channels = r->raw_channels;
 	}
@@ -102,19 +132,20 @@ rf_reader_frame_index(const rf_reader *r)
 	return r->frame;
 }
 
-/* Reads one header line without its newline.  Returns its length, -1 at
- * EOF before any byte, or -2 when it is longer than the limit. */
+/* Reads one header line without its newline (or CRLF) into buf, which
+ * holds RF_HEADER_LINE_MAX + 2 bytes.  Returns its length, -1 at EOF before
+ * any byte, or -2 when it is longer than RF_HEADER_LINE_MAX.  *binary is
+ * set when the line holds a control character other than a tab (or the
+ * CR of a CRLF ending): binary data, not a header. */
 static long
-read_line(FILE *fp, char *buf, size_t size, int *binary)
+read_line(FILE *fp, char *buf, int *binary)
 {
-	size_t n = 0;
+	size_t n = 0, i;
 	int c;
 
 	*binary = 0;
 	while ((c = getc(fp)) != EOF && c != '\n') {
-		if (c == '\0' || (c < 0x20 && c != '\t' && c != '\r'))
-			*binary = 1;
-		if (n + 1 >= size)
+		if (n > RF_HEADER_LINE_MAX) /* one more byte for a final CR */
 			return -2;
 		buf[n++] = (char)c;
 	}
@@ -122,7 +153,12 @@ read_line(FILE *fp, char *buf, size_t size, int *binary)
 		return -1;
 	if (n && buf[n - 1] == '\r')
 		n--; /* tolerate CRLF from editors on other systems */
+	if (n > RF_HEADER_LINE_MAX)
+		return -2;
 	buf[n] = '\0';
+	for (i = 0; i < n; i++)
+		if ((unsigned char)buf[i] < 0x20 && buf[i] != '\t')
+			*binary = 1;
 	return (long)n;
 }
 
@@ -137,20 +173,20 @@ parse_size(rf_reader *r, size_t lineno, const char *key, const char *s, size_t *
 	while (*p == ' ')
 		p++;
 	if (*p == '-')
-		return fail(r, RF_EFORMAT, "header line %zu: %s is negative ('%s')",
+		return fail(r, RF_EFORMAT, "header line %zu: %s is negative ('%.40s')",
 		            lineno, key, s);
 	if (*p < '0' || *p > '9')
 		return fail(r, RF_EFORMAT,
-		            "header line %zu: %s is not a number ('%s')", lineno, key, s);
+		            "header line %zu: %s is not a number ('%.40s')", lineno, key, s);
 	errno = 0;
 	v = strtoull(p, &end, 10);
 	while (*end == ' ')
 		end++;
 	if (*end)
 		return fail(r, RF_EFORMAT,
-		            "header line %zu: %s is not a number ('%s')", lineno, key, s);
+		            "header line %zu: %s is not a number ('%.40s')", lineno, key, s);
 	if (errno == ERANGE || v > SIZE_MAX)
-		return fail(r, RF_ETOOBIG, "header line %zu: %s is too large ('%s')",
+		return fail(r, RF_ETOOBIG, "header line %zu: %s is too large ('%.40s')",
 		            lineno, key, s);
 	if (v == 0)
 		return fail(r, RF_EFORMAT, "header line %zu: %s must be at least 1",
@@ -178,10 +214,17 @@ check_magic(rf_reader *r, const char *line)
 		return fail(r, RF_EFORMAT,
 		            "not a reflect stream: expected '#?REFLECT1', got '%s'", shown);
 	}
+	/* The version: decimal digits and nothing else. */
+	line += n;
+	n = strspn(line, "0123456789");
+	if (!n || line[n] || line[0] == '0')
+		return fail(r, RF_EFORMAT, "bad stream identifier '#?REFLECT%.30s'",
+		            line);
 	errno = 0;
-	v = strtol(line + n, &end, 10);
-	if (end == line + n || *end || errno || v < 1)
-		return fail(r, RF_EFORMAT, "bad stream identifier '%.40s'", line);
+	v = strtol(line, &end, 10);
+	if (errno == ERANGE)
+		return fail(r, RF_EVERSION, "stream version %.30s is newer than this "
+		            "reader's (%d); upgrade reflect", line, STREAM_VERSION);
 	if (v != STREAM_VERSION)
 		return fail(r, RF_EVERSION,
 		            "stream version %ld is newer than this reader's (%d); "
@@ -214,8 +257,9 @@ parse_channels(rf_reader *r, const char *list)
 			return fail(r, RF_EFORMAT, "CHANNELS: channel '%s' is named twice",
 			            name);
 		if ((rc = rf_header_add_channel(r->h, name)) < 0)
-			return fail(r, rc, "CHANNELS: more than %d channels",
-			            RF_CHANNELS_MAX);
+			return rc == RF_ENOMEM ? fail(r, rc, "out of memory")
+			       : fail(r, rc, "CHANNELS: more than %d channels",
+			              RF_CHANNELS_MAX);
 	}
 	if (!rf_header_nchannels(r->h))
 		return fail(r, RF_EFORMAT, "CHANNELS names no channel");
@@ -236,9 +280,13 @@ parse_header(rf_reader *r, char *line)
 	if ((rc = check_magic(r, line)) < 0)
 		return rc;
 	for (;;) {
-		len = read_line(r->fp, line, RF_HEADER_LINE_MAX + 2, &binary);
+		len = read_line(r->fp, line, &binary);
 		lineno++;
 		if (len == -1) {
+			if (ferror(r->fp)) {
+				rc = fail_read(r);
+				goto out;
+			}
 			rc = fail(r, RF_ETRUNCATED,
 			          "header ends at line %zu without the empty line "
 			          "that closes it", lineno);
@@ -272,7 +320,7 @@ parse_header(rf_reader *r, char *line)
 		} else if (!strncmp(line, "CHANNELS=", 9)) {
 			if (channels) goto dup;
 			if (!(channels = strdup(line + 9))) {
-				rc = RF_ENOMEM;
+				rc = fail(r, RF_ENOMEM, "out of memory");
 				goto out;
 			}
 		} else if (!strncmp(line, "BigEndian=", 10)) {
@@ -280,7 +328,7 @@ parse_header(rf_reader *r, char *line)
 			v = line + 10;
 			if (strcmp(v, "0") && strcmp(v, "1")) {
 				rc = fail(r, RF_EFORMAT,
-				          "header line %zu: BigEndian must be 0 or 1, not '%s'",
+				          "header line %zu: BigEndian must be 0 or 1, not '%.40s'",
 				          lineno, v);
 				goto out;
 			}
@@ -297,7 +345,7 @@ parse_header(rf_reader *r, char *line)
 				format = RF_FORMAT_ASCII;
 			} else {
 				rc = fail(r, RF_EFORMAT,
-				          "header line %zu: FORMAT '%s' is not supported "
+				          "header line %zu: FORMAT '%.40s' is not supported "
 				          "(float or ascii)", lineno, line + 7);
 				goto out;
 			}
@@ -368,32 +416,202 @@ out:
 	return rc;
 }
 
+static void
+swap32(void *buf, size_t n)
+{
+	unsigned char *p = buf;
+	uint32_t u;
+	size_t i;
+
+	for (i = 0; i < n; i++, p += 4) {
+		memcpy(&u, p, 4);
+		u = __builtin_bswap32(u);
+		memcpy(p, &u, 4);
+	}
+}
+
+/* The data of the frame ended early: got_bytes of it were read after the
+ * start of the current row. */
+static int
+truncated(rf_reader *r, size_t got_bytes)
+{
+	size_t got_floats = got_bytes / sizeof(float);
+	size_t row = r->row + got_floats / r->row_floats;
+	size_t in_row = got_floats % r->row_floats;
+	size_t nrows = rf_header_nrows(r->h);
+
+	if (got_bytes % sizeof(float))
+		return fail(r, RF_ETRUNCATED,
+		            "data ends inside a float in row %zu of %zu (pixel %zu of "
+		            "%zu, channel '%s')", row + 1, nrows, in_row / r->ncomp + 1,
+		            rf_header_ncols(r->h),
+		            rf_header_channel(r->h, in_row % r->ncomp));
+	if (in_row)
+		return fail(r, RF_ETRUNCATED,
+		            "data ends in the middle of row %zu of %zu (pixel %zu of %zu)",
+		            row + 1, nrows, in_row / r->ncomp + 1,
+		            rf_header_ncols(r->h));
+	return fail(r, RF_ETRUNCATED, "data ends after row %zu of %zu", row, nrows);
+}
+
+/* Float data: nrows rows into buf, or skipped when buf is NULL (in pieces
+ * of a fixed size, so that skipping never allocates a row). */
+static int
+read_float_rows(rf_reader *r, float *buf, size_t nrows)
+{
+	size_t want = nrows * r->row_floats * sizeof(float), got = 0, n, piece;
+	unsigned char scratch[16384];
+
+	if (buf) {
+		got = fread(buf, 1, want, r->fp);
+	} else {
+		while (got < want) {
+			piece = want - got < sizeof(scratch) ? want - got : sizeof(scratch);
+			n = fread(scratch, 1, piece, r->fp);
+			got += n;
+			if (n < piece)
+				break;
+		}
+	}
+	if (got < want) {
+		if (ferror(r->fp))
+			return fail_read(r);
+		return truncated(r, got);
+	}
+	if (buf && r->swap)
+		swap32(buf, nrows * r->row_floats);
+	return 0;
+}
+
+/* One token of ascii data into tok (of size 64): 1, 0 at EOF, or -1 when
+ * it is too long. */
+static int
+read_ascii_token(FILE *fp, char *tok, size_t size)
+{
+	size_t n = 0;
+	int c;
+
+	do
+		c = getc(fp);
+	while (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == ',');
+	if (c == EOF)
+		return 0;
+	while (c != EOF && c != ' ' && c != '\t' && c != '\n' && c != '\r' && c != ',') {
+		if (n + 1 >= size)
+			return -1;
+		tok[n++] = (char)c;
+		c = getc(fp);
+	}
+	if (c != EOF)
+		ungetc(c, fp);
+	tok[n] = '\0';
+	return 1;
+}
+
+/* Ascii data: numbers separated by blanks, newlines or commas. */
+static int
+read_ascii_rows(rf_reader *r, float *buf, size_t nrows)
+{
+	size_t n = nrows * r->row_floats, i, k;
+	char tok[64], *end;
+	float v;
+	int rc;
+
+	for (i = 0; i < n; i++) {
+		size_t row = r->row + i / r->row_floats;
+		size_t pixel = i % r->row_floats / r->ncomp;
+		const char *chan = rf_header_channel(r->h, i % r->ncomp);
+
+		rc = read_ascii_token(r->fp, tok, sizeof(tok));
+		if (rc == 0) {
+			if (ferror(r->fp))
+				return fail_read(r);
+			return truncated(r, i * sizeof(float));
+		}
+		if (rc < 0)
+			return fail(r, RF_EFORMAT, "ascii data: a value longer than %zu "
+			            "characters (row %zu of %zu, pixel %zu of %zu, "
+			            "channel '%s')", sizeof(tok) - 1, row + 1,
+			            rf_header_nrows(r->h), pixel + 1,
+			            rf_header_ncols(r->h), chan);
+		v = strtof(tok, &end);
+		if (*end) {
+			for (k = 0; tok[k]; k++)
+				if ((unsigned char)tok[k] < 0x20 ||
+				    (unsigned char)tok[k] >= 0x7f || tok[k] == '\'')
+					tok[k] = '?';
+			return fail(r, RF_EFORMAT, "ascii data: '%s' is not a number "
+			            "(row %zu of %zu, pixel %zu of %zu, channel '%s')", tok,
+			            row + 1, rf_header_nrows(r->h), pixel + 1,
+			            rf_header_ncols(r->h), chan);
+		}
+		if (buf)
+			buf[i] = v;
+	}
+	return 0;
+}
+
+static int
+read_rows(rf_reader *r, float *buf, size_t nrows)
+{
+	int rc;
+
+	if (rf_header_format(r->h) == RF_FORMAT_ASCII)
+		rc = read_ascii_rows(r, buf, nrows);
+	else
+		rc = read_float_rows(r, buf, nrows);
+	if (rc < 0)
+		return rc;
+	r->row += nrows;
+	return 0;
+}
+
+/* Skips what is left of the current frame, without holding a row. */
 static int
 skip_rest(rf_reader *r)
 {
-	float buf[4096];
-	size_t rows, left;
+	size_t left;
+
+	if (!r->h || !(left = rf_reader_rows_left(r)))
+		return 0;
+	return read_rows(r, NULL, left);
+}
+
+/* Whether c may separate frames: blank lines between frames of ascii
+ * data.  Never for headerless float data, where any byte is data. */
+static int
+frame_gap(const rf_reader *r, int c)
+{
+	if (!r->frames || (r->headerless && r->raw.format != RF_FORMAT_ASCII))
+		return 0;
+	return c == '\n' || c == ' ' || c == '\t' || c == '\r';
+}
+
+static int
+begin_headerless(rf_reader *r)
+{
+	size_t total;
 	int rc;
 
-	if (!r->h)
-		return 0;
-	rows = rf_block_rows(rf_header_ncols(r->h), r->ncomp, sizeof(buf));
-	if (rows * r->row_floats > sizeof(buf) / sizeof(float)) {
-		float *big = malloc(r->row_floats * sizeof(float));
-
-		if (!big)
-			return RF_ENOMEM;
-		while (rf_reader_rows_left(r))
-			if ((rc = rf_reader_read_rows(r, big, 1)) < 0) {
-				free(big);
-				return rc;
-			}
-		free(big);
-		return 0;
-	}
-	while ((left = rf_reader_rows_left(r)))
-		if ((rc = rf_reader_read_rows(r, buf, rows < left ? rows : left)) < 0)
-			return rc;
+	if ((rc = rf_header_set_size(r->h, r->raw.ncols, r->raw.nrows)) < 0)
+		return fail(r, rc, "headerless input needs -x and -y of at least 1 "
+		            "(got %zu and %zu)", r->raw.ncols, r->raw.nrows);
+	if ((rc = rf_header_set_channels(r->h, r->raw.channels)) < 0)
+		return fail(r, rc, rc == RF_ENOMEM ? "out of memory"
+		            : "bad channel list '%.200s' (names of 1 to 63 printable "
+		              "characters, each given once)", r->raw.channels);
+	r->ncomp = rf_header_nchannels(r->h);
+	if (rf__mul3(r->raw.ncols, r->raw.nrows, r->ncomp * sizeof(float), &total))
+		return fail(r, RF_ETOOBIG, "headerless input of %zu x %zu pixels by "
+		            "%zu channels overflows the size of memory", r->raw.ncols,
+		            r->raw.nrows, r->ncomp);
+	if (r->raw.ncols * r->ncomp * sizeof(float) > RF_ROW_BYTES_MAX)
+		return fail(r, RF_ETOOBIG, "a row of %zu pixels by %zu channels is "
+		            "larger than %zu MiB", r->raw.ncols, r->ncomp,
+		            (size_t)(RF_ROW_BYTES_MAX >> 20));
+	r->row_floats = r->raw.ncols * r->ncomp;
+	r->swap = 0;
+	rf__header_set_format(r->h, r->raw.format, 0);
 	return 0;
 }
 
@@ -405,182 +623,74 @@ rf_reader_next_frame(rf_reader *r, const rf_header **hp)
 	long len;
 
 	*hp = NULL;
+	if (r->status)
+		return r->status;
 	if ((rc = skip_rest(r)) < 0)
 		return rc;
 	rf_header_free(r->h);
-	if (!(r->h = rf_header_new()))
-		return RF_ENOMEM;
 	r->row = 0;
-	/* Between frames of ascii data there may be blank lines. */
+	if (!(r->h = rf_header_new()))
+		return fail(r, RF_ENOMEM, "out of memory");
 	do
 		c = getc(r->fp);
-	while (r->frames && (c == '\n' || c == ' ' || c == '\t' || c == '\r'));
+	while (frame_gap(r, c));
 	if (c == EOF) {
 		rf_header_free(r->h);
 		r->h = NULL;
 		if (ferror(r->fp))
-			return fail(r, RF_EIO, "read error: %s", strerror(errno));
+			return fail_read(r);
 		if (!r->frames)
-			return fail(r, RF_EFORMAT, "empty input: no stream header");
+			return fail(r, RF_EFORMAT, r->headerless ? "empty input"
+			            : "empty input: no stream header");
 		return 0;
 	}
 	ungetc(c, r->fp);
 	r->frame = r->frames++;
-	r->line = 0;
 	if (r->headerless) {
-		if ((rc = rf_header_set_size(r->h, r->raw.ncols, r->raw.nrows)) < 0)
-			return fail(r, rc, "headerless input needs -x and -y of at least 1");
-		if ((rc = rf_header_set_channels(r->h, r->raw.channels)) < 0)
-			return fail(r, rc, "bad channel list '%s'", r->raw.channels);
-		r->ncomp = rf_header_nchannels(r->h);
-		if (r->ncomp * r->raw.ncols * sizeof(float) > RF_ROW_BYTES_MAX)
-			return fail(r, RF_ETOOBIG, "a row of headerless input is too large");
-		r->row_floats = r->raw.ncols * r->ncomp;
-		r->swap = 0;
-		rf__header_set_format(r->h, r->raw.format, 0);
+		if ((rc = begin_headerless(r)) < 0)
+			goto bad;
 		*hp = r->h;
 		return 1;
 	}
-	len = read_line(r->fp, line, sizeof(line), &binary);
-	if (len == -2 || binary || strncmp(line, "#?", 2))
-		return fail(r, RF_EFORMAT, "not a reflect stream: expected "
-		            "'#?REFLECT1' at the start%s",
-		            r->frames > 1 ? " of the frame (more data than the "
-		                            "previous header said?)" : "");
+	len = read_line(r->fp, line, &binary);
+	if (len < 0 || binary || strncmp(line, "#?", 2)) {
+		rc = fail(r, RF_EFORMAT, "not a reflect stream: expected "
+		          "'#?REFLECT1' at the start%s",
+		          r->frames > 1 ? " of the frame (more data than the "
+		                          "previous header said?)" : "");
+		goto bad;
+	}
 	if ((rc = parse_header(r, line)) < 0)
-		return rc;
+		goto bad;
 	*hp = r->h;
 	return 1;
-}
-
-static void
-swap32(float *buf, size_t n)
-{
-	uint32_t *u = (uint32_t *)buf;
-	size_t i;
-
-	for (i = 0; i < n; i++)
-		u[i] = __builtin_bswap32(u[i]);
-}
-
-static int
-truncated(rf_reader *r, size_t got_floats, size_t got_bytes)
-{
-	size_t row = r->row + got_floats / r->row_floats;
-	size_t in_row = got_floats % r->row_floats;
-	size_t nrows = rf_header_nrows(r->h);
-
-	if (got_bytes % sizeof(float))
-		return fail(r, RF_ETRUNCATED,
-		            "data ends inside a float in row %zu of %zu (channel '%s')",
-		            row + 1, nrows,
-		            rf_header_channel(r->h, in_row % r->ncomp));
-	if (in_row)
-		return fail(r, RF_ETRUNCATED,
-		            "data ends in the middle of row %zu of %zu (pixel %zu of %zu)",
-		            row + 1, nrows, in_row / r->ncomp + 1,
-		            rf_header_ncols(r->h));
-	return fail(r, RF_ETRUNCATED, "data ends after row %zu of %zu", row, nrows);
-}
-
-static int
-read_float_rows(rf_reader *r, float *buf, size_t nrows)
-{
-	size_t want = nrows * r->row_floats * sizeof(float);
-	size_t got = fread(buf, 1, want, r->fp);
-
-	if (got < want) {
-		if (ferror(r->fp))
-			return fail(r, RF_EIO, "read error: %s", strerror(errno));
-		return truncated(r, got / sizeof(float), got);
-	}
-	if (r->swap)
-		swap32(buf, nrows * r->row_floats);
-	return 0;
-}
-
-/* One number of ascii data; returns 1, 0 at EOF, or an error. */
-static int
-read_ascii_value(rf_reader *r, float *out)
-{
-	char tok[64];
-	size_t n = 0;
-	char *end;
-	int c;
-
-	do {
-		c = getc(r->fp);
-		if (c == '\n')
-			r->line++;
-	} while (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == ',');
-	if (c == EOF)
-		return 0;
-	while (c != EOF && c != ' ' && c != '\t' && c != '\n' && c != '\r' && c != ',') {
-		if (n + 1 >= sizeof(tok))
-			return fail(r, RF_EFORMAT, "ascii data line %zu: value too long",
-			            r->line + 1);
-		tok[n++] = (char)c;
-		c = getc(r->fp);
-	}
-	if (c != EOF)
-		ungetc(c, r->fp);
-	tok[n] = '\0';
-	*out = strtof(tok, &end);
-	if (*end || end == tok) {
-		size_t i;
-
-		for (i = 0; i < n; i++)
-			if ((unsigned char)tok[i] < 0x20 || (unsigned char)tok[i] >= 0x7f)
-				tok[i] = '?';
-		return fail(r, RF_EFORMAT, "ascii data line %zu: '%s' is not a number",
-		            r->line + 1, tok);
-	}
-	return 1;
-}
-
-static int
-read_ascii_rows(rf_reader *r, float *buf, size_t nrows)
-{
-	size_t n = nrows * r->row_floats, i;
-	int rc;
-
-	for (i = 0; i < n; i++) {
-		if ((rc = read_ascii_value(r, buf + i)) < 0)
-			return rc;
-		if (rc == 0) {
-			if (ferror(r->fp))
-				return fail(r, RF_EIO, "read error: %s", strerror(errno));
-			return truncated(r, i, i * sizeof(float));
-		}
-	}
-	return 0;
+bad:
+	/* A frame that failed has no rows to read or skip. */
+	rf_header_free(r->h);
+	r->h = NULL;
+	return rc;
 }
 
 int
 rf_reader_read_rows(rf_reader *r, float *buf, size_t nrows)
 {
-	int rc;
-
+	if (r->status)
+		return r->status;
 	if (!r->h || nrows > rf_reader_rows_left(r))
 		return fail(r, RF_EINVAL, "read past the last row of the frame");
 	if (!nrows)
 		return 0;
-	if (rf_header_format(r->h) == RF_FORMAT_ASCII)
-		rc = read_ascii_rows(r, buf, nrows);
-	else
-		rc = read_float_rows(r, buf, nrows);
-	if (rc < 0)
-		return rc;
-	r->row += nrows;
-	return 0;
+	if (!buf)
+		return fail(r, RF_EINVAL, "no buffer to read rows into");
+	return read_rows(r, buf, nrows);
 }
 
 size_t
 rf_block_rows(size_t ncols, size_t ncomp, size_t bytes)
 {
-	size_t row = ncols * ncomp * sizeof(float);
+	size_t row;
 
-	if (!row || row >= bytes)
+	if (rf__mul3(ncols, ncomp, sizeof(float), &row) || !row || row >= bytes)
 		return 1;
 	return bytes / row;
 }

@@ -20,7 +20,7 @@ fail_io(rf_writer *w)
 {
 	int e = errno;
 
-	rf__format(w->err, sizeof(w->err), "'%s': write error: %s", w->name,
+	rf__format(w->err, sizeof(w->err), "cannot write '%s': %s", w->name,
 	           strerror(e ? e : EIO));
 	errno = e;
 	return RF_EIO;
@@ -136,6 +136,20 @@ rf_writer_begin_frame(rf_writer *w, const rf_header *h)
 		rf__format(w->err, sizeof(w->err), "'%s': frame has no %s", w->name,
 		           !w->ncomp ? "channels" : "pixels");
 		return RF_EINVAL;
+	}
+	if (!w->opt.no_header) {
+		/* Every header line must be one a reader takes. */
+		size_t len = strlen("CHANNELS="), i;
+
+		for (i = 0; i < w->ncomp; i++)
+			len += strlen(rf_header_channel(h, i)) + (i ? 1 : 0);
+		if (len > RF_HEADER_LINE_MAX) {
+			rf__format(w->err, sizeof(w->err),
+			           "'%s': the CHANNELS line of %zu channels would be "
+			           "%zu bytes, more than the %d a header line may hold",
+			           w->name, w->ncomp, len, RF_HEADER_LINE_MAX);
+			return RF_ETOOBIG;
+		}
 	}
 	w->row = 0;
 	w->in_frame = 1;

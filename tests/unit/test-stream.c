@@ -222,6 +222,339 @@ TEST(block_rows)
 	ASSERT_EQ(rf_block_rows(100, 10, 40000), 10);
 	ASSERT_EQ(rf_block_rows(1, 1, 6), 1);
 	ASSERT_EQ(rf_block_rows((size_t)1 << 30, 1, 4096), 1);
+	/* A row whose size overflows is one row, not bytes / (wrapped size). */
+	ASSERT_EQ(rf_block_rows(SIZE_MAX / 2 + 1, 2, 4096), 1);
+	ASSERT_EQ(rf_block_rows(0, 3, 4096), 1);
+}
+
+/* A reader over a copy of n bytes of s. */
+static FILE *
+input(const char *s, size_t n)
+{
+	FILE *fp = tmpfile();
+
+	fwrite(s, 1, n, fp);
+	rewind(fp);
+	return fp;
+}
+
+/* The status of the first rf_reader_next_frame on the string s. */
+static int
+first_frame(const char *s, size_t n, char *err, size_t errlen)
+{
+	FILE *fp = input(s, n);
+	const rf_header *h;
+	rf_reader *r;
+	int rc;
+
+	if (rf_reader_open(&r, fp, "in", NULL) < 0)
+		return -1000;
+	rc = rf_reader_next_frame(r, &h);
+	if (err)
+		snprintf(err, errlen, "%s", rf_reader_error(r));
+	rf_reader_close(r);
+	fclose(fp);
+	return rc;
+}
+
+#define HEAD_REST "NCOLS=1\nNROWS=1\nNCOMP=1\nCHANNELS=a\nFORMAT=ascii\n\n1\n"
+
+TEST(stream_identifier)
+{
+	char err[512];
+
+	ASSERT_EQ(first_frame("#?REFLECT1\n" HEAD_REST, 11 + sizeof(HEAD_REST) - 1,
+	                      err, sizeof(err)), 1);
+	ASSERT_EQ(first_frame("#?REFLECT2\n" HEAD_REST, 11 + sizeof(HEAD_REST) - 1,
+	                      err, sizeof(err)), RF_EVERSION);
+	ASSERT_STR_EQ(err, "'in': stream version 2 is newer than this reader's (1); "
+	                   "upgrade reflect");
+	ASSERT_EQ(first_frame("#?REFLECT99999999999999999999\n" HEAD_REST,
+	                      30 + sizeof(HEAD_REST) - 1, err, sizeof(err)),
+	          RF_EVERSION);
+	/* Leading zeros, signs and blanks are not a version. */
+	ASSERT_EQ(first_frame("#?REFLECT01\n" HEAD_REST, 12 + sizeof(HEAD_REST) - 1,
+	                      err, sizeof(err)), RF_EFORMAT);
+	ASSERT_STR_EQ(err, "'in': bad stream identifier '#?REFLECT01'");
+	ASSERT_EQ(first_frame("#?REFLECT 1\n" HEAD_REST, 12 + sizeof(HEAD_REST) - 1,
+	                      NULL, 0), RF_EFORMAT);
+	ASSERT_EQ(first_frame("#?REFLECT+1\n" HEAD_REST, 12 + sizeof(HEAD_REST) - 1,
+	                      NULL, 0), RF_EFORMAT);
+	ASSERT_EQ(first_frame("#?REFLECT1\r\n" HEAD_REST, 12 + sizeof(HEAD_REST) - 1,
+	                      NULL, 0), 1);
+}
+
+/* A header line of RF_HEADER_LINE_MAX bytes is taken, with LF or CRLF;
+ * one more byte is refused. */
+TEST(header_line_limit)
+{
+	static char buf[4096 + 256];
+	char err[512];
+	size_t n, len;
+	int crlf, extra;
+
+	for (extra = 0; extra < 2; extra++)
+		for (crlf = 0; crlf < 2; crlf++) {
+			n = (size_t)sprintf(buf, "#?REFLECT1\nK=");
+			len = RF_HEADER_LINE_MAX + (size_t)extra - 2;
+			memset(buf + n, 'x', len);
+			n += len;
+			if (crlf)
+				buf[n++] = '\r';
+			buf[n++] = '\n';
+			memcpy(buf + n, HEAD_REST, sizeof(HEAD_REST) - 1);
+			n += sizeof(HEAD_REST) - 1;
+			if (!extra) {
+				ASSERT_EQ(first_frame(buf, n, err, sizeof(err)), 1);
+			} else {
+				ASSERT_EQ(first_frame(buf, n, err, sizeof(err)), RF_EFORMAT);
+				ASSERT_STR_EQ(err, "'in': header line 2 is longer than 2048 "
+				                   "bytes");
+			}
+		}
+}
+
+/* Headerless float frames: bytes that look like blanks are data. */
+TEST(headerless_frames_of_blanks)
+{
+	static const char data[] = "\0\0\0\0    \n\n\n\n\r\t \n";
+	struct rf_raw_input raw = { 1, 1, "v", RF_FORMAT_FLOAT };
+	FILE *fp = input(data, sizeof(data) - 1);
+	const rf_header *h;
+	rf_reader *r;
+	float v;
+	uint32_t u;
+	int frames = 0;
+
+	ASSERT_EQ(rf_reader_open(&r, fp, "raw", &raw), 0);
+	while (rf_reader_next_frame(r, &h) == 1) {
+		ASSERT_EQ(rf_reader_read_rows(r, &v, 1), 0);
+		memcpy(&u, &v, 4);
+		if (frames == 1)
+			ASSERT_EQ(u, 0x20202020u);
+		if (frames == 2)
+			ASSERT_EQ(u, 0x0a0a0a0au);
+		frames++;
+	}
+	ASSERT_STR_EQ(rf_reader_error(r), "");
+	ASSERT_EQ(frames, 4);
+	rf_reader_close(r);
+	fclose(fp);
+}
+
+/* A frame declaring a huge row is skipped (not read) without holding a
+ * row: the truncation is found, not an allocation failure. */
+TEST(skip_huge_frame)
+{
+	static const char head[] = "#?REFLECT1\nNCOLS=200000000\nNROWS=3\nNCOMP=1\n"
+	                           "CHANNELS=a\nBigEndian=0\nFORMAT=float\n\n"
+	                           "\0\0\0\0\0\0";
+	FILE *fp = input(head, sizeof(head) - 1);
+	const rf_header *h;
+	rf_reader *r;
+	float v;
+
+	ASSERT_EQ(rf_reader_open(&r, fp, "big", NULL), 0);
+	ASSERT_EQ(rf_reader_next_frame(r, &h), 1);
+	ASSERT_EQ(rf_header_ncols(h), 200000000);
+	ASSERT_EQ(rf_reader_next_frame(r, &h), RF_ETRUNCATED);
+	ASSERT_STR_EQ(rf_reader_error(r), "'big': data ends inside a float in row 1 "
+	                                  "of 3 (pixel 2 of 200000000, channel 'a')");
+	/* After an error every call gives it again, touching nothing. */
+	ASSERT_EQ(rf_reader_read_rows(r, &v, 1), RF_ETRUNCATED);
+	ASSERT_EQ(rf_reader_next_frame(r, &h), RF_ETRUNCATED);
+	ASSERT(h == NULL);
+	ASSERT_STR_EQ(rf_reader_error(r), "'big': data ends inside a float in row 1 "
+	                                  "of 3 (pixel 2 of 200000000, channel 'a')");
+	rf_reader_close(r);
+	fclose(fp);
+}
+
+TEST(ascii_errors_name_the_place)
+{
+	static const char s[] = "#?REFLECT1\nNCOLS=2\nNROWS=2\nNCOMP=2\n"
+	                        "CHANNELS=a b\nFORMAT=ascii\n\n1 2 3 4\n5 6 7 z\n";
+	FILE *fp = input(s, sizeof(s) - 1);
+	const rf_header *h;
+	rf_reader *r;
+	float buf[8];
+
+	ASSERT_EQ(rf_reader_open(&r, fp, "a", NULL), 0);
+	ASSERT_EQ(rf_reader_next_frame(r, &h), 1);
+	ASSERT_EQ(rf_reader_read_rows(r, buf, 1), 0);
+	ASSERT(buf[3] == 4.0f);
+	ASSERT_EQ(rf_reader_read_rows(r, buf, 1), RF_EFORMAT);
+	ASSERT_STR_EQ(rf_reader_error(r), "'a': ascii data: 'z' is not a number "
+	                                  "(row 2 of 2, pixel 2 of 2, channel 'b')");
+	ASSERT_EQ(rf_reader_read_rows(r, buf, 1), RF_EFORMAT);
+	rf_reader_close(r);
+	fclose(fp);
+}
+
+/* The writer never writes a header line a reader refuses. */
+TEST(writer_refuses_long_channels_line)
+{
+	struct rf_writer_options opt = { RF_FORMAT_FLOAT, 0 };
+	rf_header *h = rf_header_new();
+	FILE *fp = tmpfile();
+	rf_writer *w;
+	char name[32];
+	int i;
+
+	ASSERT_EQ(rf_header_set_size(h, 1, 1), 0);
+	for (i = 0; i < 200; i++) {
+		snprintf(name, sizeof(name), "channel_%03d", i);
+		ASSERT_EQ(rf_header_add_channel(h, name), i);
+	}
+	ASSERT_EQ(rf_writer_open(&w, fp, "out", &opt), 0);
+	ASSERT_EQ(rf_writer_begin_frame(w, h), RF_ETOOBIG);
+	ASSERT_STR_EQ(rf_writer_error(w), "'out': the CHANNELS line of 200 channels "
+	                                  "would be 2408 bytes, more than the 2048 a "
+	                                  "header line may hold");
+	ASSERT_EQ(ftell(fp), 0);
+	rf_writer_close(w);
+	/* Without a header there is no such line. */
+	opt.no_header = 1;
+	ASSERT_EQ(rf_writer_open(&w, fp, "out", &opt), 0);
+	ASSERT_EQ(rf_writer_begin_frame(w, h), 0);
+	rf_writer_close(w);
+	rf_header_free(h);
+	fclose(fp);
+}
+
+/* Every frame's data is aligned, whatever the length of each header. */
+TEST(every_frame_aligned)
+{
+	struct rf_writer_options opt = { RF_FORMAT_FLOAT, 0 };
+	static const char *const keys[] = { "x", "xx", "xxx", "xxxx", "xxxxx" };
+	rf_header *h = make_header(1, 1, "a");
+	FILE *fp = tmpfile();
+	const rf_header *rh;
+	rf_writer *w;
+	rf_reader *r;
+	float v = 1.0f;
+	size_t i;
+	long end;
+	char line[4096];
+
+	ASSERT_EQ(rf_writer_open(&w, fp, "out", &opt), 0);
+	for (i = 0; i < 5; i++) {
+		ASSERT_EQ(rf_header_set(h, "K", keys[i]), 0);
+		ASSERT_EQ(rf_writer_begin_frame(w, h), 0);
+		ASSERT_EQ(rf_writer_write_rows(w, &v, 1), 0);
+		ASSERT_EQ(rf_writer_end_frame(w), 0);
+	}
+	rf_writer_close(w);
+	rewind(fp);
+	/* Each frame: header lines up to the empty one, then 4 bytes. */
+	for (i = 0; i < 5; i++) {
+		while (fgets(line, sizeof(line), fp) && line[0] != '\n')
+			;
+		end = ftell(fp);
+		ASSERT_EQ(end % 4, 0);
+		fseek(fp, 4, SEEK_CUR);
+	}
+	rewind(fp);
+	ASSERT_EQ(rf_reader_open(&r, fp, "out", NULL), 0);
+	for (i = 0; i < 5; i++) {
+		ASSERT_EQ(rf_reader_next_frame(r, &rh), 1);
+		ASSERT_STR_EQ(rf_header_get(rh, "K"), keys[i]);
+	}
+	ASSERT_EQ(rf_reader_next_frame(r, &rh), 0);
+	rf_reader_close(r);
+	rf_header_free(h);
+	fclose(fp);
+}
+
+TEST(set_channels_keeps_the_old_list_on_error)
+{
+	rf_header *h = make_header(1, 1, "a b");
+
+	ASSERT(rf_header_set_channels(h, "x y x") < 0);
+	ASSERT(rf_header_set_channels(h, "x bad=name") < 0);
+	ASSERT(rf_header_set_channels(h, " , ") < 0);
+	ASSERT_EQ(rf_header_nchannels(h), 2);
+	ASSERT_STR_EQ(rf_header_channel(h, 1), "b");
+	ASSERT_EQ(rf_header_set_channels(h, "x,y z"), 0);
+	ASSERT_EQ(rf_header_nchannels(h), 3);
+	ASSERT_STR_EQ(rf_header_channel(h, 2), "z");
+	rf_header_free(h);
+}
+
+/* A command line too long for one header line ends in " ..." and no word
+ * is cut; the tool's name stays. */
+TEST(command_line_too_long)
+{
+	static char words[600][16], huge[3000];
+	char *argv[602];
+	rf_header *h = make_header(1, 1, "a");
+	const char *line;
+	size_t len, i;
+
+	argv[0] = "/bin/reflect-tool";
+	for (i = 0; i < 600; i++) {
+		snprintf(words[i], sizeof(words[i]), "w%zu", i);
+		argv[i + 1] = words[i];
+	}
+	ASSERT_EQ(rf_header_add_command(h, 601, argv), 0);
+	line = rf_header_line(h, 0);
+	len = strlen(line);
+	ASSERT(len <= RF_HEADER_LINE_MAX);
+	ASSERT(len > RF_HEADER_LINE_MAX - 10);
+	ASSERT_STR_EQ(line + len - 4, " ...");
+	ASSERT(!strncmp(line, "reflect-tool w0 w1 ", 19));
+	/* The word before " ..." is whole: it is "w<n>" with the next one
+	 * missing. */
+	{
+		const char *last = line + len - 5;
+		char expect[16];
+		size_t n;
+
+		while (last > line && last[-1] != ' ')
+			last--;
+		n = (size_t)strtoul(last + 1, NULL, 10);
+		snprintf(expect, sizeof(expect), "w%zu ...", n);
+		ASSERT_STR_EQ(last, expect);
+	}
+	/* One-letter words: two must go to make room for " ...". */
+	for (i = 1; i < 601; i++)
+		argv[i] = "a";
+	ASSERT_EQ(rf_header_add_command(h, 601, argv), 0);
+	line = rf_header_line(h, 1);
+	ASSERT_EQ(strlen(line), 12 + 2 * 600); /* 600 words fit */
+	{
+		static char *many[1200];
+
+		many[0] = "reflect-tool";
+		for (i = 1; i < 1200; i++)
+			many[i] = "a";
+		ASSERT_EQ(rf_header_add_command(h, 1200, many), 0);
+		line = rf_header_line(h, 2);
+		ASSERT_EQ(strlen(line), RF_HEADER_LINE_MAX);
+		ASSERT_STR_EQ(line + RF_HEADER_LINE_MAX - 6, " a ...");
+	}
+	rf_header_free(h);
+	h = make_header(1, 1, "a");
+	/* One argument longer than a line: never cut, " ..." instead. */
+	memset(huge, 'y', sizeof(huge) - 1);
+	argv[1] = huge;
+	argv[2] = "z";
+	ASSERT_EQ(rf_header_add_command(h, 3, argv), 0);
+	ASSERT_STR_EQ(rf_header_line(h, 0), "reflect-tool ...");
+	rf_header_free(h);
+}
+
+/* A message never holds a control character, whatever the input held. */
+TEST(messages_are_one_printable_line)
+{
+	static const char s[] = "#?REFLECT1\nNCOLS=2\tx\x7f\n\n";
+	char err[512];
+	size_t i;
+
+	ASSERT_EQ(first_frame(s, sizeof(s) - 1, err, sizeof(err)), RF_EFORMAT);
+	ASSERT_STR_EQ(err, "'in': header line 2: NCOLS is not a number ('2?x?')");
+	for (i = 0; err[i]; i++)
+		ASSERT((unsigned char)err[i] >= 0x20 && err[i] != 0x7f);
 }
 
 int
@@ -236,5 +569,15 @@ main(void)
 	RUN(command_line_quoting);
 	RUN(size_overflow_refused);
 	RUN(block_rows);
+	RUN(stream_identifier);
+	RUN(header_line_limit);
+	RUN(headerless_frames_of_blanks);
+	RUN(skip_huge_frame);
+	RUN(ascii_errors_name_the_place);
+	RUN(writer_refuses_long_channels_line);
+	RUN(every_frame_aligned);
+	RUN(set_channels_keeps_the_old_list_on_error);
+	RUN(command_line_too_long);
+	RUN(messages_are_one_printable_line);
 	TAP_DONE();
 }

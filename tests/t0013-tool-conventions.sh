@@ -1,0 +1,174 @@
+#!/bin/sh
+test_description='tool conventions: --help, usage, -V, messages, exit status, full disk, closed pipe, stdin'
+. "$srcdir/tests/lib.sh"
+
+SQ="'"
+tools='reflect-info reflect-project reflect-export'
+
+test_expect_success 'set up a G-buffer' '
+	cat >in.txt <<-\EOF
+	#?REFLECT1
+	PROBE_BOX=-3 0 -2 3 3 2
+	PROBE_CENTER=0 1.5 0
+	NCOLS=2
+	NROWS=1
+	NCOMP=9
+	CHANNELS=P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z
+	FORMAT=ascii
+
+	0 1 0 0 1 0 0 1 0
+	1 1 0 1 0 0 1 0 0
+	EOF
+'
+
+for tool in $tools
+do
+	test_expect_success "$tool --help: usage on stdout, exit 0" '
+		'$tool' --help >out 2>err &&
+		test_grep "^usage: '$tool' " out &&
+		test ! -s err
+	'
+
+	test_expect_success "$tool: an unknown option gives the usage on stderr, exit 1" '
+		test_must_fail 1 '$tool' --no-such-option >out 2>err &&
+		test ! -s out &&
+		test_grep "^usage: '$tool' " err &&
+		test_grep "^'$tool': unrecognized option .--no-such-option.$" err &&
+		test_must_fail 1 '$tool' -Z >out 2>err &&
+		test ! -s out &&
+		test_grep "^'$tool': invalid option -- .Z.$" err &&
+		test_grep "^usage: '$tool' " err
+	'
+
+	test_expect_success "$tool -V: tool, library and plugin ABI versions" '
+		'$tool' -V >out 2>err &&
+		test ! -s err &&
+		test_line_count 3 out &&
+		test_grep "^'$tool' (reflect) [0-9][0-9.]*$" out &&
+		test_grep "^libreflect [0-9][0-9.]*$" out &&
+		test_grep "^plugin ABI 1\.0$" out
+	'
+done
+
+test_expect_success 'a missing file: cannot open, exit 1' '
+	test_must_fail 1 reflect-project nope >out 2>err &&
+	echo "reflect-project: cannot open ${SQ}nope${SQ}: No such file or directory" >expect &&
+	diff -u expect err &&
+	test ! -s out &&
+	test_must_fail 1 reflect-info nope 2>err &&
+	echo "reflect-info: cannot open ${SQ}nope${SQ}: No such file or directory" >expect &&
+	diff -u expect err &&
+	test_must_fail 1 reflect-export -o out.exr nope 2>err &&
+	echo "reflect-export: cannot open ${SQ}nope${SQ}: No such file or directory" >expect &&
+	diff -u expect err
+'
+
+test_expect_success 'a directory as input: a system error, exit 2' '
+	mkdir dir &&
+	test_must_fail 2 reflect-info dir 2>err &&
+	echo "reflect-info: cannot read ${SQ}dir${SQ}: Is a directory" >expect &&
+	diff -u expect err
+'
+
+test_expect_success 'two files: usage, exit 1' '
+	test_must_fail 1 reflect-project in.txt in.txt >out 2>err &&
+	test ! -s out &&
+	test_grep "^usage: reflect-project " err
+'
+
+if test -w /dev/full
+then
+	test_expect_success 'stdout on a full disk: exit 2, a message naming the error' '
+		test_must_fail 2 reflect-project in.txt >/dev/full 2>err &&
+		test_one_line_message reflect-project err &&
+		test_grep "No space left on device" err &&
+		test_must_fail 2 reflect-project -fa in.txt >/dev/full 2>err &&
+		test_one_line_message reflect-project err &&
+		test_grep "No space left on device" err &&
+		test_must_fail 2 reflect-info -s in.txt >/dev/full 2>err &&
+		test_one_line_message reflect-info err &&
+		test_grep "^reflect-info: cannot write .<stdout>.: No space left on device$" err
+	'
+
+	test_expect_success 'a full disk also fails --help and -V' '
+		for tool in $tools
+		do
+			test_must_fail 2 $tool --help >/dev/full 2>err &&
+			test_grep "^$tool: .*No space left on device$" err &&
+			test_must_fail 2 $tool -V >/dev/full 2>err &&
+			test_grep "^$tool: .*No space left on device$" err || return 1
+		done
+	'
+
+	test_expect_success 'a big stream on a full disk fails while writing' '
+		head -c 720000 /dev/zero >big.raw &&
+		test_must_fail 2 reflect-project -H -x 200 -y 100 \
+			-c "P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z" \
+			--box=-3,0,-2,3,3,2 --center=0,1.5,0 big.raw >/dev/full 2>err &&
+		test_one_line_message reflect-project err &&
+		test_grep "^reflect-project: cannot write .<stdout>.: No space left on device$" err
+	'
+else
+	test_skip 'stdout on a full disk: exit 2, a message naming the error' 'no /dev/full'
+	test_skip 'a full disk also fails --help and -V' 'no /dev/full'
+	test_skip 'a big stream on a full disk fails while writing' 'no /dev/full'
+fi
+
+# A closed downstream pipe ends the tool quietly: SIGPIPE (or EPIPE with
+# SIGPIPE ignored by the parent) and no message.  Only stderr is checked:
+# the status is the signal's.
+test_expect_success 'a closed downstream pipe ends the tool quietly' '
+	head -c 36000000 /dev/zero >big.raw &&
+	{ reflect-project -H -x 2000 -y 500 \
+		-c "P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z" \
+		--box=-3,0,-2,3,3,2 --center=0,1.5,0 big.raw 2>err; } |
+	head -c 100 >out &&
+	test "$(wc -c <out)" -eq 100 &&
+	test_grep "^#?REFLECT1" out &&
+	test ! -s err
+'
+
+test_expect_success 'quiet too when the parent ignores SIGPIPE' '
+	(
+		trap "" PIPE &&
+		{ reflect-project -H -x 2000 -y 500 \
+			-c "P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z" \
+			--box=-3,0,-2,3,3,2 --center=0,1.5,0 big.raw 2>err; } |
+		head -c 100 >out
+	) &&
+	test "$(wc -c <out)" -eq 100 &&
+	test ! -s err &&
+	{ reflect-info -H -x 2000 -y 500 -c 9 big.raw 2>err.info; } | head -c 5 >out &&
+	test "$(cat out)" = "frame" &&
+	test ! -s err.info
+'
+
+test_expect_success 'reading - or no file means stdin' '
+	reflect-info in.txt >expect &&
+	reflect-info - <in.txt >got &&
+	diff -u expect got &&
+	reflect-info <in.txt >got &&
+	diff -u expect got &&
+	reflect-project -h in.txt >expect.raw &&
+	reflect-project -h - <in.txt >got.raw &&
+	cmp expect.raw got.raw &&
+	reflect-project -fa - <in.txt >got.txt &&
+	test_grep "^reflect-project -fa -$" got.txt &&
+	cat in.txt | reflect-project -h >got.raw &&
+	cmp expect.raw got.raw
+'
+
+test_expect_success 'bad input in stdin is named <stdin>' '
+	printf "#?REFLECT1\nNCOLS=x\n" | test_must_fail 1 reflect-info - 2>err &&
+	echo "reflect-info: ${SQ}<stdin>${SQ}: header line 2: NCOLS is not a number (${SQ}x${SQ})" >expect &&
+	diff -u expect err
+'
+
+test_expect_success 'only stream data on stdout' '
+	reflect-project in.txt >out.rf 2>err &&
+	test ! -s err &&
+	head -c 11 out.rf >magic &&
+	printf "#?REFLECT1\n" | cmp - magic
+'
+
+test_done
