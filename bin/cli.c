@@ -10,11 +10,19 @@
 
 const char *argv0 = "reflect";
 
+/* The command line as given: getopt permutes argv while it parses. */
+static char **command_argv;
+static int command_argc;
+
 void
 cli_init(int argc, char **argv)
 {
 	const char *slash;
 
+	if (argc > 0 && (command_argv = malloc((size_t)argc * sizeof(*argv)))) {
+		memcpy(command_argv, argv, (size_t)argc * sizeof(*argv));
+		command_argc = argc;
+	}
 	if (argc > 0 && argv[0]) {
 		slash = strrchr(argv[0], '/');
 		argv0 = slash ? slash + 1 : argv[0];
@@ -26,6 +34,15 @@ cli_init(int argc, char **argv)
 	/* A closed downstream pipe ends us quietly, even when a parent
 	 * process left SIGPIPE ignored. */
 	signal(SIGPIPE, SIG_DFL);
+}
+
+void
+cli_record_command(rf_header *h)
+{
+	int rc = rf_header_add_command(h, command_argc, command_argv);
+
+	if (rc < 0 && rc != RF_EINVAL)
+		die_status(rc, NULL);
 }
 
 static void

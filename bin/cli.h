@@ -21,6 +21,8 @@ enum { EXIT_BAD_INPUT = 1, EXIT_SYSTEM = 2 };
 extern const char *argv0;
 
 void cli_init(int argc, char **argv);
+/* Appends the command line, in the order it was given, to a header. */
+void cli_record_command(rf_header *h);
 /* A format ending in ':' gets ": strerror(errno)" appended (sbase rule). */
 CLI_NORETURN void die(const char *fmt, ...) CLI_PRINTF(1, 2);
 CLI_NORETURN void die_sys(const char *fmt, ...) CLI_PRINTF(1, 2);

@@ -154,7 +154,7 @@ main(int argc, char **argv)
 			die_status(rc, err);
 	}
 	h = rf_header_dup(rf_import_header(im));
-	rf_header_add_command(h, argc, argv);
+	cli_record_command(h);
 	if (o.probe.box) {
 		struct rf_probe probe;
 

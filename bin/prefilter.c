@@ -115,7 +115,7 @@ dump_levels(const rf_cubemap *c, const char *spec)
 
 static void
 write_chain(const struct prefilter_opts *o, const rf_cubemap *c,
-            const struct rf_chain_info *info, int argc, char **argv)
+            const struct rf_chain_info *info)
 {
 	struct rf_writer_options wopt = { o->format, o->no_header };
 	char err[1024];
@@ -138,7 +138,7 @@ write_chain(const struct prefilter_opts *o, const rf_cubemap *c,
 			die("cannot open '%s':", o->output);
 		name = o->output;
 	}
-	rf_header_add_command(base, argc, argv);
+	cli_record_command(base);
 	if ((rc = rf_writer_open(&w, fp, name, &wopt)) < 0)
 		die_status(rc, NULL);
 	if ((rc = rf_chain_write_stream(c, info, w, base, err, sizeof(err))) < 0)
@@ -253,7 +253,7 @@ main(int argc, char **argv)
 		if (o.dump)
 			dump_levels(src, o.dump);
 		if (!o.dump || o.output)
-			write_chain(&o, src, &info, argc, argv);
+			write_chain(&o, src, &info);
 		rf_cubemap_free(src);
 		fshut(stdout, "<stdout>");
 		return 0;
@@ -315,7 +315,7 @@ main(int argc, char **argv)
 	if (o.dump)
 		dump_levels(out, o.dump);
 	if (!o.dump || o.output)
-		write_chain(&o, out, &info, argc, argv);
+		write_chain(&o, out, &info);
 	rf_cubemap_free(src);
 	rf_cubemap_free(out);
 	fshut(stdout, "<stdout>");

@@ -30,8 +30,7 @@ header_get(void *ctx, const char *key)
 
 static void
 project_frame(struct cli_io *io, struct cli_mode *mode, const struct probe_opts *po,
-              const char *spec, int nthreads, int argc, char **argv,
-              const rf_header *in)
+              const char *spec, int nthreads, const rf_header *in)
 {
 	struct rf_host host;
 	struct rf_probe probe;
@@ -57,7 +56,7 @@ project_frame(struct cli_io *io, struct cli_mode *mode, const struct probe_opts 
 		die_status(rc, err);
 	if ((rc = rf_stage_begin_frame(stage, in, &out, err, sizeof(err))) < 0)
 		die_status(rc, err);
-	rf_header_add_command(out, argc, argv);
+	cli_record_command(out);
 	rf_header_set(out, "PROJECTION", spec);
 	if (host.probe)
 		probe_to_header(&probe, out);
@@ -127,7 +126,7 @@ main(int argc, char **argv)
 	mode_load(&mode, RF_KIND_PROJECTION, spec, verbose);
 	cli_io_open(&io, optind < argc ? argv[optind] : NULL);
 	while (cli_io_next(&io, &in))
-		project_frame(&io, &mode, &po, spec, nthreads, argc, argv, in);
+		project_frame(&io, &mode, &po, spec, nthreads, in);
 	mode_unload(&mode);
 	cli_io_close(&io);
 	return 0;

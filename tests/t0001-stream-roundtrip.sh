@@ -29,4 +29,9 @@ test_expect_success 'ascii G-buffer through project keeps its channels' '
 	test_cmp_numbers expect data.txt 1e-6
 '
 
+test_expect_success 'the command line is recorded in the order it was given' '
+	reflect-project in.txt -fa --center=0,1,0 >out2.txt &&
+	test_grep "^reflect-project in.txt -fa --center=0,1,0$" out2.txt
+'
+
 test_done
