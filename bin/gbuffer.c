@@ -1,0 +1,256 @@
+/* reflect-gbuffer: ray cast a scene into a G-buffer stream. */
+#include <getopt.h>
+#include <string.h>
+
+#include "cli.h"
+#include "reflect/scene.h"
+
+static void
+usage(void)
+{
+	fprintf(stderr, "usage: %s [-vV] [-x WIDTH] [-y HEIGHT] [-n FRAMES] "
+	        "[-j THREADS] [-c CHANNELS] [--orbit=DEGREES] "
+	        "[--path=orbit:DEGREES|line:X,Y,Z] [-f a|f] [-h] "
+	        "[--print-default-scene] [scene]\n", argv0);
+	exit(EXIT_BAD_INPUT);
+}
+
+enum { OPT_ORBIT = 256, OPT_PATH, OPT_PRINT_DEFAULT, OPT_HELP };
+
+static const struct option long_options[] = {
+	{ "orbit", required_argument, NULL, OPT_ORBIT },
+	{ "path", required_argument, NULL, OPT_PATH },
+	{ "print-default-scene", no_argument, NULL, OPT_PRINT_DEFAULT },
+	{ "help", no_argument, NULL, OPT_HELP },
+	{ NULL, 0, NULL, 0 },
+};
+
+static void
+help(void)
+{
+	printf("usage: %s [options] [scene]\n"
+	       "Ray casts a scene (reflect-scene(5); the embedded default when none is\n"
+	       "given) into a G-buffer stream: P N Ng V roughness metallic albedo mask\n"
+	       "objid depth, with the camera and probes as header keys.\n"
+	       "See reflect-gbuffer(1).\n"
+	       "  -x W -y H          image size (default 640x360)\n"
+	       "  -n N               N frames, FRAME=0..N-1\n"
+	       "  --orbit=DEGREES    turn the camera about its target over the frames\n"
+	       "  --path=line:X,Y,Z  move the camera (and its target) to X,Y,Z\n"
+	       "  -c CHANNELS        channels to write, e.g. P,N,V,roughness\n"
+	       "  -j N  threads   -v  flag a camera inside an object   -V  versions\n"
+	       "  -f a|f  output format   -h  no output header\n"
+	       "  --print-default-scene  print the embedded scene and exit\n", argv0);
+	fshut(stdout, "<stdout>");
+	exit(0);
+}
+
+static void
+parse_orbit(const char *arg, const char *what, struct rf_camera_path *path)
+{
+	float deg;
+
+	parse_floats(arg, what, &deg, 1);
+	path->kind = RF_PATH_ORBIT;
+	path->degrees = deg;
+}
+
+static void
+parse_path(const char *arg, struct rf_camera_path *path)
+{
+	if (!strncmp(arg, "orbit:", 6)) {
+		parse_orbit(arg + 6, "--path=orbit", path);
+	} else if (!strncmp(arg, "line:", 5)) {
+		float end[3];
+
+		parse_floats(arg + 5, "--path=line", end, 3);
+		path->kind = RF_PATH_LINE;
+		path->end[0] = end[0];
+		path->end[1] = end[1];
+		path->end[2] = end[2];
+	} else {
+		die("--path: '%s' is neither orbit:DEGREES nor line:X,Y,Z", arg);
+	}
+}
+
+static rf_scene *
+load_scene(const char *path)
+{
+	char err[1024];
+	rf_scene *s;
+	FILE *fp;
+	int rc;
+
+	if (!path) {
+		if ((rc = rf_scene_default(&s, err, sizeof(err))) < 0)
+			die_status(rc, err);
+		return s;
+	}
+	if (!strcmp(path, "-"))
+		fp = stdin;
+	else if (!(fp = fopen(path, "r")))
+		die("cannot open '%s':", path);
+	rc = rf_scene_read(&s, fp, fp == stdin ? "<stdin>" : path, err, sizeof(err));
+	if (fp != stdin)
+		fclose(fp);
+	if (rc < 0)
+		die_status(rc, err);
+	return s;
+}
+
+static void
+set_key(rf_header *h, const char *key, const char *value)
+{
+	if (rf_header_set(h, key, value) < 0)
+		die("cannot write header key %s='%s'", key, value);
+}
+
+static void
+probe_keys(rf_header *h, const struct rf_scene_probe *p, size_t i)
+{
+	char prefix[32], key[64], buf[256];
+
+	/* The first probe keeps the plain names that every tool reads. */
+	if (i == 0)
+		snprintf(prefix, sizeof(prefix), "PROBE");
+	else
+		snprintf(prefix, sizeof(prefix), "PROBE%zu", i + 1);
+	snprintf(key, sizeof(key), "%s_BOX", prefix);
+	snprintf(buf, sizeof(buf), "%.9g %.9g %.9g %.9g %.9g %.9g", p->box_min[0],
+	         p->box_min[1], p->box_min[2], p->box_max[0], p->box_max[1],
+	         p->box_max[2]);
+	set_key(h, key, buf);
+	snprintf(key, sizeof(key), "%s_CENTER", prefix);
+	snprintf(buf, sizeof(buf), "%.9g %.9g %.9g", p->center[0], p->center[1],
+	         p->center[2]);
+	set_key(h, key, buf);
+	snprintf(key, sizeof(key), "%s_BOX_PROJECTION", prefix);
+	set_key(h, key, p->box_projection ? "1" : "0");
+	snprintf(key, sizeof(key), "%s_ENV", prefix);
+	set_key(h, key, p->env ? p->env : "default");
+	snprintf(key, sizeof(key), "%s_BLEND", prefix);
+	snprintf(buf, sizeof(buf), "%.9g", p->blend);
+	set_key(h, key, buf);
+}
+
+static rf_header *
+frame_header(const rf_scene *s, const rf_gbuffer *g, const struct rf_camera *cam,
+             size_t frame, size_t width, size_t height)
+{
+	rf_header *h = rf_header_new();
+	char buf[512];
+	size_t i;
+
+	if (!h || rf_header_set_size(h, width, height) < 0)
+		die_sys("out of memory");
+	for (i = 0; i < rf_gbuffer_nchannels(g); i++)
+		if (rf_header_add_channel(h, rf_gbuffer_channel(g, i)) < 0)
+			die_sys("out of memory");
+	cli_record_command(h);
+	set_key(h, "SCENE", rf_scene_name(s));
+	snprintf(buf, sizeof(buf), "%.9g %.9g %.9g %.9g %.9g %.9g %.9g %.9g %.9g %.9g",
+	         cam->position[0], cam->position[1], cam->position[2], cam->target[0],
+	         cam->target[1], cam->target[2], cam->up[0], cam->up[1], cam->up[2],
+	         cam->fov);
+	set_key(h, "CAMERA", buf);
+	for (i = 0; i < rf_scene_nprobes(s); i++)
+		probe_keys(h, rf_scene_probe(s, i), i);
+	snprintf(buf, sizeof(buf), "%zu", frame);
+	set_key(h, "FRAME", buf);
+	return h;
+}
+
+/* -v: a camera inside an object sees that object's inside. */
+static void
+flag_camera(const rf_scene *s, const struct rf_camera *cam, const char *file,
+            size_t frame)
+{
+	const double *p = cam->position;
+	int id = rf_scene_inside(s, p);
+
+	if (id)
+		warn("frame %zu: the camera at (%g %g %g) is inside %s %d (%s:%zu)", frame,
+		     p[0], p[1], p[2], rf_scene_object_kind(s, id), id, file,
+		     rf_scene_object_line(s, id));
+	if (!rf_scene_in_room(s, p))
+		warn("frame %zu: the camera at (%g %g %g) is outside the room; rays that "
+		     "miss it see nothing (objid 0)", frame, p[0], p[1], p[2]);
+}
+
+int
+main(int argc, char **argv)
+{
+	struct cli_io io = { 0 };
+	struct rf_camera_path path = { RF_PATH_NONE, 0, { 0, 0, 0 } };
+	struct rf_camera start, cam;
+	struct rf_writer_options wopt;
+	const char *channels = NULL, *threads = NULL, *file;
+	size_t width = 640, height = 360, frames = 1, frame, rows, y, n;
+	char err[1024];
+	rf_gbuffer *g;
+	rf_scene *s;
+	float *buf;
+	int c, rc, verbose = 0;
+
+	cli_init(argc, argv);
+	while ((c = getopt_long(argc, argv, "vVx:y:n:j:c:f:h", long_options, NULL)) != -1) {
+		switch (c) {
+		case 'v': verbose = 1; break;
+		case 'V': print_version(); break;
+		case 'x': width = parse_count(optarg, 'x', 1, (size_t)1 << 20); break;
+		case 'y': height = parse_count(optarg, 'y', 1, (size_t)1 << 20); break;
+		case 'n': frames = parse_count(optarg, 'n', 1, 1000000000); break;
+		case 'j': threads = optarg; break;
+		case 'c': channels = optarg; break;
+		case 'f': case 'h': cli_io_option(&io, c, optarg); break;
+		case OPT_ORBIT: parse_orbit(optarg, "--orbit", &path); break;
+		case OPT_PATH: parse_path(optarg, &path); break;
+		case OPT_PRINT_DEFAULT:
+			fputs(rf_scene_default_text(), stdout);
+			fshut(stdout, "<stdout>");
+			return 0;
+		case OPT_HELP: help(); break;
+		default: usage();
+		}
+	}
+	if (argc - optind > 1)
+		usage();
+	file = optind < argc ? argv[optind] : NULL;
+	s = load_scene(file);
+	if ((rc = rf_gbuffer_create(&g, s, width, height, channels, cli_threads(threads),
+	                            err, sizeof(err))) < 0)
+		die_status(rc, err);
+	wopt.format = io.format;
+	wopt.no_header = io.no_header;
+	if ((rc = rf_writer_open(&io.writer, stdout, "<stdout>", &wopt)) < 0)
+		die_status(rc, NULL);
+	rows = rf_block_rows(width, rf_gbuffer_nchannels(g), CLI_BLOCK_BYTES);
+	if (rows > height)
+		rows = height;
+	buf = emalloc(rows * width * rf_gbuffer_nchannels(g) * sizeof(float));
+	rf_scene_camera(s, &start);
+	for (frame = 0; frame < frames; frame++) {
+		rf_header *h;
+
+		rf_camera_at_frame(&start, &path, frame, frames, &cam);
+		if ((rc = rf_gbuffer_set_camera(g, &cam, err, sizeof(err))) < 0)
+			die("frame %zu: %s", frame, err);
+		if (verbose)
+			flag_camera(s, &cam, file ? file : "<default>", frame);
+		h = frame_header(s, g, &cam, frame, width, height);
+		cli_io_begin(&io, h);
+		rf_header_free(h);
+		for (y = 0; y < height; y += n) {
+			n = height - y < rows ? height - y : rows;
+			if ((rc = rf_gbuffer_render(g, buf, y, n)) < 0)
+				die_status(rc, NULL);
+			cli_io_write(&io, buf, n);
+		}
+		cli_io_end_frame(&io);
+	}
+	free(buf);
+	rf_gbuffer_destroy(g);
+	rf_scene_free(s);
+	cli_io_close(&io);
+	return 0;
+}

@@ -1,0 +1,158 @@
+/*
+ * Scenes and G-buffers: a room (the probe box seen from inside), objects
+ * with materials and normal maps, a camera, read from the text format of
+ * reflect-scene(5), and the G-buffer ray cast from them.
+ *
+ * Same rules as reflect.h: 0 or a count on success, a negative rf_status
+ * on failure with the reason in the caller's buffer; nothing prints.
+ * Geometry is in double precision, in metres; the G-buffer is float.
+ */
+#ifndef REFLECT_SCENE_H
+#define REFLECT_SCENE_H
+
+#include "reflect/reflect.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct rf_scene rf_scene;
+
+/* A pinhole camera.  The ray through image point (px, py), pixels counted
+ * from the top left corner (pixel centres at i + 0.5), is
+ *   normalize(f + x tan(fov/2) (W/H) right + y tan(fov/2) up')
+ * with x = 2 px/W - 1, y = 1 - 2 py/H, f = normalize(target - position),
+ * right = normalize(cross(f, up)), up' = cross(right, f). */
+struct rf_camera {
+	double position[3];
+	double target[3];
+	double up[3];
+	double fov; /* vertical field of view in degrees, in (0, 180) */
+};
+
+struct rf_scene_probe {
+	double center[3];           /* capture point, inside the box */
+	double box_min[3], box_max[3];
+	double blend;               /* blend distance in metres */
+	int box_projection;         /* 1 on, 0 off */
+	const char *env;            /* environment file (relative paths resolved
+	                               against the scene file's directory), or
+	                               NULL for the embedded default */
+};
+
+/* Parses a scene.  `name` is the file name used in messages
+ * ("name:line:column: expected ...") and, when it contains '/', the base
+ * of relative paths in the scene.  Normal map images are loaded here. */
+RF_EXTERN int rf_scene_parse(rf_scene **s, const char *text, size_t len,
+                             const char *name, char *err, size_t errlen);
+/* The same from an open file, read to its end. */
+RF_EXTERN int rf_scene_read(rf_scene **s, FILE *fp, const char *name, char *err,
+                            size_t errlen);
+/* The embedded default scene, as text in the format, and parsed. */
+RF_EXTERN const char *rf_scene_default_text(void);
+RF_EXTERN int rf_scene_default(rf_scene **s, char *err, size_t errlen);
+RF_EXTERN void rf_scene_free(rf_scene *s);
+
+RF_EXTERN const char *rf_scene_name(const rf_scene *s);
+RF_EXTERN void rf_scene_camera(const rf_scene *s, struct rf_camera *cam);
+RF_EXTERN size_t rf_scene_nprobes(const rf_scene *s);
+/* NULL past the end.  Probe 0 is the room. */
+RF_EXTERN const struct rf_scene_probe *rf_scene_probe(const rf_scene *s, size_t i);
+RF_EXTERN size_t rf_scene_nobjects(const rf_scene *s);
+
+/* Object ids, as in the objid channel: objects count from 1 in the order
+ * of the file; the room's walls are negative; 0 is nothing. */
+enum {
+	RF_OBJID_NONE = 0,
+	RF_WALL_XMAX = -1, /* the wall at x = xmax (its normal is -X) */
+	RF_WALL_XMIN = -2,
+	RF_WALL_YMAX = -3, /* the ceiling */
+	RF_WALL_YMIN = -4, /* the floor */
+	RF_WALL_ZMAX = -5,
+	RF_WALL_ZMIN = -6
+};
+
+/* "sphere", "box", "rect", "wall" or NULL, and the line the object was
+ * declared on (0 when unknown). */
+RF_EXTERN const char *rf_scene_object_kind(const rf_scene *s, int objid);
+RF_EXTERN size_t rf_scene_object_line(const rf_scene *s, int objid);
+/* The id of the first object that holds p strictly inside, or 0. */
+RF_EXTERN int rf_scene_inside(const rf_scene *s, const double p[3]);
+/* 1 when p lies inside the room (the first probe's box), border included. */
+RF_EXTERN int rf_scene_in_room(const rf_scene *s, const double p[3]);
+
+/* What a ray sees.  N and Ng face the ray's origin (back faces are
+ * flipped, as a path tracer shades them).  When nothing is hit: t = +inf,
+ * objid 0, mask 0, P = origin + 1e30 dir (finite, far outside any box),
+ * N = Ng = -dir. */
+struct rf_hit {
+	double t; /* distance along the unit ray */
+	double P[3], N[3], Ng[3];
+	float roughness, metallic, albedo[3], mask;
+	int objid;
+};
+
+/* dir must be a unit vector.  Returns the hit's objid. */
+RF_EXTERN int rf_scene_trace(const rf_scene *s, const double origin[3],
+                             const double dir[3], struct rf_hit *hit);
+
+/* RF_EINVAL with a reason when the camera cannot make an image. */
+RF_EXTERN int rf_camera_check(const struct rf_camera *cam, char *err, size_t errlen);
+/* The unit ray through image point (px, py) of a width x height image. */
+RF_EXTERN void rf_camera_ray(const struct rf_camera *cam, size_t width,
+                             size_t height, double px, double py, double dir[3]);
+
+/* Camera paths for animated sequences. */
+enum rf_camera_path_kind {
+	RF_PATH_NONE = 0,
+	RF_PATH_ORBIT = 1, /* about the vertical axis through the target:
+	                      frame k of n at degrees * k / n, so 360 loops */
+	RF_PATH_LINE = 2   /* position and target move together in a straight
+	                      line, frame k of n at k / (n - 1): the last frame
+	                      ends at `end` */
+};
+
+struct rf_camera_path {
+	enum rf_camera_path_kind kind;
+	double degrees; /* orbit */
+	double end[3];  /* line: the last frame's position */
+};
+
+RF_EXTERN void rf_camera_at_frame(const struct rf_camera *start,
+                                  const struct rf_camera_path *path, size_t frame,
+                                  size_t nframes, struct rf_camera *out);
+
+/*
+ * The G-buffer.  Channels, in this order when all are asked for:
+ *   P.X P.Y P.Z N.X N.Y N.Z Ng.X Ng.Y Ng.Z V.X V.Y V.Z roughness metallic
+ *   albedo.R albedo.G albedo.B mask objid depth
+ * V is the unit vector from P to the camera, depth the distance from the
+ * camera to P (+inf when nothing is hit).  No value is ever NaN.
+ */
+#define RF_GBUFFER_CHANNELS                                                  \
+	"P.X P.Y P.Z N.X N.Y N.Z Ng.X Ng.Y Ng.Z V.X V.Y V.Z roughness "     \
+	"metallic albedo.R albedo.G albedo.B mask objid depth"
+
+typedef struct rf_gbuffer rf_gbuffer;
+
+/* channels: names separated by spaces or commas, where P, N, Ng, V and
+ * albedo stand for their three components; NULL for all.  Rows are spread
+ * over nthreads threads; the bytes never depend on it.  The scene must
+ * outlive the G-buffer. */
+RF_EXTERN int rf_gbuffer_create(rf_gbuffer **g, const rf_scene *s, size_t width,
+                                size_t height, const char *channels, int nthreads,
+                                char *err, size_t errlen);
+RF_EXTERN void rf_gbuffer_destroy(rf_gbuffer *g);
+RF_EXTERN size_t rf_gbuffer_nchannels(const rf_gbuffer *g);
+RF_EXTERN const char *rf_gbuffer_channel(const rf_gbuffer *g, size_t i);
+/* Sets the camera of the next rows (the scene's camera until then). */
+RF_EXTERN int rf_gbuffer_set_camera(rf_gbuffer *g, const struct rf_camera *cam,
+                                    char *err, size_t errlen);
+/* Renders rows y .. y + nrows - 1 into out (width * nchannels floats a row). */
+RF_EXTERN int rf_gbuffer_render(rf_gbuffer *g, float *out, size_t y, size_t nrows);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
