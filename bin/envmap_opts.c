@@ -194,6 +194,67 @@ load_faces(const struct envmap_opts *o)
 	return c;
 }
 
+/*
+ * A chain as one file per level (--prefiltered with %d in the name): %d
+ * counts levels from 0 until a file is missing; each file holds one cube
+ * in any layout, half the size of the one before.
+ */
+static rf_cubemap *
+load_level_files(const struct envmap_opts *o, struct rf_chain_info *info)
+{
+	rf_cubemap *levels[16], *c;
+	char path[4096], err[1024];
+	struct envmap_opts one = *o;
+	size_t n = 0, k, f, i, j;
+	const char *pct = strchr(o->path, '%');
+	int rc;
+
+	if (!pct || pct[1] != 'd' || strchr(pct + 1, '%'))
+		die("--env: '%s' needs one %%d to number the levels", o->path);
+	one.prefiltered = 0;
+	for (n = 0; n < 16; n++) {
+		FILE *fp;
+
+		snprintf(path, sizeof(path), "%.*s%zu%s", (int)(pct - o->path), o->path, n,
+		         pct + 2);
+		if (!(fp = fopen(path, "rb"))) {
+			if (n == 0)
+				die("cannot open '%s':", path);
+			break;
+		}
+		fclose(fp);
+		one.path = path;
+		levels[n] = envmap_load(&one, info);
+		if (n && rf_cubemap_size(levels[n]) * 2 != rf_cubemap_size(levels[n - 1]))
+			die("'%s': level %zu has faces of %zu texels, not half the %zu of level "
+			    "%zu", path, n, rf_cubemap_size(levels[n]),
+			    rf_cubemap_size(levels[n - 1]), n - 1);
+	}
+	if ((rc = rf_cubemap_new(&c, rf_cubemap_size(levels[0]), n)) < 0) {
+		snprintf(err, sizeof(err), "a cube of %zu texels cannot have %zu levels",
+		         rf_cubemap_size(levels[0]), n);
+		die("%s", err);
+	}
+	for (k = 0; k < n; k++) {
+		size_t m = rf_cubemap_level_size(c, k);
+
+		for (f = 0; f < 6; f++)
+			for (j = 0; j < m; j++)
+				for (i = 0; i < m; i++)
+					memcpy(rf_cubemap_texel(c, k, (enum rf_face)f, i, j),
+					       rf_cubemap_texel_const(levels[k], 0, (enum rf_face)f, i, j),
+					       3 * sizeof(float));
+		rf_cubemap_seal_level(c, k);
+		rf_cubemap_free(levels[k]);
+	}
+	memset(info, 0, sizeof(*info));
+	info->prefiltered = 1;
+	info->mapping = RF_MAPPING_DEFAULT;
+	info->steps = (float)(n - 1);
+	info->base_copied = 1;
+	return c;
+}
+
 static rf_cubemap *
 load_stream(const struct envmap_opts *o, FILE *fp, const char *name,
             struct rf_chain_info *info)
@@ -265,7 +326,7 @@ envmap_load(const struct envmap_opts *o, struct rf_chain_info *info)
 	if (!strcmp(o->path, "-"))
 		return load_stream(o, stdin, "<stdin>", info);
 	if (strchr(o->path, '%'))
-		return load_faces(o);
+		return o->prefiltered ? load_level_files(o, info) : load_faces(o);
 	if (!(fp = fopen(o->path, "rb")))
 		die("cannot open '%s':", o->path);
 	if (fread(magic, 1, 9, fp) == 9 && !memcmp(magic, "#?REFLECT", 9)) {

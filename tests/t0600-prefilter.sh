@@ -105,6 +105,23 @@ test_expect_success 'a MIP-mapped EXR cube round-trips and is recognised' '
 	test_cmp_numbers d0 a0 0.02
 '
 
+test_expect_success 'a chain as one file per level (--prefiltered, %d numbers levels)' '
+	mkdir levels && (
+		cd levels &&
+		reflect-prefilter --size=16 --dump=hcross 2>/dev/null &&
+		reflect-prefilter --size=16 -fa >../direct16.txt &&
+		reflect-prefilter --prefiltered -fa "level%d-hcross.exr" >../files16.txt 2>../log
+	) &&
+	test_grep "already a prefiltered chain of 5 levels" log &&
+	test "$(frame_keys NCOLS files16.txt | tr "\n" " ")" = "16 8 4 2 1 " &&
+	sed -n "/^$/,\$p" direct16.txt | grep -v "^#\|=\|^$\|^reflect" >d &&
+	sed -n "/^$/,\$p" files16.txt | grep -v "^#\|=\|^$\|^reflect" >f &&
+	test_cmp_numbers d f 0.02 &&
+	cp levels/level0-hcross.exr bad0.exr && cp levels/level2-hcross.exr bad1.exr &&
+	test_must_fail 1 reflect-prefilter --prefiltered "bad%d.exr" 2>err &&
+	test_grep "level 1 has faces of 4 texels, not half the 16 of level 0" err
+'
+
 test_expect_success 'NaN and Inf texels are counted and zeroed, or refused with -S' '
 	awk "BEGIN {
 		printf \"#?REFLECT1\nNCOLS=2\nNROWS=12\nNCOMP=3\nCHANNELS=R G B\nFORMAT=ascii\n\n\"
