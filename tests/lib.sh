@@ -93,17 +93,18 @@ test_done () {
 }
 
 # test_cmp_numbers EXPECTED ACTUAL [TOL]: the files hold the same numbers,
-# field by field, within an absolute tolerance (default 1e-5); "inf" and
-# "nan" must match exactly.
+# field by field, within an absolute tolerance (default 1e-5); fields that
+# are not numbers ("inf", "nan", words) must match exactly.
 test_cmp_numbers () {
 	awk -v tol="${3:-1e-5}" -v ef="$1" -v af="$2" '
+	BEGIN { num = "^[-+]?([0-9]+[.]?[0-9]*|[.][0-9]+)([eE][-+]?[0-9]+)?$" }
 	function bad(msg) { print ef ":" NR ": " msg > "/dev/stderr"; err = 1 }
 	{
 		if ((getline line < af) <= 0) { bad("missing in " af); exit 1 }
 		n = split($0, e); m = split(line, a)
 		if (n != m) { bad(n " fields expected, " m " found: " line); next }
 		for (i = 1; i <= n; i++) {
-			if (e[i] ~ /[a-z]/ || a[i] ~ /[a-z]/) {
+			if (e[i] !~ num || a[i] !~ num) {
 				if (e[i] != a[i]) bad("field " i ": " e[i] " != " a[i])
 				continue
 			}
