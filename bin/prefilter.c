@@ -59,28 +59,6 @@ parse_number(const char *name, const char *arg, double lo, double hi)
 	return v;
 }
 
-/* Levels of the chain: at most steps + 1 (7 by default, Unity's), never
- * below the minimum face size, never odd. */
-static size_t
-chain_levels(const struct prefilter_opts *o, size_t size)
-{
-	size_t levels = 1;
-
-	if (o->levels) {
-		size_t n = size;
-
-		for (levels = 1; levels < o->levels; levels++, n /= 2)
-			if (n & 1 || n / 2 < 1)
-				die("a %zu-texel cube has no %zu levels (it halves to %zu)", size,
-				    o->levels, n);
-		return levels;
-	}
-	while (levels < (size_t)RF_STEPS_DEFAULT + 1 && !((size >> (levels - 1)) & 1) &&
-	       (size >> levels) >= o->min_size)
-		levels++;
-	return levels;
-}
-
 static void
 dump_levels(const rf_cubemap *c, const char *spec)
 {
@@ -259,7 +237,7 @@ main(int argc, char **argv)
 		return 0;
 	}
 	if ((rc = rf_cubemap_new(&out, rf_cubemap_size(src),
-	                         chain_levels(&o, rf_cubemap_size(src)))) < 0)
+	                         envmap_chain_levels(rf_cubemap_size(src), o.levels, o.min_size))) < 0)
 		die_status(rc, NULL);
 	info.mapping = o.pf.mapping;
 	info.steps = o.pf.steps > 0 ? o.pf.steps : (float)(rf_cubemap_levels(out) - 1);

@@ -1,0 +1,593 @@
+/* reflect-shade: environment radiance through each pixel's lobe. */
+#include <fcntl.h>
+#include <getopt.h>
+#include <math.h>
+#include <pthread.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "envmap_opts.h"
+#include "probe_opts.h"
+#include "reflect/shading.h"
+
+static void
+usage(void)
+{
+	fprintf(stderr, "usage: %s [-lvV] [-m MODE[:KEY=VALUE...]] [-j THREADS] "
+	        "[--env=FILE] [--layout=L] [--prefiltered] [--srgb=auto|on|off] "
+	        "[--rgbm=M[,E]] [--intensity=X] [--size=N] "
+	        "[--mapping=unity|linear|exact] [--steps=N] [--samples=N] [--final] "
+	        "[--box=XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX] [--center=X,Y,Z] "
+	        "[--box-projection=on|off] [--seed=N] " CLI_IO_USAGE " [file]\n", argv0);
+	exit(EXIT_BAD_INPUT);
+}
+
+enum {
+	OPT_ENVMAP = 256, /* handed to envmap_opts_parse by name */
+	OPT_MAPPING, OPT_STEPS, OPT_SAMPLES, OPT_FINAL, OPT_BOX, OPT_CENTER,
+	OPT_PROJECTION, OPT_SEED, OPT_HELP
+};
+
+static const struct option long_options[] = {
+	{ "env", required_argument, NULL, OPT_ENVMAP },
+	{ "layout", required_argument, NULL, OPT_ENVMAP },
+	{ "prefiltered", no_argument, NULL, OPT_ENVMAP },
+	{ "srgb", required_argument, NULL, OPT_ENVMAP },
+	{ "rgbm", required_argument, NULL, OPT_ENVMAP },
+	{ "intensity", required_argument, NULL, OPT_ENVMAP },
+	{ "size", required_argument, NULL, OPT_ENVMAP },
+	{ "mapping", required_argument, NULL, OPT_MAPPING },
+	{ "steps", required_argument, NULL, OPT_STEPS },
+	{ "samples", required_argument, NULL, OPT_SAMPLES },
+	{ "final", no_argument, NULL, OPT_FINAL },
+	{ "box", required_argument, NULL, OPT_BOX },
+	{ "center", required_argument, NULL, OPT_CENTER },
+	{ "box-projection", required_argument, NULL, OPT_PROJECTION },
+	{ "seed", required_argument, NULL, OPT_SEED },
+	{ "help", no_argument, NULL, OPT_HELP },
+	{ NULL, 0, NULL, 0 },
+};
+
+struct shade_opts {
+	struct cli_mode mode;
+	const char *spec;
+	int nthreads, verbose, final;
+	struct envmap_opts env;
+	struct probe_opts probe;
+	int mapping_set;
+	enum rf_mapping mapping;
+	float steps;       /* 0: the environment's */
+	unsigned samples;  /* 0: the prefilter's default */
+	uint32_t seed;
+};
+
+/* The environment in use, kept across frames while they name the same. */
+struct environment {
+	char *name; /* as given: a path, or "default" */
+	rf_cubemap *cube;
+	enum rf_mapping mapping;
+	float steps;
+	int fresh; /* loaded since the sampling pass last took it */
+};
+
+/* What the host services of a plugin see. */
+struct host_ctx {
+	const rf_header *h;
+	const struct environment *env;
+};
+
+static const char *
+host_header_get(void *ctx, const char *key)
+{
+	return rf_header_get(((struct host_ctx *)ctx)->h, key);
+}
+
+static void
+host_sample(void *ctx, const float dir[3], float lod, float rgb[3])
+{
+	rf_cubemap_sample(((struct host_ctx *)ctx)->env->cube, dir, lod, rgb);
+}
+
+static float
+host_roughness_to_lod(void *ctx, float roughness)
+{
+	const struct environment *e = ((struct host_ctx *)ctx)->env;
+
+	return rf_roughness_to_lod(e->mapping, e->steps, roughness);
+}
+
+static float
+host_lod_to_roughness(void *ctx, float lod)
+{
+	const struct environment *e = ((struct host_ctx *)ctx)->env;
+
+	return rf_lod_to_roughness(e->mapping, e->steps, lod);
+}
+
+static double
+parse_number(const char *name, const char *arg, double lo, double hi)
+{
+	char *end;
+	double v = strtod(arg, &end);
+
+	if (end == arg || *end || !isfinite(v) || v < lo || v > hi)
+		die("--%s: '%s' is not a number in [%g, %g]", name, arg, lo, hi);
+	return v;
+}
+
+static double
+parse_whole(const char *name, const char *arg, double hi)
+{
+	double v = parse_number(name, arg, 0, hi);
+
+	if (v != floor(v) || (v == 0 && strcmp(name, "seed")))
+		die("--%s: '%s' is not a whole number in [%d, %.0f]", name, arg,
+		    strcmp(name, "seed") ? 1 : 0, hi);
+	return v;
+}
+
+static void
+progress(void *arg, double done, double total)
+{
+	(void)arg;
+	fprintf(stderr, "\r%s: prefiltering %3.0f%%", argv0, 100.0 * done / total);
+	if (done >= total)
+		fputc('\n', stderr);
+}
+
+/* A raw environment (or a chain of plain box-filtered levels) becomes a
+ * GGX chain with the options' mapping and steps. */
+static rf_cubemap *
+prefilter(const struct shade_opts *o, const char *name, rf_cubemap *src,
+          struct environment *e)
+{
+	struct rf_prefilter_options pf;
+	size_t size = rf_cubemap_size(src), levels = envmap_chain_levels(size, 0, 1);
+	char err[1024], what[4200] = "";
+	rf_cubemap *out;
+	int rc;
+
+	if (strcmp(name, "default"))
+		snprintf(what, sizeof(what), " '%s'", name);
+	if (levels < 2)
+		die("the environment%s is %zu texels a face: too small to prefilter "
+		    "into levels", what, size);
+	rf_prefilter_defaults(&pf);
+	pf.mapping = e->mapping;
+	pf.steps = o->steps > 0.0f ? o->steps : (float)(levels - 1);
+	if (o->samples)
+		pf.samples = o->samples;
+	pf.nthreads = o->nthreads;
+	if (isatty(STDERR_FILENO))
+		pf.progress = progress;
+	/* Worth a line: it is the slow part of a short pipeline. */
+	fprintf(stderr, "%s: prefiltering the environment%s (%zux%zu per face, %zu "
+	        "levels)\n", argv0, what, size, size, levels);
+	if ((rc = rf_cubemap_new(&out, size, levels)) < 0)
+		die_status(rc, NULL);
+	if ((rc = rf_prefilter(src, out, &pf, err, sizeof(err))) < 0)
+		die_status(rc, err);
+	e->steps = pf.steps;
+	return out;
+}
+
+static void
+load_environment(const struct shade_opts *o, const char *name, struct environment *e)
+{
+	struct envmap_opts eo = o->env;
+	struct rf_chain_info info;
+	rf_cubemap *c;
+	size_t levels;
+
+	rf_cubemap_free(e->cube);
+	free(e->name);
+	e->name = estrdup(name);
+	eo.path = name;
+	c = envmap_load(&eo, &info);
+	levels = rf_cubemap_levels(c);
+	e->mapping = o->mapping_set ? o->mapping : RF_MAPPING_DEFAULT;
+	if (!info.prefiltered) {
+		if (levels > 1 && o->verbose)
+			fprintf(stderr, "%s: '%s' has box-filtered levels, not GGX ones: "
+			        "prefiltering its level 0 (--prefiltered takes them as "
+			        "they are)\n", argv0, name);
+		e->cube = prefilter(o, name, c, e);
+		rf_cubemap_free(c);
+	} else {
+		float steps = info.steps > 0.0f ? info.steps : (float)(levels - 1);
+
+		/* The chain was made with one mapping; sampling it with another
+		 * would pick the wrong levels.  --prefiltered says the options
+		 * describe a chain another tool made. */
+		if (!o->env.prefiltered &&
+		    ((o->mapping_set && o->mapping != info.mapping) ||
+		     (o->steps > 0.0f && o->steps != steps)))
+			die("'%s' was prefiltered with mapping %s and steps %g; "
+			    "--mapping and --steps must agree (or give --prefiltered to "
+			    "override them)", name, rf_mapping_name(info.mapping),
+			    (double)steps);
+		e->mapping = o->env.prefiltered && o->mapping_set ? o->mapping
+		                                                  : info.mapping;
+		e->steps = o->env.prefiltered && o->steps > 0.0f ? o->steps : steps;
+		e->cube = c;
+	}
+	e->fresh = 1;
+	if (o->verbose)
+		fprintf(stderr, "%s: environment '%s': %zu texels, %zu levels, mapping "
+		        "%s, steps %g\n", argv0, name, rf_cubemap_size(e->cube),
+		        rf_cubemap_levels(e->cube), rf_mapping_name(e->mapping),
+		        (double)e->steps);
+}
+
+/* The mode's inputs, checked before the environment is loaded, so that a
+ * stream that cannot be shaded fails at once, not after a prefilter. */
+static void
+check_frame(const struct shade_opts *o, rf_shade *shade, const rf_header *in,
+            const float *center)
+{
+	const struct rf_plugin *p = o->mode.plugin;
+	char err[1024];
+	rf_header *h, *out;
+	size_t i;
+	int rc;
+
+	for (i = 0; p->inputs[i]; i++)
+		if (rf_header_find_channel(in, p->inputs[i]) < 0) {
+			char list[512] = "";
+			size_t k = 0, j;
+
+			for (j = 0; p->inputs[j] && k + 2 < sizeof(list); j++)
+				k += (size_t)snprintf(list + k, sizeof(list) - k, "%s%s",
+				                      j ? " " : "", p->inputs[j]);
+			die("input has no channel '%s' (mode '%s' reads %s)", p->inputs[i],
+			    p->name, list);
+		}
+	if (rf_header_find_channel(in, "mask") >= 0 && !center)
+		die("pixels with mask 0 show the environment seen from the probe "
+		    "centre: give --center=X,Y,Z or a stream with PROBE_CENTER");
+	if (!(h = rf_header_dup(in)))
+		die_sys("out of memory");
+	for (i = 0; p->outputs[i]; i++)
+		if (rf_header_find_channel(h, p->outputs[i]) < 0)
+			rf_header_add_channel(h, p->outputs[i]);
+	if ((rc = rf_shade_begin_frame(shade, h, center, &out, err, sizeof(err))) < 0)
+		die_status(rc, err);
+	rf_header_free(h);
+}
+
+/*
+ * Reading the next block while this one is shaded and written: the stage
+ * upstream keeps producing instead of waiting for us, and on a file the
+ * copy out of the page cache overlaps the sampling.  Two input blocks; a
+ * thread fills them in turn, the main thread takes them in turn.  Only
+ * that thread touches the reader until the frame's last row is read.
+ */
+struct prefetch {
+	struct cli_io *io;
+	float *buf[2];
+	size_t rows[2];
+	int full[2];
+	int take; /* the slot the main thread takes next */
+	size_t block, frame_rows;
+	pthread_t tid;
+	int threaded;
+	pthread_mutex_t mu;
+	pthread_cond_t cv;
+};
+
+static void *
+prefetch_run(void *arg)
+{
+	struct prefetch *p = arg;
+	size_t y, n;
+	int k = 0;
+
+	for (y = 0; y < p->frame_rows; y += n, k ^= 1) {
+		n = p->frame_rows - y < p->block ? p->frame_rows - y : p->block;
+		pthread_mutex_lock(&p->mu);
+		while (p->full[k])
+			pthread_cond_wait(&p->cv, &p->mu);
+		pthread_mutex_unlock(&p->mu);
+		cli_io_read(p->io, p->buf[k], n); /* dies on bad input */
+		pthread_mutex_lock(&p->mu);
+		p->rows[k] = n;
+		p->full[k] = 1;
+		pthread_cond_broadcast(&p->cv);
+		pthread_mutex_unlock(&p->mu);
+	}
+	return NULL;
+}
+
+static void
+prefetch_start(struct prefetch *p, struct cli_io *io, size_t block, size_t row_floats,
+               size_t frame_rows)
+{
+	memset(p, 0, sizeof(*p));
+	p->io = io;
+	p->block = block;
+	p->frame_rows = frame_rows;
+	p->buf[0] = emalloc(block * row_floats * sizeof(float) + 1);
+	p->buf[1] = emalloc(block * row_floats * sizeof(float) + 1);
+	pthread_mutex_init(&p->mu, NULL);
+	pthread_cond_init(&p->cv, NULL);
+	p->threaded = pthread_create(&p->tid, NULL, prefetch_run, p) == 0;
+}
+
+/* The next block in order, and its row count. */
+static float *
+prefetch_take(struct prefetch *p, size_t *n)
+{
+	int k = p->take;
+
+	if (!p->threaded) {
+		/* No thread to be had: read it here. */
+		*n = p->frame_rows < p->block ? p->frame_rows : p->block;
+		p->frame_rows -= *n;
+		cli_io_read(p->io, p->buf[0], *n);
+		return p->buf[0];
+	}
+	pthread_mutex_lock(&p->mu);
+	while (!p->full[k])
+		pthread_cond_wait(&p->cv, &p->mu);
+	*n = p->rows[k];
+	pthread_mutex_unlock(&p->mu);
+	return p->buf[k];
+}
+
+/* The block taken last is done with: it may be read into again. */
+static void
+prefetch_give_back(struct prefetch *p)
+{
+	if (!p->threaded)
+		return;
+	pthread_mutex_lock(&p->mu);
+	p->full[p->take] = 0;
+	p->take ^= 1;
+	pthread_cond_broadcast(&p->cv);
+	pthread_mutex_unlock(&p->mu);
+}
+
+static void
+prefetch_finish(struct prefetch *p)
+{
+	if (p->threaded)
+		pthread_join(p->tid, NULL);
+	pthread_mutex_destroy(&p->mu);
+	pthread_cond_destroy(&p->cv);
+	free(p->buf[0]);
+	free(p->buf[1]);
+}
+
+static void
+shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *env,
+            rf_shade *shade, const rf_header *in)
+{
+	struct host_ctx ctx = { in, env };
+	struct rf_host host;
+	struct rf_probe probe;
+	struct prefetch pf;
+	float centre[3], *center = NULL, *bin, *bmid, *bout;
+	char err[1024], perr[512], buf[64];
+	const char *name;
+	rf_stage *stage;
+	rf_header *mid, *out;
+	size_t rows, y, n, ncols = rf_header_ncols(in), nrows = rf_header_nrows(in);
+	int rc, prc;
+
+	prc = probe_resolve(&o->probe, in, &probe, perr, sizeof(perr));
+	if (prc == -1)
+		die("%s", perr);
+	if (prc == 0) {
+		center = probe.center;
+	} else if (o->probe.center) {
+		parse_floats(o->probe.center, "--center", centre, 3);
+		center = centre;
+	}
+	check_frame(o, shade, in, center);
+
+	name = o->env.path ? o->env.path : rf_header_get(in, "PROBE_ENV");
+	if (!name || !*name)
+		name = "default";
+	if (!env->name || strcmp(env->name, name))
+		load_environment(o, name, env);
+
+	memset(&host, 0, sizeof(host));
+	host.size = sizeof(host);
+	host.abi_major = RF_PLUGIN_ABI_MAJOR;
+	host.abi_minor = RF_PLUGIN_ABI_MINOR;
+	host.ctx = &ctx;
+	host.header_get = host_header_get;
+	host.probe = prc == 0 ? &probe : NULL;
+	host.sample = host_sample;
+	host.roughness_to_lod = host_roughness_to_lod;
+	host.lod_to_roughness = host_lod_to_roughness;
+	host.lod_steps = env->steps;
+	host.seed = o->seed;
+	if ((rc = rf_stage_create(&stage, o->mode.plugin, o->mode.values, &host,
+	                          o->nthreads, err, sizeof(err))) < 0)
+		die_status(rc, err);
+	if ((rc = rf_stage_begin_frame(stage, in, &mid, err, sizeof(err))) < 0)
+		die_status(rc, err);
+	if ((rc = rf_shade_begin_frame(shade, mid, center, &out, err, sizeof(err))) < 0)
+		die_status(rc, err);
+	/* The pass keeps a copy of the levels: made once per environment. */
+	if (env->fresh &&
+	    (rc = rf_shade_set_environment(shade, env->cube, env->mapping,
+	                                   env->steps)) < 0)
+		die_status(rc, NULL);
+	env->fresh = 0;
+
+	cli_record_command(out);
+	rf_header_set(out, "SHADE", o->spec);
+	rf_header_set(out, "ENV_MAPPING", rf_mapping_name(env->mapping));
+	snprintf(buf, sizeof(buf), "%.9g", (double)env->steps);
+	rf_header_set(out, "ENV_STEPS", buf);
+	if (o->env.path)
+		rf_header_set(out, "PROBE_ENV", o->env.path);
+	if (prc == 0)
+		probe_to_header(&probe, out);
+	cli_io_begin(io, out);
+
+	rows = rf_block_rows(ncols, rf_header_nchannels(out), CLI_BLOCK_BYTES);
+	if (rows > nrows)
+		rows = nrows ? nrows : 1;
+	prefetch_start(&pf, io, rows, ncols * rf_header_nchannels(in), nrows);
+	bmid = emalloc(rows * ncols * rf_header_nchannels(mid) * sizeof(float) + 1);
+	bout = emalloc(rows * ncols * rf_header_nchannels(out) * sizeof(float) + 1);
+	for (y = 0; y < nrows; y += n) {
+		bin = prefetch_take(&pf, &n);
+		if ((rc = rf_stage_run(stage, bin, bmid, y, n)) < 0 ||
+		    (rc = rf_shade_run(shade, bmid, bout, n)) < 0)
+			die_status(rc, NULL);
+		prefetch_give_back(&pf);
+		cli_io_write(io, bout, n);
+	}
+	prefetch_finish(&pf);
+	cli_io_end_frame(io);
+	free(bmid);
+	free(bout);
+	rf_stage_destroy(stage);
+}
+
+/*
+ * A stage moves some 130 bytes a pixel in blocks of megabytes; through
+ * the default 64 KB pipe every block is dozens of wake-ups of the stages
+ * on either side, each a trip through the scheduler of a busy machine.
+ * A 1 MB pipe (Linux's limit for unprivileged processes) cuts them
+ * sixteenfold.  Not a pipe, or no such fcntl: nothing happens.
+ */
+static void
+widen_pipes(void)
+{
+#ifdef F_SETPIPE_SZ
+	(void)fcntl(STDIN_FILENO, F_SETPIPE_SZ, 1 << 20);
+	(void)fcntl(STDOUT_FILENO, F_SETPIPE_SZ, 1 << 20);
+#endif
+}
+
+static int
+writes(const struct rf_plugin *p, const char *name)
+{
+	size_t i;
+
+	for (i = 0; p->outputs[i]; i++)
+		if (!strcmp(p->outputs[i], name))
+			return 1;
+	return 0;
+}
+
+/* A roughness model writes roughness.eff and the tool samples; a mode
+ * that computes radiance itself (through the host's sample service)
+ * writes spec.R spec.G spec.B. */
+static int
+mode_radiance(const struct rf_plugin *p)
+{
+	if (writes(p, RF_SHADE_ROUGHNESS))
+		return 0;
+	if (writes(p, "spec.R") && writes(p, "spec.G") && writes(p, "spec.B"))
+		return 1;
+	die("mode '%s' writes neither '%s' nor spec.R spec.G spec.B: it is not a "
+	    "mode reflect-shade can use", p->name, RF_SHADE_ROUGHNESS);
+}
+
+int
+main(int argc, char **argv)
+{
+	struct cli_io io = { 0 };
+	struct shade_opts o;
+	struct environment env = { 0 };
+	struct rf_shade_options so = { 0 };
+	float centre[3];
+	const char *threads = NULL;
+	const rf_header *in;
+	rf_shade *shade;
+	int c, idx, list = 0, rc;
+
+	cli_init(argc, argv);
+	memset(&o, 0, sizeof(o));
+	o.spec = "approx";
+	envmap_opts_init(&o.env);
+	while ((c = getopt_long(argc, argv, "lvVm:j:" CLI_IO_OPTSTRING, long_options,
+	                        &idx)) != -1) {
+		if (cli_io_option(&io, c, optarg))
+			continue;
+		switch (c) {
+		case 'l': list = 1; break;
+		case 'v': o.verbose = 1; break;
+		case 'V': print_version(); break;
+		case 'm': o.spec = optarg; break;
+		case 'j': threads = optarg; break;
+		case OPT_ENVMAP:
+			envmap_opts_parse(&o.env, long_options[idx].name, optarg);
+			break;
+		case OPT_MAPPING:
+			if (rf_mapping_parse(optarg, &o.mapping) < 0)
+				die("--mapping: '%s' is not unity, linear or exact", optarg);
+			o.mapping_set = 1;
+			break;
+		case OPT_STEPS:
+			o.steps = (float)parse_number("steps", optarg, 0.5, 64);
+			break;
+		case OPT_SAMPLES:
+			o.samples = (unsigned)parse_whole("samples", optarg, 65536);
+			break;
+		case OPT_FINAL: o.final = 1; break;
+		case OPT_BOX: o.probe.box = optarg; break;
+		case OPT_CENTER:
+			parse_floats(optarg, "--center", centre, 3);
+			o.probe.center = optarg;
+			break;
+		case OPT_PROJECTION:
+			/* Checked now: a stream without a box would never read it. */
+			if (strcmp(optarg, "on") && strcmp(optarg, "off") &&
+			    strcmp(optarg, "1") && strcmp(optarg, "0"))
+				die("--box-projection: '%s' is not on or off", optarg);
+			o.probe.projection = optarg;
+			break;
+		case OPT_SEED:
+			o.seed = (uint32_t)parse_whole("seed", optarg, 4294967295.0);
+			break;
+		case OPT_HELP:
+			printf("usage: %s [options] [file]\n"
+			       "Samples the environment through each pixel's lobe: a mode gives\n"
+			       "the effective roughness (roughness.eff), the environment's mapping\n"
+			       "its lod, and D (from reflect-project) the direction; adds spec.R\n"
+			       "spec.G spec.B. See reflect-shade(1).\n"
+			       "  -m MODE[:K=V...]  none, approx (default), hdrp, godot; -l lists them\n"
+			       "  --env=FILE  environment (else PROBE_ENV, else the embedded room);\n"
+			       "      raw ones are prefiltered on the fly: --samples=N\n"
+			       "  --prefiltered --layout=L --srgb= --rgbm= --intensity= --size=N\n"
+			       "  --mapping=unity|linear|exact --steps=N  roughness to lod\n"
+			       "  --final  also R G B = spec x (F0 A + B), the split-sum BRDF\n"
+			       "  --box=... --center=X,Y,Z --box-projection=on|off  the probe\n"
+			       "  --seed=N  for modes that draw samples\n"
+			       "  -j N  threads   -v  say which plugin and environment   -V  versions\n"
+			       "  -f a|f  output format   -h  no output header\n"
+			       "  -H -x W -y H -c CHANNELS  headerless input\n", argv0);
+			fshut(stdout, "<stdout>");
+			return 0;
+		default: usage();
+		}
+	}
+	if (argc - optind > 1)
+		usage();
+	if (list)
+		mode_list(RF_KIND_SHADE);
+	o.nthreads = cli_threads(threads);
+	mode_load(&o.mode, RF_KIND_SHADE, o.spec, o.verbose);
+	so.final = o.final;
+	so.mode_radiance = mode_radiance(o.mode.plugin);
+	so.nthreads = o.nthreads;
+	if ((rc = rf_shade_create(&shade, &so)) < 0)
+		die_status(rc, NULL);
+	widen_pipes();
+	cli_io_open(&io, optind < argc ? argv[optind] : NULL);
+	while (cli_io_next(&io, &in))
+		shade_frame(&io, &o, &env, shade, in);
+	rf_shade_destroy(shade);
+	rf_cubemap_free(env.cube);
+	free(env.name);
+	mode_unload(&o.mode);
+	cli_io_close(&io);
+	return 0;
+}

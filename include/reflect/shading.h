@@ -1,0 +1,98 @@
+/*
+ * libreflect: shading with a prefiltered environment.
+ *
+ * The split-sum environment BRDF (the DFG table) and the pass that turns
+ * each pixel's effective roughness into a lod of the environment's one
+ * mapping and samples the chain there: the host side of reflect-shade(1).
+ * The roughness models themselves are plugins (RF_KIND_SHADE).
+ */
+#ifndef REFLECT_SHADING_H
+#define REFLECT_SHADING_H
+
+#include "reflect/reflect.h"
+#include "reflect/envmap.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- the environment BRDF (DFG) ---------------------------------------- */
+
+/*
+ * For GGX with Smith height-correlated masking-shadowing and Schlick's
+ * Fresnel F = F0 + (1 - F0) (1 - v.h)^5, the directional albedo is
+ * F0 A + B with
+ *   A = integral of f1 (1 - (1 - v.h)^5) n.l dl,
+ *   B = integral of f1 (1 - v.h)^5 n.l dl,
+ * f1 the BRDF with F = 1, over the hemisphere of n.  A + B is the albedo
+ * of a white (F = 1) GGX surface.  Perceptual roughness r, alpha = r^2.
+ *
+ * The table has RF_DFG_SIZE x RF_DFG_SIZE entries (A, B): row j holds
+ * roughness j / (size - 1), column i holds n.v = (i / (size - 1))^2 (the
+ * square root spacing puts more columns toward grazing, where the
+ * integrals change fastest).  It is integrated once, on first use.
+ */
+#define RF_DFG_SIZE 64
+
+/* Bilinear lookup; n_dot_v and roughness are clamped to [0, 1] (NaN
+ * counts as 0).  Thread-safe; the first call computes the table. */
+RF_EXTERN void rf_dfg_lookup(float n_dot_v, float roughness, float *a, float *b);
+/* The table: *size x *size pairs (A, B), rows by roughness. */
+RF_EXTERN const float *rf_dfg_table(size_t *size);
+/* One entry, integrated with `samples` quasi-random samples of the GGX
+ * distribution of visible normals (what the table is made of). */
+RF_EXTERN void rf_dfg_integrate(double n_dot_v, double roughness, unsigned samples,
+                                double *a, double *b);
+
+/* ---- the sampling pass of reflect-shade -------------------------------- */
+
+/* The channel a shade mode writes: the effective perceptual roughness. */
+#define RF_SHADE_ROUGHNESS "roughness.eff"
+
+/*
+ * A pass over a stream that already has RF_SHADE_ROUGHNESS and the
+ * lookup direction D.X D.Y D.Z (or, with mode_radiance, spec.R spec.G
+ * spec.B a mode computed itself): for every pixel it samples the
+ * environment at D with lod = rf_roughness_to_lod(mapping, steps,
+ * roughness.eff) and writes spec.R spec.G spec.B.  Pixels whose `mask`
+ * is 0 (walls) get the environment seen directly instead: lod 0 in the
+ * direction from the probe centre to P (a fractional mask blends the
+ * two).  With `final` it also writes R G B = spec (F0 A + B), F0 =
+ * lerp(0.04, albedo, metallic); a stream without metallic or albedo is a
+ * white metal (the missing one counts as 1).  Every other channel is
+ * kept; channels of the same names are overwritten.  Rows are spread
+ * over threads; the bytes do not depend on their number.
+ */
+typedef struct rf_shade rf_shade;
+
+struct rf_shade_options {
+	int final;    /* also R G B */
+	int nthreads; /* < 1 means 1 */
+	/* 1: the mode wrote spec.R spec.G spec.B itself (a Monte-Carlo mode
+	 * sampling through the host's services): reflective pixels keep
+	 * them, and only walls and the final colour are done here. */
+	int mode_radiance;
+};
+
+RF_EXTERN int rf_shade_create(rf_shade **s, const struct rf_shade_options *o);
+RF_EXTERN void rf_shade_destroy(rf_shade *s);
+/* Checks the channels of a frame and makes its output header (valid
+ * until the next call).  center: the probe's capture point, or NULL when
+ * there is none (then a stream with a mask channel is refused).  err
+ * names a missing channel. */
+RF_EXTERN int rf_shade_begin_frame(rf_shade *s, const rf_header *in,
+                                   const float center[3], rf_header **out,
+                                   char *err, size_t errlen);
+/* The environment every following rf_shade_run samples; the cube stays
+ * the caller's, and must outlive the pass or the next call. */
+RF_EXTERN int rf_shade_set_environment(rf_shade *s, const rf_cubemap *env,
+                                        enum rf_mapping mapping, float steps);
+/* nrows rows of the frame: in with the input header's channels, out with
+ * the output header's. */
+RF_EXTERN int rf_shade_run(rf_shade *s, const float *in, float *out, size_t nrows);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

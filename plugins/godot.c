@@ -1,0 +1,71 @@
+/*
+ * godot: the fresnel-aware contact hardening Godot merged (spec 6.2, the
+ * write-up's "ApproximatedGodot" 6.1), in perceptual roughness (Godot's
+ * sqrt(roughness) is pr; its mip_min = r^2 LOD is pr^4):
+ *   F   = (1 - max(N.V, 0))^power
+ *   x   = sat(d (1 - F) / distance + (1 - F) pr)
+ *   pr' = lerp(pr^4, pr, x)
+ * Sharp at grazing angles and at contact; pr = 1 and pr = 0 are
+ * unchanged; no hit gives pr.
+ */
+#include "shade_mode.h"
+
+enum { POWER, DISTANCE, NPARAMS };
+
+static const struct rf_param params[NPARAMS] = {
+	{ "power", "exponent of the grazing factor (1 - N.V)^power (godot: 4; "
+	  "the write-up's demo: 2)", 0, 64, 4, 0, NULL },
+	{ "distance", "hit distance in world units over which hardening fades "
+	  "(the original's 6)", 1e-6, 1e6, 6, 0, NULL },
+};
+
+static const char *const inputs[] = {
+	"roughness", "hit.dist", "N.X", "N.Y", "N.Z", "V.X", "V.Y", "V.Z", NULL
+};
+static const char *const outputs[] = { "roughness.eff", NULL };
+
+static double
+godot(const float *in, double power, double distance)
+{
+	double pr = sat(in[0]), d = in[1], nv, f, x, lo;
+
+	if (no_hit(d))
+		return pr;
+	nv = sat((double)in[2] * in[5] + (double)in[3] * in[6] + (double)in[4] * in[7]);
+	f = pow(1.0 - nv, power);
+	x = sat(d * (1.0 - f) / distance + (1.0 - f) * pr);
+	if (x >= 1.0)
+		return pr; /* exactly, not lo + (pr - lo) rounded */
+	lo = pr * pr * pr * pr;
+	return sat(lo + (pr - lo) * x);
+}
+
+static int
+create(const struct rf_host *host, const double *values, void **state,
+       char *err, size_t errlen)
+{
+	return shade_mode_create(host, values, NPARAMS, state, err, errlen);
+}
+
+static void
+run(void *state, const struct rf_span *span)
+{
+	const struct shade_mode *m = state;
+	const float *in = span->in;
+	uint32_t i;
+
+	for (i = 0; i < span->npix; i++, in += 8)
+		span->out[i] = (float)godot(in, m->p[POWER], m->p[DISTANCE]);
+}
+
+static const struct rf_plugin descriptor = {
+	RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR, sizeof(struct rf_plugin),
+	RF_KIND_SHADE, 0,
+	"godot",
+	"godot's fresnel-aware contact hardening, from pr^4 at contact to pr",
+	"1.0", "reflect developers", "MIT",
+	NPARAMS, params, inputs, outputs,
+	create, run, shade_mode_destroy,
+};
+
+RF_PLUGIN_DEFINE(descriptor)

@@ -1,0 +1,34 @@
+/* none: classic box projection; the lod comes from roughness only. */
+#include "shade_mode.h"
+
+static const char *const inputs[] = { "roughness", NULL };
+static const char *const outputs[] = { "roughness.eff", NULL };
+
+static int
+create(const struct rf_host *host, const double *values, void **state,
+       char *err, size_t errlen)
+{
+	return shade_mode_create(host, values, 0, state, err, errlen);
+}
+
+static void
+run(void *state, const struct rf_span *span)
+{
+	uint32_t i;
+
+	(void)state;
+	for (i = 0; i < span->npix; i++)
+		span->out[i] = (float)sat(span->in[i]);
+}
+
+static const struct rf_plugin descriptor = {
+	RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR, sizeof(struct rf_plugin),
+	RF_KIND_SHADE, 0,
+	"none",
+	"classic box projection: the material's roughness, no contact hardening",
+	"1.0", "reflect developers", "MIT",
+	0, NULL, inputs, outputs,
+	create, run, shade_mode_destroy,
+};
+
+RF_PLUGIN_DEFINE(descriptor)

@@ -1,0 +1,138 @@
+#!/bin/sh
+test_description='reflect-shade: the environment it picks, threads, listing'
+. "$srcdir/tests/lib.sh"
+. "$srcdir/tests/shade-lib.sh"
+
+test_expect_success 'setup: a small scene, projected, and a small prefiltered room' '
+	reflect-gbuffer -x 40 -y 24 -n 2 | reflect-project >scene.rfl &&
+	reflect-prefilter --size=32 -s 8 -o room.rfl 2>/dev/null &&
+	level_chain chain.rfl 8 4 unity
+'
+
+for m in none approx approx:clamp=0 hdrp godot
+do
+	test_expect_success "$m: the bytes do not depend on the thread count" '
+		reflect-shade -h -j1 -m $m --final --env=room.rfl scene.rfl >j1 &&
+		reflect-shade -h -j2 -m $m --final --env=room.rfl scene.rfl >j2 &&
+		reflect-shade -h -j7 -m $m --final --env=room.rfl scene.rfl >j7 &&
+		test $(wc -c <j1) -eq $((2 * 40 * 24 * (20 + 8 + 4 + 3) * 4)) &&
+		cmp j1 j2 &&
+		cmp j1 j7 &&
+		REFLECT_THREADS=3 reflect-shade -h -m $m --final --env=room.rfl scene.rfl >j3 &&
+		cmp j1 j3
+	'
+done
+
+# Rows of 1500 pixels of 35 channels: a block of 4 MB holds 19 of them,
+# so a frame of 50 rows is three blocks, read ahead into two buffers in
+# turn.
+test_expect_success 'several blocks and frames: any thread count, every frame alike' '
+	reflect-gbuffer -x 1500 -y 50 -n 2 | reflect-project >wide.rfl &&
+	reflect-shade -h -j1 -m approx --final --env=room.rfl wide.rfl >w1 &&
+	reflect-shade -h -j2 -m approx --final --env=room.rfl wide.rfl >w2 &&
+	frame=$((1500 * 50 * 35 * 4)) &&
+	test $(wc -c <w1) -eq $((2 * frame)) &&
+	cmp w1 w2 &&
+	# The two frames have the same camera: the same bytes (nothing of a
+	# frame or of its read-ahead blocks carries over to the next).
+	head -c $frame w1 >f1 &&
+	tail -c $frame w1 >f2 &&
+	cmp f1 f2
+'
+
+test_expect_success 'the output has no NaN or Inf on the default scene' '
+	reflect-shade -m godot --final --env=room.rfl scene.rfl | reflect-info -s >stats &&
+	awk "\$1 ~ /^(spec\.[RGB]|R|G|B|roughness\.eff)\$/ { n++; if (\$5 != 0 || \$6 != 0) bad = 1 }
+		END { exit bad || n != 2 * 7 }" stats
+'
+
+test_expect_success 'no --env: the embedded room, prefiltered once for all frames' '
+	reflect-shade -fa -m none --samples=4 scene.rfl >out 2>err &&
+	test_line_count 1 err &&
+	test_grep "^reflect-shade: prefiltering the environment (256x256 per face, 7 levels)$" err &&
+	test $(grep -c "^ENV_STEPS=6$" out) -eq 2 &&
+	test $(grep -c "^ENV_MAPPING=unity$" out) -eq 2
+'
+
+test_expect_success '--size and a raw environment: the message says so' '
+	reflect-shade -m none --samples=4 --size=64 scene.rfl >/dev/null 2>err &&
+	test_grep "(64x64 per face, 7 levels)" err &&
+	reflect-shade -m none --samples=4 --size=16 scene.rfl >/dev/null 2>err &&
+	test_grep "(16x16 per face, 5 levels)" err
+'
+
+test_expect_success 'a prefiltered chain is used as it is: no prefiltering, its steps' '
+	reflect-shade -fa -m none --env=chain.rfl scene.rfl >out 2>err &&
+	! test -s err &&
+	test_grep "^ENV_STEPS=3$" out
+'
+
+test_expect_success 'PROBE_ENV names the environment when --env is absent' '
+	test_grep "^PROBE_ENV=default$" scene.rfl &&
+	sed "s/^PROBE_ENV=default$/PROBE_ENV=chain.rfl/" scene.rfl >named.rfl &&
+	reflect-shade -fa -m none named.rfl >out 2>err &&
+	! test -s err &&
+	test_grep "^ENV_STEPS=3$" out &&
+	reflect-shade -fa -m none --env=chain.rfl scene.rfl >want &&
+	column out spec.R spec.G spec.B >a &&
+	column want spec.R spec.G spec.B >b &&
+	cmp a b
+'
+
+test_expect_success '--env wins over PROBE_ENV and replaces it' '
+	reflect-shade -fa -m none --env=room.rfl named.rfl >out 2>err &&
+	! test -s err &&
+	test_grep "^PROBE_ENV=room.rfl$" out &&
+	test_grep "^ENV_STEPS=5$" out
+'
+
+test_expect_success '-v says which plugin and which environment' '
+	reflect-shade -v -m hdrp --env=chain.rfl scene.rfl >/dev/null 2>err &&
+	test_grep "^reflect-shade: mode .hdrp. from .*hdrp.so" err &&
+	test_grep "^reflect-shade: environment .chain.rfl.: 8 texels, 4 levels, mapping unity, steps 3$" err
+'
+
+test_expect_success '-l lists the four modes and their parameters' '
+	reflect-shade -l >list &&
+	for m in none approx hdrp godot
+	do
+		test_grep "^$m	" list || return 1
+	done &&
+	test_grep "^    clamp=1	" list &&
+	test_grep "^    power=4	" list &&
+	test_grep "^    distance=6	" list &&
+	test_grep "writes: roughness.eff$" list
+'
+
+test_expect_success '--help and -V' '
+	reflect-shade --help >help &&
+	test_grep "^usage: reflect-shade" help &&
+	reflect-shade -V >version &&
+	test -s version
+'
+
+test_expect_success 'a mode that samples through the host services equals none' '
+	radiance="$REFLECT_TEST_PLUGINS/shade_radiance.so" &&
+	reflect-shade -fa -m none --env=room.rfl scene.rfl >none.txt &&
+	reflect-shade -fa -m "$radiance" --env=room.rfl scene.rfl >radiance.txt &&
+	test_grep "^CHANNELS=.* spec.R spec.G spec.B$" radiance.txt &&
+	! grep "roughness.eff" radiance.txt &&
+	column none.txt spec.R spec.G spec.B >a &&
+	column radiance.txt spec.R spec.G spec.B >b &&
+	test_line_count $((2 * 40 * 24)) b &&
+	cmp_numbers a b 1e-4
+'
+
+test_expect_success 'a mode that writes neither roughness.eff nor spec is refused' '
+	test_must_fail 1 reflect-shade -m "$REFLECT_TEST_PLUGINS/shade_kind.so" \
+		scene.rfl 2>err &&
+	test_one_line_message reflect-shade err &&
+	test_grep "writes neither" err
+'
+
+test_expect_success 'a closed pipe downstream ends the tool quietly' '
+	reflect-shade -m none --env=chain.rfl scene.rfl 2>err | head -c 10 >/dev/null &&
+	! test -s err
+'
+
+test_done
