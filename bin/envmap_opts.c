@@ -305,6 +305,44 @@ load_chain_file(const struct envmap_opts *o, struct rf_chain_info *info)
 	return c;
 }
 
+/* A DDS cube: its mip levels as a chain with --prefiltered, else its
+ * level 0 as a raw environment. */
+static rf_cubemap *
+load_dds(const struct envmap_opts *o, struct rf_chain_info *info)
+{
+	char err[1024];
+	size_t bad = 0, f, i, j, n;
+	rf_cubemap *c, *raw;
+	int rc;
+
+	if ((rc = rf_chain_read_dds(&c, info, &bad, o->path, err, sizeof(err))) < 0)
+		die_status(rc == RF_ENOMEM ? rc : RF_EINVAL, err);
+	report_nonfinite(o, o->path, bad);
+	if (o->prefiltered || rf_cubemap_levels(c) == 1)
+		return c;
+	n = rf_cubemap_size(c);
+	if ((rc = rf_cubemap_new(&raw, n, 1)) < 0)
+		die_status(rc, NULL);
+	for (f = 0; f < 6; f++)
+		for (j = 0; j < n; j++)
+			for (i = 0; i < n; i++)
+				memcpy(rf_cubemap_texel(raw, 0, (enum rf_face)f, i, j),
+				       rf_cubemap_texel_const(c, 0, (enum rf_face)f, i, j),
+				       3 * sizeof(float));
+	rf_cubemap_seal_level(raw, 0);
+	rf_cubemap_free(c);
+	info->prefiltered = 0;
+	return raw;
+}
+
+static int
+has_suffix(const char *s, const char *suffix)
+{
+	size_t n = strlen(s), m = strlen(suffix);
+
+	return n >= m && !strcasecmp(s + n - m, suffix);
+}
+
 rf_cubemap *
 envmap_load(const struct envmap_opts *o, struct rf_chain_info *info)
 {
@@ -327,6 +365,8 @@ envmap_load(const struct envmap_opts *o, struct rf_chain_info *info)
 		return load_stream(o, stdin, "<stdin>", info);
 	if (strchr(o->path, '%'))
 		return o->prefiltered ? load_level_files(o, info) : load_faces(o);
+	if (has_suffix(o->path, ".dds"))
+		return load_dds(o, info);
 	if (!(fp = fopen(o->path, "rb")))
 		die("cannot open '%s':", o->path);
 	if (fread(magic, 1, 9, fp) == 9 && !memcmp(magic, "#?REFLECT", 9)) {

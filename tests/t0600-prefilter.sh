@@ -122,6 +122,19 @@ test_expect_success 'a chain as one file per level (--prefiltered, %d numbers le
 	test_grep "level 1 has faces of 4 texels, not half the 16 of level 0" err
 '
 
+test_expect_success 'a DDS cube with mips: a chain with --prefiltered, else raw' '
+	"$builddir/tests/mkdds" cube.dds 8 3 &&
+	reflect-prefilter --prefiltered -fa cube.dds >dds.txt 2>log &&
+	test_grep "already a prefiltered chain of 3 levels" log &&
+	test "$(frame_keys NCOLS dds.txt | tr "\n" " ")" = "8 4 2 " &&
+	awk "/^#\?REFLECT1/ { k++ } NF == 3 && \$2 == 1 { print k - 1, \$1 }" dds.txt | sort -u >faces &&
+	printf "0 0\n0 1\n0 2\n0 3\n0 4\n0 5\n1 10\n1 11\n1 12\n1 13\n1 14\n1 15\n2 20\n2 21\n2 22\n2 23\n2 24\n2 25\n" >expect &&
+	test_cmp_numbers expect faces 0 &&
+	reflect-prefilter -fa --levels=2 cube.dds >raw.txt &&
+	test "$(frame_keys NCOLS raw.txt | tr "\n" " ")" = "8 4 " &&
+	test "$(frame_keys PREFILTER raw.txt | sort -u)" = ggx
+'
+
 test_expect_success 'NaN and Inf texels are counted and zeroed, or refused with -S' '
 	awk "BEGIN {
 		printf \"#?REFLECT1\nNCOLS=2\nNROWS=12\nNCOMP=3\nCHANNELS=R G B\nFORMAT=ascii\n\n\"

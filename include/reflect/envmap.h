@@ -212,6 +212,17 @@ RF_EXTERN int rf_chain_write_file(const rf_cubemap *c, const struct rf_chain_inf
 RF_EXTERN int rf_chain_read_file(rf_cubemap **c, struct rf_chain_info *info,
                                  int *is_reflect, const char *path, char *err,
                                  size_t errlen);
+/* Reads a DDS cube map (all six faces) with its mip levels as a
+ * prefiltered chain (mapping unity, steps = levels - 1): the levels while
+ * the size halves evenly, as rf_cubemap_new counts them.  Float, half,
+ * R11G11B10, RGB9E5 and 8-bit RGBA/BGRA (sRGB decoded) texels; alpha is
+ * ignored, block-compressed formats are refused.  Faces are mirrored
+ * from Direct3D's orientation to OpenEXR's, so a direction reads what
+ * Direct3D reads for it.  Non-finite values become 0, counted in *nonfinite (may
+ * be NULL). */
+RF_EXTERN int rf_chain_read_dds(rf_cubemap **c, struct rf_chain_info *info,
+                                size_t *nonfinite, const char *path, char *err,
+                                size_t errlen);
 
 /* ---- the embedded environment ----------------------------------------- */
 
