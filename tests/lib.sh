@@ -117,3 +117,27 @@ test_cmp_numbers () {
 		exit err
 	}' "$1"
 }
+
+# usage_options TOOL: every option of the tool's usage line, one a line:
+# -x letters (split when bundled, as in [-lvV]) and --long names.
+usage_options () {
+	"$1" --no-such-option 2>&1 >/dev/null |
+	sed -n 's/^usage: //p' |
+	awk '{
+		for (i = 1; i <= NF; i++) {
+			w = $i
+			gsub(/[][]/, "", w)
+			if (w ~ /^--[a-z]/) {
+				sub(/[^a-z-].*$/, "", w)
+				print w
+			} else if (w ~ /^-[A-Za-z]/) {
+				for (j = 2; j <= length(w); j++)
+					if (substr(w, j, 1) ~ /[A-Za-z]/)
+						print "-" substr(w, j, 1)
+					else
+						break
+			}
+		}
+	}' |
+	sort -u
+}

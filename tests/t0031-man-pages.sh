@@ -2,30 +2,6 @@
 test_description='the man pages render cleanly and document every option'
 . "$srcdir/tests/lib.sh"
 
-# Every option in a tool's usage line: -x letters (split when bundled, as
-# in [-lvV]) and --long names, one a line.
-usage_options () {
-	"$1" --no-such-option 2>&1 >/dev/null |
-	sed -n 's/^usage: //p' |
-	awk '{
-		for (i = 1; i <= NF; i++) {
-			w = $i
-			gsub(/[][]/, "", w)
-			if (w ~ /^--[a-z]/) {
-				sub(/[^a-z-].*$/, "", w)
-				print w
-			} else if (w ~ /^-[A-Za-z]/) {
-				for (j = 2; j <= length(w); j++)
-					if (substr(w, j, 1) ~ /[A-Za-z]/)
-						print "-" substr(w, j, 1)
-					else
-						break
-			}
-		}
-	}' |
-	sort -u
-}
-
 if command -v groff >/dev/null 2>&1
 then
 	for page in "$srcdir"/doc/*.[157]

@@ -2,29 +2,6 @@
 test_description='reflect-shade(1) and the mode pages document every option and parameter'
 . "$srcdir/tests/lib.sh"
 
-# Every option in the usage line, one a line (as tests/t0031 does it).
-usage_options () {
-	"$1" --no-such-option 2>&1 >/dev/null |
-	sed -n 's/^usage: //p' |
-	awk '{
-		for (i = 1; i <= NF; i++) {
-			w = $i
-			gsub(/[][]/, "", w)
-			if (w ~ /^--[a-z]/) {
-				sub(/[^a-z-].*$/, "", w)
-				print w
-			} else if (w ~ /^-[A-Za-z]/) {
-				for (j = 2; j <= length(w); j++)
-					if (substr(w, j, 1) ~ /[A-Za-z]/)
-						print "-" substr(w, j, 1)
-					else
-						break
-			}
-		}
-	}' |
-	sort -u
-}
-
 # documented PAGE WORD...: the page (roff, dashes escaped) names each.
 documented () {
 	page=$1
