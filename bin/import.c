@@ -4,7 +4,7 @@
 #include <string.h>
 
 #include "cli.h"
-#include "probe_opts.h"
+#include "cli_probe.h"
 #include "reflect/import.h"
 
 static void

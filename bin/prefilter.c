@@ -5,7 +5,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "envmap_opts.h"
+#include "cli_envmap.h"
 
 static void
 usage(void)

@@ -3,7 +3,7 @@
 #include <string.h>
 
 #include "cli.h"
-#include "probe_opts.h"
+#include "cli_probe.h"
 
 static void
 usage(void)

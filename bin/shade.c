@@ -6,8 +6,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "envmap_opts.h"
-#include "probe_opts.h"
+#include "cli_envmap.h"
+#include "cli_probe.h"
 #include "reflect/shading.h"
 
 static void

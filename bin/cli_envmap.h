@@ -1,7 +1,7 @@
 /* Loading environments: the options reflect-prefilter and reflect-shade
  * share (--env, --layout, --prefiltered, --rgbm, ...). */
-#ifndef REFLECT_ENVMAP_OPTS_H
-#define REFLECT_ENVMAP_OPTS_H
+#ifndef REFLECT_CLI_ENVMAP_H
+#define REFLECT_CLI_ENVMAP_H
 
 #include "cli.h"
 #include "reflect/envmap.h"

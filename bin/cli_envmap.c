@@ -4,7 +4,7 @@
 #include <string.h>
 #include <strings.h>
 
-#include "envmap_opts.h"
+#include "cli_envmap.h"
 
 void
 envmap_opts_init(struct envmap_opts *o)

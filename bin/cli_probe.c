@@ -3,7 +3,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "probe_opts.h"
+#include "cli_probe.h"
 
 /* n numbers separated by commas or spaces; 0 on success. */
 static int

@@ -1,6 +1,6 @@
 /* The probe vocabulary shared by the tools: --box, --center, header keys. */
-#ifndef REFLECT_PROBE_OPTS_H
-#define REFLECT_PROBE_OPTS_H
+#ifndef REFLECT_CLI_PROBE_H
+#define REFLECT_CLI_PROBE_H
 
 #include "cli.h"
 
