@@ -23,9 +23,11 @@ reflection_vector(const float n[3], const float v[3], float r[3])
 	r[2] = 2.0f * d * n[2] - v[2];
 	len = sqrtf(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
 	if (len > 0.0f) {
-		r[0] /= len;
-		r[1] /= len;
-		r[2] /= len;
+		float inv = 1.0f / len;
+
+		r[0] *= inv;
+		r[1] *= inv;
+		r[2] *= inv;
 	}
 }
 
@@ -80,8 +82,10 @@ lookup_from_hit(const struct rf_probe *probe, const float p[3],
 	len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 	*probe_dist = len;
 	if (len > 0.0f) {
+		float inv = 1.0f / len;
+
 		for (i = 0; i < 3; i++)
-			lookup[i] = d[i] / len;
+			lookup[i] = d[i] * inv;
 	} else {
 		for (i = 0; i < 3; i++)
 			lookup[i] = dir[i];
