@@ -45,7 +45,7 @@ extern "C" {
 /* What a plugin is for: the tool that loads it. */
 enum rf_plugin_kind {
 	RF_KIND_PROJECTION = 1, /* reflect-project: lookup direction and distances */
-	RF_KIND_SHADE = 2,      /* reflect-shade: environment radiance per pixel */
+	RF_KIND_SHADE = 2,      /* reflect-shade: roughness.eff, or spec.R G B */
 	RF_KIND_OCCLUSION = 3,  /* reflect-occlude: specular occlusion term */
 	RF_KIND_ACCUMULATE = 4  /* reflect-accumulate: combines frames */
 };
