@@ -176,6 +176,29 @@ parse_count(const char *arg, int opt, size_t min, size_t max)
 	return (size_t)v;
 }
 
+double
+parse_number(const char *name, const char *arg, double lo, double hi)
+{
+	char *end;
+	double v;
+
+	errno = 0;
+	v = strtod(arg, &end);
+	if (end == arg || *end || errno == ERANGE || !isfinite(v) || v < lo || v > hi)
+		die("--%s: '%s' is not a number in [%g, %g]", name, arg, lo, hi);
+	return v;
+}
+
+enum rf_format
+parse_format(const char *arg)
+{
+	if (!strcmp(arg, "a"))
+		return RF_FORMAT_ASCII;
+	if (strcmp(arg, "f"))
+		die("option -f: '%s' is not a data format (a: ascii, f: float)", arg);
+	return RF_FORMAT_FLOAT;
+}
+
 void
 parse_floats(const char *arg, const char *what, float *out, int n)
 {

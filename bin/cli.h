@@ -38,6 +38,10 @@ void fshut(FILE *fp, const char *name);
 void print_version(void);
 /* Parses a decimal count in [min, max] for option `opt`. */
 size_t parse_count(const char *arg, int opt, size_t min, size_t max);
+/* Parses a finite number in [lo, hi] for long option --name. */
+double parse_number(const char *name, const char *arg, double lo, double hi);
+/* -f a|f: the stream's data format. */
+enum rf_format parse_format(const char *arg);
 /* Parses n comma-separated finite numbers for option `what`. */
 void parse_floats(const char *arg, const char *what, float *out, int n);
 

@@ -9,12 +9,7 @@ cli_io_option(struct cli_io *io, int opt, const char *arg)
 {
 	switch (opt) {
 	case 'f':
-		if (!strcmp(arg, "a"))
-			io->format = RF_FORMAT_ASCII;
-		else if (!strcmp(arg, "f"))
-			io->format = RF_FORMAT_FLOAT;
-		else
-			die("option -f: '%s' is not a data format (a: ascii, f: float)", arg);
+		io->format = parse_format(arg);
 		return 1;
 	case 'h':
 		io->no_header = 1;

@@ -88,8 +88,7 @@ main(int argc, char **argv)
 		case 'V': print_version(); break;
 		case 'c': add_map(&o, optarg); break;
 		case 'f':
-			if (!strcmp(optarg, "a")) o.format = RF_FORMAT_ASCII;
-			else if (strcmp(optarg, "f")) die("option -f: '%s' is not a or f", optarg);
+			o.format = parse_format(optarg);
 			break;
 		case 'h': o.no_header = 1; break;
 		case 'P':

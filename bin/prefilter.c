@@ -48,17 +48,6 @@ progress(void *arg, double done, double total)
 		fputc('\n', stderr);
 }
 
-static double
-parse_number(const char *name, const char *arg, double lo, double hi)
-{
-	char *end;
-	double v = strtod(arg, &end);
-
-	if (end == arg || *end || !isfinite(v) || v < lo || v > hi)
-		die("--%s: '%s' is not a number in [%g, %g]", name, arg, lo, hi);
-	return v;
-}
-
 static void
 dump_levels(const rf_cubemap *c, const char *spec)
 {
@@ -175,8 +164,7 @@ main(int argc, char **argv)
 		case 's': o.pf.samples = (unsigned)parse_count(optarg, 's', 1, 1 << 16); break;
 		case 'j': threads = optarg; break;
 		case 'f':
-			if (!strcmp(optarg, "a")) o.format = RF_FORMAT_ASCII;
-			else if (strcmp(optarg, "f")) die("option -f: '%s' is not a or f", optarg);
+			o.format = parse_format(optarg);
 			break;
 		case 'h': o.no_header = 1; break;
 		case 'L': o.levels = parse_count(optarg, 'L', 2, 16); break;

@@ -105,17 +105,6 @@ host_lod_to_roughness(void *ctx, float lod)
 }
 
 static double
-parse_number(const char *name, const char *arg, double lo, double hi)
-{
-	char *end;
-	double v = strtod(arg, &end);
-
-	if (end == arg || *end || !isfinite(v) || v < lo || v > hi)
-		die("--%s: '%s' is not a number in [%g, %g]", name, arg, lo, hi);
-	return v;
-}
-
-static double
 parse_whole(const char *name, const char *arg, double hi)
 {
 	double v = parse_number(name, arg, 0, hi);
