@@ -10,23 +10,20 @@
 #include "reflect/envmap.h"
 
 /* One precomputed GGX sample of a level: the direction of L in the frame
- * of N (= V), its N.L weight and the source lod its footprint matches. */
+ * of N (= V) and where it reads the source (the levels its footprint
+ * matches).  All samples weigh the same (see make_samples). */
 struct lobe_sample {
 	float l[3];
-	float weight;
-	float lod;
-	struct rf__lod fetch; /* where that lod reads */
+	struct rf__lod fetch;
 };
 
 struct job {
 	const rf_cubemap *src; /* level 0 and its box chain */
-	const struct rf__pyramid *pyramid; /* the same, for fast sampling */
 	rf_cubemap *out;
 	size_t level;
 	float roughness;
 	const struct lobe_sample *samples;
 	size_t nsamples;
-	float weight_sum;
 	enum rf_prefilter_method method;
 	atomic_size_t next_row; /* rows of all six faces, 6 * n */
 	size_t rows;
@@ -77,9 +74,10 @@ ggx_d(double a, double cos_h)
 #define LOBE_TABLE 4096
 
 static size_t
-make_samples(struct lobe_sample *s, size_t k, double alpha, size_t n0, float bias,
-             float *weight_sum)
+make_samples(struct lobe_sample *s, size_t k, double alpha,
+             const struct rf__pyramid *pyramid, float bias)
 {
+	size_t n0 = pyramid->size[0];
 	static const double half_pi = M_PI / 2.0;
 	double omega_texel = 4.0 / ((double)n0 * (double)n0);
 	double *cdf = malloc((LOBE_TABLE + 1) * sizeof(double));
@@ -115,11 +113,10 @@ make_samples(struct lobe_sample *s, size_t k, double alpha, size_t n0, float bia
 		s[i].l[0] = (float)(st * cos(phi));
 		s[i].l[1] = (float)(st * sin(phi));
 		s[i].l[2] = (float)cos(th);
-		s[i].weight = 1.0f;
-		s[i].lod = (float)(0.5 * log2(omega_s / omega_texel) + bias);
+		s[i].fetch = rf__pyramid_lod(pyramid,
+		                             (float)(0.5 * log2(omega_s / omega_texel) + bias));
 	}
 	free(cdf);
-	*weight_sum = (float)k;
 	return k;
 }
 
@@ -164,11 +161,11 @@ filtered_texel(const struct job *jb, const float n[3], float rgb[3])
 		d[0] = s->l[0] * t[0] + s->l[1] * b[0] + s->l[2] * n[0];
 		d[1] = s->l[0] * t[1] + s->l[1] * b[1] + s->l[2] * n[1];
 		d[2] = s->l[0] * t[2] + s->l[1] * b[2] + s->l[2] * n[2];
-		acc += s->weight * rf__pyramid_fetch(d, &s->fetch);
+		acc += rf__pyramid_fetch(d, &s->fetch);
 	}
-	rgb[0] = acc[0] / jb->weight_sum;
-	rgb[1] = acc[1] / jb->weight_sum;
-	rgb[2] = acc[2] / jb->weight_sum;
+	rgb[0] = acc[0] / (float)jb->nsamples;
+	rgb[1] = acc[1] / (float)jb->nsamples;
+	rgb[2] = acc[2] / (float)jb->nsamples;
 }
 
 /*
@@ -430,15 +427,10 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 		} else {
 			jb.samples = samples;
 			jb.nsamples = make_samples(samples, rf_prefilter_level_samples(o->samples, k),
-			                           (double)jb.roughness * jb.roughness, n0,
-			                           o->lod_bias, &jb.weight_sum);
-			jb.pyramid = &pyramid;
-			for (t = 0; t < (int)jb.nsamples; t++)
-				samples[t].fetch = rf__pyramid_lod(&pyramid, samples[t].lod);
-			if (!jb.nsamples || !(jb.weight_sum > 0.0f)) {
-				rf__format(err, errlen, "level %zu: no GGX sample above the "
-				           "horizon at roughness %g", k, (double)jb.roughness);
-				rc = RF_EINVAL;
+			                           (double)jb.roughness * jb.roughness, &pyramid,
+			                           o->lod_bias);
+			if (!jb.nsamples) {
+				rc = RF_ENOMEM;
 				goto out;
 			}
 		}
