@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "internal.h"
+#include "lobe_simd.h"
 #include "pyramid.h"
 #include "reflect/envmap.h"
 
@@ -24,6 +25,9 @@ struct job {
 	float roughness;
 	const struct lobe_sample *samples;
 	size_t nsamples;
+	/* The same samples as columns, for the vector kernel, when usable. */
+	const struct rf__lobe_table *table;
+	const struct rf__pyramid *pyramid;
 	enum rf_prefilter_method method;
 	atomic_size_t next_row; /* rows of all six faces, 6 * n */
 	size_t rows;
@@ -151,10 +155,14 @@ filtered_texel(const struct job *jb, const float n[3], float rgb[3])
 {
 	float t[3], b[3];
 	rf__v4 acc = { 0, 0, 0, 0 };
-	size_t i;
+	size_t i = 0;
 
 	frame(n, t, b);
-	for (i = 0; i < jb->nsamples; i++) {
+	if (jb->table) {
+		i = jb->nsamples & ~(size_t)7;
+		acc = rf__lobe_sum8(jb->table, i, jb->pyramid, n, t, b);
+	}
+	for (; i < jb->nsamples; i++) {
 		const struct lobe_sample *s = &jb->samples[i];
 		float d[3];
 
@@ -343,6 +351,8 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 	size_t levels = rf_cubemap_levels(out), k, base, total = 0, done = 0;
 	float steps = o->steps > 0.0f ? o->steps : (float)(levels - 1);
 	struct lobe_sample *samples = NULL;
+	struct rf__lobe_table table = { 0 };
+	int vector = 0;
 	rf_cubemap *chain = NULL;
 	struct rf__pyramid pyramid = { 0 };
 	float *dirs = NULL, *omega = NULL, *radiance = NULL;
@@ -391,6 +401,12 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 		rc = RF_ENOMEM;
 		goto out;
 	}
+	if (o->method == RF_PREFILTER_FILTERED && rf__lobe_simd_usable(&pyramid)) {
+		if ((rc = rf__lobe_table_alloc(&table, rf_prefilter_level_samples(o->samples,
+		                                                                   levels - 1))) < 0)
+			goto out;
+		vector = 1;
+	}
 	for (k = 1; k < levels; k++)
 		total += 6 * rf_cubemap_level_size(out, k);
 	for (k = 1; k < levels; k++) {
@@ -433,6 +449,15 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 				rc = RF_ENOMEM;
 				goto out;
 			}
+			if (vector) {
+				size_t i;
+
+				for (i = 0; i < jb.nsamples; i++)
+					rf__lobe_table_set(&table, i, samples[i].l, &samples[i].fetch,
+					                   &pyramid);
+				jb.table = &table;
+				jb.pyramid = &pyramid;
+			}
 		}
 		for (t = 1; t < nthreads; t++)
 			started[t] = pthread_create(&tid[t], NULL, work, &jb) == 0;
@@ -447,6 +472,7 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 	}
 out:
 	free(samples);
+	rf__lobe_table_free(&table);
 	free(dirs);
 	free(omega);
 	free(radiance);
