@@ -23,21 +23,35 @@ static void
 run(void *state, const struct rf_span *span)
 {
 	const struct rf_probe *probe = state;
+	const struct box box = box_of_probe(probe);
+	const int projecting = probe->box_projection;
 	const float *in = span->in;
 	float *out = span->out;
 	uint32_t i;
 
+	/* Each pixel is worked out in locals and stored once: the output
+	 * could alias the input as far as the compiler knows, and stores
+	 * between reads would make it read P again. */
 	for (i = 0; i < span->npix; i++, in += 9, out += 8) {
-		reflection_vector(in + 3, in + 6, out);
-		if (!probe->box_projection ||
-		    box_exit(probe, in, out, &out[6]) != 0) {
-			out[3] = out[0];
-			out[4] = out[1];
-			out[5] = out[2];
-			out[6] = out[7] = INFINITY;
-			continue;
+		float p[3] = { in[0], in[1], in[2] }, r[3], d[3], hit, reach;
+
+		reflection_vector(in + 3, in + 6, r);
+		if (projecting && box_exit(&box, p, r, &hit) == 0) {
+			lookup_from_hit(&box, p, r, hit, d, &reach);
+		} else {
+			d[0] = r[0];
+			d[1] = r[1];
+			d[2] = r[2];
+			hit = reach = INFINITY;
 		}
-		lookup_from_hit(probe, in, out, out[6], out + 3, &out[7]);
+		out[0] = r[0];
+		out[1] = r[1];
+		out[2] = r[2];
+		out[3] = d[0];
+		out[4] = d[1];
+		out[5] = d[2];
+		out[6] = hit;
+		out[7] = reach;
 	}
 }
 

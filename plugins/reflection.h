@@ -15,20 +15,21 @@
 static inline void
 reflection_vector(const float n[3], const float v[3], float r[3])
 {
-	float d = n[0] * v[0] + n[1] * v[1] + n[2] * v[2];
-	float len;
+	float nx = n[0], ny = n[1], nz = n[2], vx = v[0], vy = v[1], vz = v[2];
+	float d2 = 2.0f * (nx * vx + ny * vy + nz * vz);
+	float rx = d2 * nx - vx, ry = d2 * ny - vy, rz = d2 * nz - vz;
+	float len = sqrtf(rx * rx + ry * ry + rz * rz);
 
-	r[0] = 2.0f * d * n[0] - v[0];
-	r[1] = 2.0f * d * n[1] - v[1];
-	r[2] = 2.0f * d * n[2] - v[2];
-	len = sqrtf(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
 	if (len > 0.0f) {
 		float inv = 1.0f / len;
 
-		r[0] *= inv;
-		r[1] *= inv;
-		r[2] *= inv;
+		rx *= inv;
+		ry *= inv;
+		rz *= inv;
 	}
+	r[0] = rx;
+	r[1] = ry;
+	r[2] = rz;
 }
 
 /* Points this far outside the box (relative to its size) still count as
@@ -36,59 +37,100 @@ reflection_vector(const float n[3], const float v[3], float r[3])
  * come rounded from a renderer. */
 #define BOX_TOLERANCE 1e-4f
 
-/* Distance from p along unit dir to where it leaves the box; -1 when p
- * is outside the box (no exit to speak of). */
-static inline int
-box_exit(const struct rf_probe *probe, const float p[3], const float dir[3],
-         float *dist)
+typedef float box_v4 __attribute__((vector_size(16)));
+typedef int box_v4i __attribute__((vector_size(16)));
+
+/* A probe as the projection uses it, worked out once per span and held in
+ * locals (stores to the output, floats too, would otherwise make the
+ * compiler reload the probe for every pixel).  The three axes are lanes
+ * of one vector; the fourth lane is an axis with no walls. */
+struct box {
+	box_v4 lo, hi;             /* the box */
+	box_v4 outer_lo, outer_hi; /* the box grown by the tolerance */
+	float center[3];
+};
+
+static inline struct box
+box_of_probe(const struct rf_probe *probe)
 {
-	float t = INFINITY;
+	struct box b;
 	int i;
 
 	for (i = 0; i < 3; i++) {
-		float lo = probe->box_min[i], hi = probe->box_max[i];
-		float slack = BOX_TOLERANCE * (hi - lo), ti;
+		float slack = BOX_TOLERANCE * (probe->box_max[i] - probe->box_min[i]);
 
-		if (p[i] < lo - slack || p[i] > hi + slack)
-			return -1;
-		if (dir[i] > AXIS_EPSILON)
-			ti = (hi - p[i]) / dir[i];
-		else if (dir[i] < -AXIS_EPSILON)
-			ti = (lo - p[i]) / dir[i];
-		else
-			continue;
-		if (ti < t)
-			t = ti;
+		b.lo[i] = probe->box_min[i];
+		b.hi[i] = probe->box_max[i];
+		b.outer_lo[i] = b.lo[i] - slack;
+		b.outer_hi[i] = b.hi[i] + slack;
+		b.center[i] = probe->center[i];
 	}
-	if (t < 0.0f)
-		t = 0.0f; /* on a face (within the slack), leaving it */
-	if (!(t < INFINITY))
+	b.lo[3] = b.hi[3] = b.outer_hi[3] = INFINITY;
+	b.outer_lo[3] = -INFINITY;
+	return b;
+}
+
+/* Lane by lane: a where mask is set (all ones), else b. */
+static inline box_v4
+box_select(box_v4i mask, box_v4 a, box_v4 b)
+{
+	return (box_v4)(((box_v4i)a & mask) | ((box_v4i)b & ~mask));
+}
+
+/* Distance from p along unit dir to where it leaves the box; -1 when p
+ * is outside the box (no exit to speak of). */
+static inline int
+box_exit(const struct box *b, const float p[3], const float dir[3], float *dist)
+{
+	const box_v4 inf = { INFINITY, INFINITY, INFINITY, INFINITY };
+	box_v4 pv = { p[0], p[1], p[2], 0.0f }, dv = { dir[0], dir[1], dir[2], 1.0f };
+	box_v4 ad = { fabsf(dir[0]), fabsf(dir[1]), fabsf(dir[2]), 1.0f };
+	/* Per axis the wall ahead is the farther of the two planes along the
+	 * ray, whatever its sign: the same quotient as choosing the wall by
+	 * the sign, without a branch that mispredicts from pixel to pixel.
+	 * An axis the ray hardly moves along has no exit (its x/0 is
+	 * computed and thrown away). */
+	box_v4 to_hi = (b->hi - pv) / dv, to_lo = (b->lo - pv) / dv;
+	box_v4 t = box_select(to_hi > to_lo, to_hi, to_lo);
+	box_v4i outside = (pv < b->outer_lo) | (pv > b->outer_hi);
+	float tmin;
+
+	t = box_select(ad > AXIS_EPSILON, t, inf);
+	if (outside[0] | outside[1] | outside[2])
+		return -1;
+	tmin = t[0] < t[1] ? t[0] : t[1];
+	tmin = t[2] < tmin ? t[2] : tmin;
+	if (tmin < 0.0f)
+		tmin = 0.0f; /* on a face (within the slack), leaving it */
+	if (!(tmin < INFINITY))
 		return -1; /* zero direction */
-	*dist = t;
+	*dist = tmin;
 	return 0;
 }
 
 /* From the hit at p + dir * dist: the unit lookup direction from the
- * capture point and the distance from the capture point to the hit. */
+ * capture point and the distance from the capture point to the hit.
+ * Written out by component: a loop over an array kept it in memory. */
 static inline void
-lookup_from_hit(const struct rf_probe *probe, const float p[3],
-                const float dir[3], float dist, float lookup[3], float *probe_dist)
+lookup_from_hit(const struct box *b, const float p[3], const float dir[3], float dist,
+                float lookup[3], float *probe_dist)
 {
-	float d[3], len;
-	int i;
+	float dx = p[0] + dir[0] * dist - b->center[0];
+	float dy = p[1] + dir[1] * dist - b->center[1];
+	float dz = p[2] + dir[2] * dist - b->center[2];
+	float len = sqrtf(dx * dx + dy * dy + dz * dz);
 
-	for (i = 0; i < 3; i++)
-		d[i] = p[i] + dir[i] * dist - probe->center[i];
-	len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 	*probe_dist = len;
 	if (len > 0.0f) {
 		float inv = 1.0f / len;
 
-		for (i = 0; i < 3; i++)
-			lookup[i] = d[i] * inv;
+		lookup[0] = dx * inv;
+		lookup[1] = dy * inv;
+		lookup[2] = dz * inv;
 	} else {
-		for (i = 0; i < 3; i++)
-			lookup[i] = dir[i];
+		lookup[0] = dir[0];
+		lookup[1] = dir[1];
+		lookup[2] = dir[2];
 	}
 }
 
