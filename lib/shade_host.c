@@ -1,11 +1,12 @@
 /* The sampling pass of reflect-shade: effective roughness -> lod -> the
  * environment, per row, on several threads. */
 #include <math.h>
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "internal.h"
+#include "pixels.h"
+#include "pool.h"
 #include "pyramid.h"
 #include "reflect/shading.h"
 
@@ -35,13 +36,6 @@ static const char *const out_names[OUT_COUNT] = {
 	"spec.R", "spec.G", "spec.B", "R", "G", "B"
 };
 
-struct job {
-	rf_shade *s;
-	const float *in;
-	float *out;
-	size_t nrows;
-};
-
 struct rf_shade {
 	int final, nthreads, mode_radiance;
 	int in[IN_COUNT];
@@ -56,6 +50,10 @@ struct rf_shade {
 	struct rf__pyramid pyramid;
 	enum rf_mapping mapping;
 	float steps;
+	struct rf__pool *pool;
+	/* The block rf_shade_run is running. */
+	const float *block_in;
+	float *block_out;
 };
 
 int
@@ -72,6 +70,10 @@ rf_shade_create(rf_shade **sp, const struct rf_shade_options *o)
 	if (s->nthreads > THREADS_MAX)
 		s->nthreads = THREADS_MAX;
 	s->nout = s->final ? OUT_COUNT : OUT_R;
+	if (rf__pool_new(&s->pool, s->nthreads) < 0) {
+		free(s);
+		return RF_ENOMEM;
+	}
 	*sp = s;
 	return 0;
 }
@@ -81,6 +83,7 @@ rf_shade_destroy(rf_shade *s)
 {
 	if (!s)
 		return;
+	rf__pool_free(s->pool);
 	rf_header_free(s->out_h);
 	rf__pyramid_free(&s->pyramid);
 	free(s);
@@ -269,61 +272,29 @@ shade_pixel(const rf_shade *s, const float *p, float *o)
 		o[s->out[OUT_R + k]] = m * rgb[k] + (1.0f - m) * wall[k];
 }
 
-static void *
-work(void *arg)
+/* Row r of the block, on any thread: the pass keeps no state per thread. */
+static void
+shade_row(void *arg, size_t r, int thread)
 {
-	struct job *j = arg;
-	const rf_shade *s = j->s;
-	size_t n = j->nrows * s->ncols, x;
+	const rf_shade *s = arg;
+	const float *in = s->block_in + r * s->ncols * s->in_ncomp;
+	float *out = s->block_out + r * s->ncols * s->out_ncomp;
+	size_t x;
 
-	for (x = 0; x < n; x++) {
-		const float *p = j->in + x * s->in_ncomp;
-		float *o = j->out + x * s->out_ncomp;
-
-		size_t c;
-
-		memcpy(o, p, s->in_ncomp * sizeof(float));
-		for (c = s->in_ncomp; c < s->out_ncomp; c++)
-			o[c] = 0.0f; /* a few channels: no call */
-		shade_pixel(s, p, o);
-	}
-	return NULL;
+	(void)thread;
+	if (in != out)
+		rf__widen_pixels(out, s->out_ncomp, in, s->in_ncomp, s->ncols);
+	for (x = 0; x < s->ncols; x++)
+		shade_pixel(s, in + x * s->in_ncomp, out + x * s->out_ncomp);
 }
 
 int
 rf_shade_run(rf_shade *s, const float *in, float *out, size_t nrows)
 {
-	pthread_t tid[THREADS_MAX];
-	struct job jobs[THREADS_MAX];
-	unsigned char running[THREADS_MAX] = { 0 };
-	size_t per, done = 0;
-	int n = s->nthreads, t;
-
-	if (!s->out_h || !s->env)
+	if (!s->out_h || !s->env || (in == out && s->in_ncomp != s->out_ncomp))
 		return RF_EINVAL;
-	if (nrows == 0)
-		return 0;
-	if ((size_t)n > nrows)
-		n = (int)nrows;
-	per = (nrows + (size_t)n - 1) / (size_t)n;
-	for (t = 0; t < n && done < nrows; t++) {
-		struct job *j = &jobs[t];
-
-		j->s = s;
-		j->nrows = nrows - done < per ? nrows - done : per;
-		j->in = in + done * s->ncols * s->in_ncomp;
-		j->out = out + done * s->ncols * s->out_ncomp;
-		done += j->nrows;
-		if (t == 0)
-			continue;
-		if (pthread_create(&tid[t], NULL, work, j) == 0)
-			running[t] = 1;
-		else
-			work(j); /* no thread to be had: do it here */
-	}
-	work(&jobs[0]);
-	for (t = 1; t < n; t++)
-		if (running[t])
-			pthread_join(tid[t], NULL);
+	s->block_in = in;
+	s->block_out = out;
+	rf__pool_run(s->pool, nrows, shade_row, s);
 	return 0;
 }

@@ -1,20 +1,18 @@
 /* Running a per-pixel plugin over blocks of rows, on several threads. */
 #include <errno.h>
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "internal.h"
+#include "pixels.h"
+#include "pool.h"
 #include "reflect/plugin.h"
 
+/* What each thread has of its own. */
 struct worker {
-	rf_stage *s;
-	void *state;
+	void *state;    /* the plugin's instance */
 	float *gather;  /* one row of the plugin's inputs */
 	float *scatter; /* one row of the plugin's outputs */
-	const float *in;
-	float *out;
-	size_t y, nrows;
 };
 
 struct rf_stage {
@@ -23,10 +21,18 @@ struct rf_stage {
 	struct worker *workers;
 	size_t nin, nout;
 	int *in_map, *out_map; /* plugin channel -> stream channel */
+	/* The same maps as runs of adjacent channels, copied as blocks. */
+	struct rf__run *in_runs, *out_runs;
+	size_t nin_runs, nout_runs;
 	rf_header *out_h;
 	size_t ncols, nrows, in_ncomp, out_ncomp, row_cap;
 	uint32_t frame;
 	size_t frames;
+	struct rf__pool *pool;
+	/* The block rf_stage_run is running. */
+	const float *block_in;
+	float *block_out;
+	size_t block_y;
 };
 
 static size_t
@@ -62,6 +68,8 @@ rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
 	*sp = NULL;
 	if (nthreads < 1)
 		nthreads = 1;
+	if (nthreads > 256)
+		nthreads = 256;
 	if (!(s = calloc(1, sizeof(*s))))
 		return RF_ENOMEM;
 	s->p = p;
@@ -70,15 +78,17 @@ rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
 	s->nout = list_length(p->outputs);
 	s->in_map = calloc(s->nin + 1, sizeof(int));
 	s->out_map = calloc(s->nout + 1, sizeof(int));
+	s->in_runs = calloc(s->nin + 1, sizeof(struct rf__run));
+	s->out_runs = calloc(s->nout + 1, sizeof(struct rf__run));
 	s->workers = calloc((size_t)nthreads, sizeof(struct worker));
-	if (!s->in_map || !s->out_map || !s->workers) {
+	if (!s->in_map || !s->out_map || !s->in_runs || !s->out_runs || !s->workers ||
+	    rf__pool_new(&s->pool, nthreads) < 0) {
 		rf_stage_destroy(s);
 		return RF_ENOMEM;
 	}
 	for (i = 0; i < nthreads; i++) {
 		char msg[400] = "";
 
-		s->workers[i].s = s;
 		if (p->create(host, values, &s->workers[i].state, msg, sizeof(msg))) {
 			one_line(msg, sizeof(msg));
 			rf__format(err, errlen, "mode '%s': %s", p->name,
@@ -99,6 +109,7 @@ rf_stage_destroy(rf_stage *s)
 
 	if (!s)
 		return;
+	rf__pool_free(s->pool);
 	for (i = 0; s->workers && i < s->nthreads; i++) {
 		if (s->workers[i].state)
 			s->p->destroy(s->workers[i].state);
@@ -108,6 +119,8 @@ rf_stage_destroy(rf_stage *s)
 	free(s->workers);
 	free(s->in_map);
 	free(s->out_map);
+	free(s->in_runs);
+	free(s->out_runs);
 	rf_header_free(s->out_h);
 	free(s);
 }
@@ -165,6 +178,8 @@ rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
 		}
 		s->out_map[i] = c;
 	}
+	s->nin_runs = rf__channel_runs(s->in_map, s->nin, 0, s->in_runs);
+	s->nout_runs = rf__channel_runs(s->out_map, s->nout, 1, s->out_runs);
 	if (frame_number(in, s->frames, &s->frame) < 0) {
 		rf__format(err, errlen, "FRAME='%s' is not a frame number",
 		           rf_header_get(in, "FRAME"));
@@ -199,13 +214,34 @@ rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
 	return 0;
 }
 
-static void *
-work(void *arg)
+int
+rf_stage_reserve_channel(rf_stage *s, const char *name)
 {
-	struct worker *w = arg;
-	rf_stage *s = w->s;
+	int c;
+
+	if (!s->out_h)
+		return RF_EINVAL;
+	if ((c = rf_header_find_channel(s->out_h, name)) >= 0)
+		return c;
+	if ((c = rf_header_add_channel(s->out_h, name)) < 0)
+		return c;
+	s->out_ncomp = rf_header_nchannels(s->out_h);
+	if (s->ncols * s->out_ncomp * sizeof(float) > RF_ROW_BYTES_MAX)
+		return RF_ETOOBIG;
+	return c;
+}
+
+/* One row of the block being run, on thread `thread`: its input passed
+ * through, the plugin's inputs gathered, run, its outputs scattered. */
+static void
+run_row(void *arg, size_t r, int thread)
+{
+	rf_stage *s = arg;
+	struct worker *w = &s->workers[thread];
+	const float *in = s->block_in + r * s->ncols * s->in_ncomp;
+	float *out = s->block_out + r * s->ncols * s->out_ncomp;
 	struct rf_span span;
-	size_t r, x, i;
+	size_t x, i;
 
 	memset(&span, 0, sizeof(span));
 	span.size = sizeof(span);
@@ -215,69 +251,36 @@ work(void *arg)
 	span.npix = (uint32_t)s->ncols;
 	span.in = w->gather;
 	span.out = w->scatter;
-	for (r = 0; r < w->nrows; r++) {
-		const float *in = w->in + r * s->ncols * s->in_ncomp;
-		float *out = w->out + r * s->ncols * s->out_ncomp;
+	span.y = (uint32_t)(s->block_y + r);
+	rf__widen_pixels(out, s->out_ncomp, in, s->in_ncomp, s->ncols);
+	for (x = 0; x < s->ncols; x++) {
+		const float *pi = in + x * s->in_ncomp;
+		float *g = w->gather + x * s->nin;
 
-		for (x = 0; x < s->ncols; x++) {
-			const float *pi = in + x * s->in_ncomp;
-			float *po = out + x * s->out_ncomp;
-			float *g = w->gather + x * s->nin;
-
-			memcpy(po, pi, s->in_ncomp * sizeof(float));
-			for (i = s->in_ncomp; i < s->out_ncomp; i++)
-				po[i] = 0.0f;
-			for (i = 0; i < s->nin; i++)
-				g[i] = pi[s->in_map[i]];
-		}
-		span.y = (uint32_t)(w->y + r);
-		s->p->run(w->state, &span);
-		for (x = 0; x < s->ncols; x++) {
-			float *po = out + x * s->out_ncomp;
-			const float *q = w->scatter + x * s->nout;
-
-			for (i = 0; i < s->nout; i++)
-				po[s->out_map[i]] = q[i];
-		}
+		for (i = 0; i < s->nin_runs; i++)
+			rf__copy_run(g + s->in_runs[i].dst, pi + s->in_runs[i].src,
+			             s->in_runs[i].len);
 	}
-	return NULL;
+	s->p->run(w->state, &span);
+	for (x = 0; x < s->ncols; x++) {
+		float *po = out + x * s->out_ncomp;
+		const float *q = w->scatter + x * s->nout;
+
+		for (i = 0; i < s->nout_runs; i++)
+			rf__copy_run(po + s->out_runs[i].dst, q + s->out_runs[i].src,
+			             s->out_runs[i].len);
+	}
 }
 
 int
 rf_stage_run(rf_stage *s, const float *in, float *out, size_t y, size_t nrows)
 {
-	pthread_t tid[256];
-	unsigned char running[256] = { 0 };
-	int n = s->nthreads, t;
-	size_t per, done = 0;
-
 	if (!s->out_h || y + nrows > s->nrows || y + nrows < y)
 		return RF_EINVAL;
-	if (nrows == 0)
-		return 0; /* worker 0 would otherwise rerun its last rows */
-	if ((size_t)n > nrows)
-		n = nrows ? (int)nrows : 1;
-	if (n > 256)
-		n = 256;
-	per = (nrows + (size_t)n - 1) / (size_t)n;
-	for (t = 0; t < n && done < nrows; t++) {
-		struct worker *w = &s->workers[t];
-
-		w->y = y + done;
-		w->nrows = nrows - done < per ? nrows - done : per;
-		w->in = in + done * s->ncols * s->in_ncomp;
-		w->out = out + done * s->ncols * s->out_ncomp;
-		done += w->nrows;
-		if (t == 0)
-			continue;
-		if (pthread_create(&tid[t], NULL, work, w) != 0)
-			work(w); /* no thread to be had: do it here */
-		else
-			running[t] = 1;
-	}
-	work(&s->workers[0]);
-	for (t = 1; t < n; t++)
-		if (running[t])
-			pthread_join(tid[t], NULL);
+	s->block_in = in;
+	s->block_out = out;
+	s->block_y = y;
+	/* A row is a task: threads that start late or run slow take fewer. */
+	rf__pool_run(s->pool, nrows, run_row, s);
 	return 0;
 }

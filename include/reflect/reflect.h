@@ -283,6 +283,11 @@ RF_EXTERN void rf_stage_destroy(rf_stage *s);
  * until the next call.  err names a missing channel. */
 RF_EXTERN int rf_stage_begin_frame(rf_stage *s, const rf_header *in,
                                    rf_header **out, char *err, size_t errlen);
+/* Appends a channel the stage leaves alone (it neither copies nor
+ * writes it) to the current frame's output header, for a later pass over
+ * the same rows to fill in place; returns its index, or the existing
+ * channel's of that name.  After rf_stage_begin_frame. */
+RF_EXTERN int rf_stage_reserve_channel(rf_stage *s, const char *name);
 /* Processes nrows rows starting at row y of the current frame. */
 RF_EXTERN int rf_stage_run(rf_stage *s, const float *in, float *out, size_t y,
                            size_t nrows);

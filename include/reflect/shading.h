@@ -88,7 +88,9 @@ RF_EXTERN int rf_shade_begin_frame(rf_shade *s, const rf_header *in,
 RF_EXTERN int rf_shade_set_environment(rf_shade *s, const rf_cubemap *env,
                                         enum rf_mapping mapping, float steps);
 /* nrows rows of the frame: in with the input header's channels, out with
- * the output header's. */
+ * the output header's.  When the input header has every output channel
+ * already (see rf_stage_reserve_channel) in may be out: the rows are
+ * shaded in place. */
 RF_EXTERN int rf_shade_run(rf_shade *s, const float *in, float *out, size_t nrows);
 
 #ifdef __cplusplus
