@@ -67,10 +67,22 @@ void cli_io_open(struct cli_io *io, const char *path);
 /* Next frame: 1 and *h set, 0 at the end of input; dies on errors. */
 int cli_io_next(struct cli_io *io, const rf_header **h);
 void cli_io_read(struct cli_io *io, float *buf, size_t nrows);
+/* Dies with the reader's message for error rc. */
+void cli_io_read_failed(struct cli_io *io, int rc);
 void cli_io_begin(struct cli_io *io, const rf_header *h);
 void cli_io_write(struct cli_io *io, const float *buf, size_t nrows);
 void cli_io_end_frame(struct cli_io *io);
 void cli_io_close(struct cli_io *io);
+
+/* Computes one block: n rows from row y, in to out (NULL without output). */
+typedef void cli_block_fn(void *arg, const float *in, float *out, size_t y, size_t n);
+/* Runs fn over a frame's nrows in blocks of `block` rows (in_floats and
+ * out_floats a row), reading ahead and writing behind on threads of their
+ * own; out_floats 0: no output.  Begin the output frame first.  Dies if
+ * a write fails; returns 0, or the error of a failed read for
+ * cli_io_read_failed once the caller has freed what it holds. */
+int cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
+                size_t out_floats, cli_block_fn *fn, void *arg);
 
 /* Rows a tool holds at once: a block of about this many bytes. */
 #define CLI_BLOCK_BYTES ((size_t)4 << 20)

@@ -102,6 +102,12 @@ cli_io_read(struct cli_io *io, float *buf, size_t nrows)
 }
 
 void
+cli_io_read_failed(struct cli_io *io, int rc)
+{
+	die_status(rc, rf_reader_error(io->reader));
+}
+
+void
 cli_io_begin(struct cli_io *io, const rf_header *h)
 {
 	int rc = rf_writer_begin_frame(io->writer, h);

@@ -29,6 +29,15 @@ header_get(void *ctx, const char *key)
 }
 
 static void
+project_block(void *stage, const float *in, float *out, size_t y, size_t n)
+{
+	int rc = rf_stage_run(stage, in, out, y, n);
+
+	if (rc < 0)
+		die_status(rc, NULL);
+}
+
+static void
 project_frame(struct cli_io *io, struct cli_mode *mode, const struct probe_opts *po,
               const char *spec, int nthreads, const rf_header *in)
 {
@@ -37,8 +46,7 @@ project_frame(struct cli_io *io, struct cli_mode *mode, const struct probe_opts 
 	char err[1024], perr[512];
 	rf_stage *stage;
 	rf_header *out;
-	float *bin, *bout;
-	size_t rows, y, n;
+	size_t rows;
 	int rc, prc;
 
 	memset(&host, 0, sizeof(host));
@@ -65,19 +73,13 @@ project_frame(struct cli_io *io, struct cli_mode *mode, const struct probe_opts 
 	                     CLI_BLOCK_BYTES);
 	if (rows > rf_header_nrows(in))
 		rows = rf_header_nrows(in);
-	bin = emalloc(rows * rf_header_ncols(in) * rf_header_nchannels(in) * sizeof(float));
-	bout = emalloc(rows * rf_header_ncols(out) * rf_header_nchannels(out) * sizeof(float));
-	for (y = 0; y < rf_header_nrows(in); y += n) {
-		n = rf_header_nrows(in) - y < rows ? rf_header_nrows(in) - y : rows;
-		cli_io_read(io, bin, n);
-		if ((rc = rf_stage_run(stage, bin, bout, y, n)) < 0)
-			die_status(rc, NULL);
-		cli_io_write(io, bout, n);
-	}
-	cli_io_end_frame(io);
-	free(bin);
-	free(bout);
+	rc = cli_blocks(io, rf_header_nrows(in), rows,
+	                rf_header_ncols(in) * rf_header_nchannels(in),
+	                rf_header_ncols(out) * rf_header_nchannels(out), project_block, stage);
 	rf_stage_destroy(stage);
+	if (rc < 0)
+		cli_io_read_failed(io, rc);
+	cli_io_end_frame(io);
 }
 
 int

@@ -2,7 +2,6 @@
 #include <fcntl.h>
 #include <getopt.h>
 #include <math.h>
-#include <pthread.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -244,107 +243,22 @@ check_frame(const struct shade_opts *o, rf_shade *shade, const rf_header *in,
 	rf_header_free(h);
 }
 
-/*
- * Reading the next block while this one is shaded and written: the stage
- * upstream keeps producing instead of waiting for us, and on a file the
- * copy out of the page cache overlaps the sampling.  Two input blocks; a
- * thread fills them in turn, the main thread takes them in turn.  Only
- * that thread touches the reader until the frame's last row is read.
- */
-struct prefetch {
-	struct cli_io *io;
-	float *buf[2];
-	size_t rows[2];
-	int full[2];
-	int take; /* the slot the main thread takes next */
-	size_t block, frame_rows;
-	pthread_t tid;
-	int threaded;
-	pthread_mutex_t mu;
-	pthread_cond_t cv;
+/* What a block of rows needs: the mode's stage, then the sampling pass
+ * over the stage's output in place (the stage reserves its channels). */
+struct shade_block {
+	rf_stage *stage;
+	rf_shade *shade;
 };
 
-static void *
-prefetch_run(void *arg)
-{
-	struct prefetch *p = arg;
-	size_t y, n;
-	int k = 0;
-
-	for (y = 0; y < p->frame_rows; y += n, k ^= 1) {
-		n = p->frame_rows - y < p->block ? p->frame_rows - y : p->block;
-		pthread_mutex_lock(&p->mu);
-		while (p->full[k])
-			pthread_cond_wait(&p->cv, &p->mu);
-		pthread_mutex_unlock(&p->mu);
-		cli_io_read(p->io, p->buf[k], n); /* dies on bad input */
-		pthread_mutex_lock(&p->mu);
-		p->rows[k] = n;
-		p->full[k] = 1;
-		pthread_cond_broadcast(&p->cv);
-		pthread_mutex_unlock(&p->mu);
-	}
-	return NULL;
-}
-
 static void
-prefetch_start(struct prefetch *p, struct cli_io *io, size_t block, size_t row_floats,
-               size_t frame_rows)
+shade_block(void *arg, const float *in, float *out, size_t y, size_t n)
 {
-	memset(p, 0, sizeof(*p));
-	p->io = io;
-	p->block = block;
-	p->frame_rows = frame_rows;
-	p->buf[0] = emalloc(block * row_floats * sizeof(float) + 1);
-	p->buf[1] = emalloc(block * row_floats * sizeof(float) + 1);
-	pthread_mutex_init(&p->mu, NULL);
-	pthread_cond_init(&p->cv, NULL);
-	p->threaded = pthread_create(&p->tid, NULL, prefetch_run, p) == 0;
-}
+	struct shade_block *sb = arg;
+	int rc;
 
-/* The next block in order, and its row count. */
-static float *
-prefetch_take(struct prefetch *p, size_t *n)
-{
-	int k = p->take;
-
-	if (!p->threaded) {
-		/* No thread to be had: read it here. */
-		*n = p->frame_rows < p->block ? p->frame_rows : p->block;
-		p->frame_rows -= *n;
-		cli_io_read(p->io, p->buf[0], *n);
-		return p->buf[0];
-	}
-	pthread_mutex_lock(&p->mu);
-	while (!p->full[k])
-		pthread_cond_wait(&p->cv, &p->mu);
-	*n = p->rows[k];
-	pthread_mutex_unlock(&p->mu);
-	return p->buf[k];
-}
-
-/* The block taken last is done with: it may be read into again. */
-static void
-prefetch_give_back(struct prefetch *p)
-{
-	if (!p->threaded)
-		return;
-	pthread_mutex_lock(&p->mu);
-	p->full[p->take] = 0;
-	p->take ^= 1;
-	pthread_cond_broadcast(&p->cv);
-	pthread_mutex_unlock(&p->mu);
-}
-
-static void
-prefetch_finish(struct prefetch *p)
-{
-	if (p->threaded)
-		pthread_join(p->tid, NULL);
-	pthread_mutex_destroy(&p->mu);
-	pthread_cond_destroy(&p->cv);
-	free(p->buf[0]);
-	free(p->buf[1]);
+	if ((rc = rf_stage_run(sb->stage, in, out, y, n)) < 0 ||
+	    (rc = rf_shade_run(sb->shade, out, out, n)) < 0)
+		die_status(rc, NULL);
 }
 
 static void
@@ -354,13 +268,16 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	struct host_ctx ctx = { in, env };
 	struct rf_host host;
 	struct rf_probe probe;
-	struct prefetch pf;
-	float centre[3], *center = NULL, *bin, *bmid, *bout;
+	struct shade_block sb;
+	float centre[3], *center = NULL;
 	char err[1024], perr[512], buf[64];
 	const char *name;
 	rf_stage *stage;
 	rf_header *mid, *out;
-	size_t rows, y, n, ncols = rf_header_ncols(in), nrows = rf_header_nrows(in);
+	static const char *const pass_channels[] = {
+		"spec.R", "spec.G", "spec.B", "R", "G", "B"
+	};
+	size_t rows, k, ncols = rf_header_ncols(in), nrows = rf_header_nrows(in);
 	int rc, prc;
 
 	prc = probe_resolve(&o->probe, in, &probe, perr, sizeof(perr));
@@ -397,6 +314,10 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 		die_status(rc, err);
 	if ((rc = rf_stage_begin_frame(stage, in, &mid, err, sizeof(err))) < 0)
 		die_status(rc, err);
+	/* The pass's channels, in the order it would append them. */
+	for (k = 0; k < (o->final ? 6u : 3u); k++)
+		if ((rc = rf_stage_reserve_channel(stage, pass_channels[k])) < 0)
+			die_status(rc, NULL);
 	if ((rc = rf_shade_begin_frame(shade, mid, center, &out, err, sizeof(err))) < 0)
 		die_status(rc, err);
 	/* The pass keeps a copy of the levels: made once per environment. */
@@ -420,22 +341,14 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	rows = rf_block_rows(ncols, rf_header_nchannels(out), CLI_BLOCK_BYTES);
 	if (rows > nrows)
 		rows = nrows ? nrows : 1;
-	prefetch_start(&pf, io, rows, ncols * rf_header_nchannels(in), nrows);
-	bmid = emalloc(rows * ncols * rf_header_nchannels(mid) * sizeof(float) + 1);
-	bout = emalloc(rows * ncols * rf_header_nchannels(out) * sizeof(float) + 1);
-	for (y = 0; y < nrows; y += n) {
-		bin = prefetch_take(&pf, &n);
-		if ((rc = rf_stage_run(stage, bin, bmid, y, n)) < 0 ||
-		    (rc = rf_shade_run(shade, bmid, bout, n)) < 0)
-			die_status(rc, NULL);
-		prefetch_give_back(&pf);
-		cli_io_write(io, bout, n);
-	}
-	prefetch_finish(&pf);
-	cli_io_end_frame(io);
-	free(bmid);
-	free(bout);
+	sb.stage = stage;
+	sb.shade = shade;
+	rc = cli_blocks(io, nrows, rows, ncols * rf_header_nchannels(in),
+	                ncols * rf_header_nchannels(out), shade_block, &sb);
 	rf_stage_destroy(stage);
+	if (rc < 0)
+		cli_io_read_failed(io, rc);
+	cli_io_end_frame(io);
 }
 
 /*

@@ -1,0 +1,217 @@
+/*
+ * A frame's rows in blocks, read ahead and written behind: while a stage
+ * computes block k, a reader thread fills block k + 1 and a writer thread
+ * sends block k - 1, so the time a pipe or a file takes overlaps the
+ * compute instead of adding to it.  Two buffers each way: the most a
+ * stage holds is four blocks.  Reads and writes keep stream order, so the
+ * output is the same bytes as a loop of read, compute, write.
+ *
+ * The threads never exit the process: a failed read or write is handed
+ * to the calling thread.  A failed write ends the process there, with the
+ * message a plain loop would give; a failed read (bad input) is returned
+ * once the threads are gone, so the caller can free its stage first and
+ * a memory checker sees nothing left behind.
+ */
+#include <errno.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+
+struct blocks {
+	struct cli_io *io;
+	size_t nrows, block, nblocks;
+	float *in[2], *out[2];
+	pthread_mutex_t mu;
+	pthread_cond_t cv;
+	/* Counts of blocks: read in, let go of by the compute, computed,
+	 * written out.  Block k lives in slot k % 2. */
+	size_t read, released, computed, written;
+	/* The first failure (an RF_E* code) and errno with it; stop tells
+	 * the threads to give up. */
+	int read_rc, read_errno, write_rc, write_errno, stop;
+};
+
+static size_t
+block_rows(const struct blocks *b, size_t k, size_t *y)
+{
+	*y = k * b->block;
+	return b->nrows - *y < b->block ? b->nrows - *y : b->block;
+}
+
+/* Waits, the lock held, until *count > k or something failed; returns
+ * whether to go on. */
+static int
+wait_past(struct blocks *b, const size_t *count, size_t k)
+{
+	while (*count <= k && !b->stop && !b->read_rc && !b->write_rc)
+		pthread_cond_wait(&b->cv, &b->mu);
+	return *count > k;
+}
+
+static void
+advance(struct blocks *b, size_t *count)
+{
+	pthread_mutex_lock(&b->mu);
+	(*count)++;
+	pthread_cond_broadcast(&b->cv);
+	pthread_mutex_unlock(&b->mu);
+}
+
+static void
+fail(struct blocks *b, int *rc, int *err, int code)
+{
+	pthread_mutex_lock(&b->mu);
+	*rc = code;
+	*err = errno;
+	pthread_cond_broadcast(&b->cv);
+	pthread_mutex_unlock(&b->mu);
+}
+
+static void *
+reader(void *arg)
+{
+	struct blocks *b = arg;
+	size_t k, y, n;
+	int rc, go;
+
+	for (k = 0; k < b->nblocks; k++) {
+		if (k >= 2) {
+			pthread_mutex_lock(&b->mu);
+			go = wait_past(b, &b->released, k - 2);
+			pthread_mutex_unlock(&b->mu);
+			if (!go)
+				break;
+		}
+		n = block_rows(b, k, &y);
+		if ((rc = rf_reader_read_rows(b->io->reader, b->in[k % 2], n)) < 0) {
+			fail(b, &b->read_rc, &b->read_errno, rc);
+			break;
+		}
+		advance(b, &b->read);
+	}
+	return NULL;
+}
+
+static void *
+writer(void *arg)
+{
+	struct blocks *b = arg;
+	size_t k, y, n;
+	int rc, go;
+
+	for (k = 0; k < b->nblocks; k++) {
+		pthread_mutex_lock(&b->mu);
+		go = wait_past(b, &b->computed, k);
+		pthread_mutex_unlock(&b->mu);
+		if (!go)
+			break;
+		n = block_rows(b, k, &y);
+		if ((rc = rf_writer_write_rows(b->io->writer, b->out[k % 2], n)) < 0) {
+			fail(b, &b->write_rc, &b->write_errno, rc);
+			break;
+		}
+		advance(b, &b->written);
+	}
+	return NULL;
+}
+
+/* Stops and joins the threads and frees the buffers; dies if a write
+ * failed, returns the error of a failed read. */
+static int
+finish(struct blocks *b, pthread_t *rt, pthread_t *wt)
+{
+	int i;
+
+	pthread_mutex_lock(&b->mu);
+	b->stop = 1;
+	pthread_cond_broadcast(&b->cv);
+	pthread_mutex_unlock(&b->mu);
+	if (b->write_rc) {
+		/* Not joined: the reader may wait on an upstream that waits
+		 * on nothing.  A closed pipe ends us quietly. */
+		errno = b->write_errno;
+		die_status(b->write_rc, rf_writer_error(b->io->writer));
+	}
+	if (rt)
+		pthread_join(*rt, NULL);
+	if (wt)
+		pthread_join(*wt, NULL);
+	pthread_mutex_destroy(&b->mu);
+	pthread_cond_destroy(&b->cv);
+	for (i = 0; i < 2; i++) {
+		free(b->in[i]);
+		free(b->out[i]);
+	}
+	errno = b->read_errno;
+	return b->read_rc;
+}
+
+int
+cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
+           size_t out_floats, cli_block_fn *fn, void *arg)
+{
+	struct blocks b;
+	pthread_t rt, wt;
+	int reading, writing, go, i;
+	size_t k, y, n;
+
+	if (!nrows)
+		return 0;
+	memset(&b, 0, sizeof(b));
+	b.io = io;
+	b.nrows = nrows;
+	b.block = block ? block : 1;
+	b.nblocks = (nrows + b.block - 1) / b.block;
+	for (i = 0; i < 2; i++) {
+		b.in[i] = emalloc(b.block * in_floats * sizeof(float) + 1);
+		b.out[i] = out_floats ? emalloc(b.block * out_floats * sizeof(float) + 1) : NULL;
+	}
+	pthread_mutex_init(&b.mu, NULL);
+	pthread_cond_init(&b.cv, NULL);
+	/* Without a thread (none to be had) its side is done here, in turn. */
+	writing = out_floats && pthread_create(&wt, NULL, writer, &b) == 0;
+	reading = pthread_create(&rt, NULL, reader, &b) == 0;
+	for (k = 0; k < b.nblocks; k++) {
+		n = block_rows(&b, k, &y);
+		if (!reading) {
+			int rc = rf_reader_read_rows(io->reader, b.in[k % 2], n);
+
+			if (rc < 0) {
+				b.read_rc = rc;
+				b.read_errno = errno;
+				break;
+			}
+		}
+		pthread_mutex_lock(&b.mu);
+		go = (!reading || wait_past(&b, &b.read, k)) &&
+		     (!writing || k < 2 || wait_past(&b, &b.written, k - 2));
+		pthread_mutex_unlock(&b.mu);
+		if (!go)
+			break;
+		fn(arg, b.in[k % 2], b.out[k % 2], y, n);
+		if (out_floats && !writing) {
+			int rc = rf_writer_write_rows(io->writer, b.out[k % 2], n);
+
+			if (rc < 0) {
+				b.write_rc = rc;
+				b.write_errno = errno;
+				break;
+			}
+		}
+		pthread_mutex_lock(&b.mu);
+		b.released++;
+		b.computed++;
+		pthread_cond_broadcast(&b.cv);
+		pthread_mutex_unlock(&b.mu);
+	}
+	/* The writer finishes its blocks before it sees stop. */
+	if (writing) {
+		pthread_mutex_lock(&b.mu);
+		while (b.written < b.computed && !b.write_rc)
+			pthread_cond_wait(&b.cv, &b.mu);
+		pthread_mutex_unlock(&b.mu);
+	}
+	return finish(&b, reading ? &rt : NULL, writing ? &wt : NULL);
+}
