@@ -358,7 +358,7 @@ envmap_load(const struct envmap_opts *o, struct rf_chain_info *info)
 	if (!o->path || !strcmp(o->path, "default")) {
 		if ((rc = rf_cubemap_new(&c, o->size ? o->size : 256, 1)) < 0)
 			die_status(rc, NULL);
-		rf_default_environment_cube(c);
+		rf_default_environment_cube_threads(c, o->nthreads);
 		return c;
 	}
 	if (!strcmp(o->path, "-"))

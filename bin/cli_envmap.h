@@ -14,6 +14,7 @@ struct envmap_opts {
 	struct rf_decode decode;
 	int strict;             /* -S: refuse NaN and Inf texels */
 	size_t size;            /* --size: face size of level 0 (0: the file's) */
+	int nthreads;           /* for rendering the embedded room */
 };
 
 void envmap_opts_init(struct envmap_opts *o);

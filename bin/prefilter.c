@@ -208,6 +208,7 @@ main(int argc, char **argv)
 	if (optind < argc)
 		eo.path = argv[optind];
 	o.pf.nthreads = cli_threads(threads);
+	eo.nthreads = o.pf.nthreads;
 	if (isatty(STDERR_FILENO))
 		o.pf.progress = progress;
 	src = envmap_load(&eo, &info);

@@ -476,6 +476,7 @@ main(int argc, char **argv)
 	if (list)
 		mode_list(RF_KIND_SHADE);
 	o.nthreads = cli_threads(threads);
+	o.env.nthreads = o.nthreads;
 	mode_load(&o.mode, RF_KIND_SHADE, o.spec, o.verbose);
 	so.final = o.final;
 	so.mode_radiance = mode_radiance(o.mode.plugin);

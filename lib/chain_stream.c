@@ -117,11 +117,14 @@ read_level(rf_reader *r, rf_cubemap *c, size_t k, const rf_header *h, char *err,
 				free(row);
 				return rc;
 			}
-			for (i = 0; i < n; i++) {
-				float *t = rf_cubemap_texel(c, k, (enum rf_face)f, i, j);
+			/* A face's row is contiguous, borders aside. */
+			float *t = rf_cubemap_texel(c, k, (enum rf_face)f, 0, j);
+			const float *p = row;
 
-				for (q = 0; q < 3; q++)
-					t[q] = row[i * nch + (size_t)ch[q]];
+			for (i = 0; i < n; i++, t += 3, p += nch) {
+				t[0] = p[ch[0]];
+				t[1] = p[ch[1]];
+				t[2] = p[ch[2]];
 			}
 		}
 	free(row);

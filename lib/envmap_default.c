@@ -1,6 +1,8 @@
 /* The embedded environment: the default room seen from its probe. */
 #include <math.h>
+#include <stdint.h>
 
+#include "pool.h"
 #include "reflect/envmap.h"
 
 /* The default scene's room and probe; the G-buffer's default scene uses
@@ -41,7 +43,7 @@ grid_distance(float x)
 {
 	float m = x / GRID - floorf(x / GRID);
 
-	return GRID * fminf(m, 1.0f - m);
+	return GRID * (m < 1.0f - m ? m : 1.0f - m); /* fminf is a call */
 }
 
 void
@@ -123,36 +125,59 @@ rf_default_environment(const float dir[3], float rgb[3])
 	rf_default_room_radiance(p, rgb);
 }
 
+/* Row `task` (face task / n, row task % n) of level 0. */
+static void
+render_row(void *arg, size_t task, int thread)
+{
+	enum { SUPER = 4 };
+	rf_cubemap *c = arg;
+	size_t n = rf_cubemap_level_size(c, 0), i, j = task % n;
+	enum rf_face f = (enum rf_face)(task / n);
+	int si, sj;
+
+	(void)thread;
+	for (i = 0; i < n; i++) {
+		float *out = rf_cubemap_texel(c, 0, f, i, j);
+		float acc[3] = { 0, 0, 0 };
+
+		/* Supersampling keeps the grid lines from aliasing. */
+		for (sj = 0; sj < SUPER; sj++)
+			for (si = 0; si < SUPER; si++) {
+				float d[3], rgb[3];
+
+				rf_cube_direction(f, ((float)i + ((float)si + 0.5f) / SUPER) / (float)n,
+				                  ((float)j + ((float)sj + 0.5f) / SUPER) / (float)n, d);
+				rf_default_environment(d, rgb);
+				acc[0] += rgb[0];
+				acc[1] += rgb[1];
+				acc[2] += rgb[2];
+			}
+		out[0] = acc[0] / (SUPER * SUPER);
+		out[1] = acc[1] / (SUPER * SUPER);
+		out[2] = acc[2] / (SUPER * SUPER);
+	}
+}
+
+void
+rf_default_environment_cube_threads(rf_cubemap *c, int nthreads)
+{
+	size_t n = rf_cubemap_level_size(c, 0), row;
+	struct rf__pool *pool = NULL;
+
+	/* Each texel is its own sum, so any thread count gives the same
+	 * bytes; without threads to be had, the caller renders it all. */
+	if (nthreads > 1 && rf__pool_new(&pool, nthreads) == 0) {
+		rf__pool_run(pool, 6 * n, render_row, c);
+		rf__pool_free(pool);
+	} else {
+		for (row = 0; row < 6 * n; row++)
+			render_row(c, row, 0);
+	}
+	rf_cubemap_seal_level(c, 0);
+}
+
 void
 rf_default_environment_cube(rf_cubemap *c)
 {
-	enum { SUPER = 4 };
-	size_t n = rf_cubemap_level_size(c, 0), i, j;
-	int f, si, sj;
-
-	for (f = 0; f < 6; f++)
-		for (j = 0; j < n; j++)
-			for (i = 0; i < n; i++) {
-				float *out = rf_cubemap_texel(c, 0, (enum rf_face)f, i, j);
-				float acc[3] = { 0, 0, 0 };
-
-				/* Supersampling keeps the grid lines from aliasing. */
-				for (sj = 0; sj < SUPER; sj++)
-					for (si = 0; si < SUPER; si++) {
-						float d[3], rgb[3];
-
-						rf_cube_direction((enum rf_face)f,
-						                  ((float)i + ((float)si + 0.5f) / SUPER) / (float)n,
-						                  ((float)j + ((float)sj + 0.5f) / SUPER) / (float)n,
-						                  d);
-						rf_default_environment(d, rgb);
-						acc[0] += rgb[0];
-						acc[1] += rgb[1];
-						acc[2] += rgb[2];
-					}
-				out[0] = acc[0] / (SUPER * SUPER);
-				out[1] = acc[1] / (SUPER * SUPER);
-				out[2] = acc[2] / (SUPER * SUPER);
-			}
-	rf_cubemap_seal_level(c, 0);
+	rf_default_environment_cube_threads(c, 1);
 }

@@ -36,7 +36,36 @@ struct rf__lod {
 
 int rf__pyramid_from_cube(struct rf__pyramid *p, const rf_cubemap *c);
 void rf__pyramid_free(struct rf__pyramid *p);
-struct rf__lod rf__pyramid_lod(const struct rf__pyramid *p, float lod);
+
+/* Where a read at this lod goes (clamped to the levels); inline, as the
+ * shading pass asks once a pixel. */
+static inline struct rf__lod
+rf__pyramid_lod(const struct rf__pyramid *p, float lod)
+{
+	struct rf__lod r;
+	float top = (float)(p->nlevels - 1);
+	size_t l0, l1;
+
+	if (!(lod > 0.0f))
+		lod = 0.0f;
+	if (lod > top)
+		lod = top;
+	l0 = (size_t)lod;
+	r.w1 = lod - (float)l0;
+	l1 = l0 + 1 < p->nlevels ? l0 + 1 : l0;
+	if (l1 == l0)
+		r.w1 = 0.0f;
+	r.w0 = 1.0f - r.w1;
+	r.scale[0] = r.scale[1] = (float)p->size[l0];
+	r.scale[2] = r.scale[3] = (float)p->size[l1];
+	r.base[0] = p->level[l0];
+	r.base[1] = p->level[l1];
+	r.face_stride[0] = p->face_stride[l0];
+	r.face_stride[1] = p->face_stride[l1];
+	r.row[0] = p->size[l0] + 2;
+	r.row[1] = p->size[l1] + 2;
+	return r;
+}
 
 static inline rf__v4
 rf__pyramid_bilinear(const rf__v4 *q, size_t row, float a, float b)

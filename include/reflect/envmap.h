@@ -234,6 +234,8 @@ RF_EXTERN void rf_default_environment(const float dir[3], float rgb[3]);
 RF_EXTERN void rf_default_room_radiance(const float point[3], float rgb[3]);
 /* Renders it into level 0 of a cube (supersampled) and seals it. */
 RF_EXTERN void rf_default_environment_cube(rf_cubemap *c);
+/* The same on nthreads threads (the same bytes at any count). */
+RF_EXTERN void rf_default_environment_cube_threads(rf_cubemap *c, int nthreads);
 
 #ifdef __cplusplus
 }

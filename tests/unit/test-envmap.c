@@ -429,6 +429,49 @@ TEST(edge_fixup_makes_edges_equal)
 	rf_cubemap_free(orig);
 }
 
+/* The embedded room renders to the same bytes on 1 and 3 threads, and a
+ * texel is the mean of the room over a 4 x 4 grid of points inside it. */
+TEST(default_room_threads)
+{
+	rf_cubemap *a, *b;
+	size_t n = 32, i, j;
+	int f;
+	const float *t;
+
+	ASSERT_EQ(rf_cubemap_new(&a, n, 1), 0);
+	ASSERT_EQ(rf_cubemap_new(&b, n, 1), 0);
+	rf_default_environment_cube(a);
+	rf_default_environment_cube_threads(b, 3);
+	for (f = 0; f < 6; f++)
+		for (j = 0; j < n; j++)
+			for (i = 0; i < n; i++)
+				ASSERT(!memcmp(rf_cubemap_texel_const(a, 0, (enum rf_face)f, i, j),
+				               rf_cubemap_texel_const(b, 0, (enum rf_face)f, i, j),
+				               3 * sizeof(float)));
+	for (f = 0; f < 6; f++) {
+		double want[3] = { 0, 0, 0 };
+		int si, sj, k;
+
+		i = 5 + 4 * (size_t)f;
+		j = 27 - 3 * (size_t)f;
+		for (sj = 0; sj < 4; sj++)
+			for (si = 0; si < 4; si++) {
+				float d[3], rgb[3];
+
+				rf_cube_direction((enum rf_face)f, ((float)i + (si + 0.5f) / 4) / (float)n,
+				                  ((float)j + (sj + 0.5f) / 4) / (float)n, d);
+				rf_default_environment(d, rgb);
+				for (k = 0; k < 3; k++)
+					want[k] += rgb[k] / 16.0;
+			}
+		t = rf_cubemap_texel_const(b, 0, (enum rf_face)f, i, j);
+		for (k = 0; k < 3; k++)
+			ASSERT_NEAR(t[k], want[k], 1e-5 * want[k] + 1e-6);
+	}
+	rf_cubemap_free(a);
+	rf_cubemap_free(b);
+}
+
 int
 main(void)
 {
@@ -443,5 +486,6 @@ main(void)
 	RUN(chain_stream_roundtrip);
 	RUN(chain_exr_roundtrip);
 	RUN(edge_fixup_makes_edges_equal);
+	RUN(default_room_threads);
 	TAP_DONE();
 }
