@@ -256,8 +256,7 @@ shade_block(void *arg, const float *in, float *out, size_t y, size_t n)
 	struct shade_block *sb = arg;
 	int rc;
 
-	if ((rc = rf_stage_run(sb->stage, in, out, y, n)) < 0 ||
-	    (rc = rf_shade_run(sb->shade, out, out, n)) < 0)
+	if ((rc = rf_shade_run_stage(sb->shade, sb->stage, in, out, y, n)) < 0)
 		die_status(rc, NULL);
 }
 

@@ -10,6 +10,15 @@
 #define RF__PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
 #define RF__PRINTF(a, b)
+/* A stage's parts for a pass that runs it row by row on its own threads
+ * (the shading pass): the frame's row layout once rf_stage_run could run
+ * rows y..y+nrows, its thread count, and one row on thread `thread`. */
+struct rf_stage;
+int rf__stage_ready(const struct rf_stage *s, size_t y, size_t nrows, size_t *in_ncomp,
+                    size_t *out_ncomp);
+int rf__stage_threads(const struct rf_stage *s);
+void rf__stage_row(struct rf_stage *s, const float *in, float *out, size_t y, int thread);
+
 #endif
 
 /* Header fields the reader fills while parsing. */
@@ -36,5 +45,14 @@ int rf__cube_level_from_pixels(struct rf_cubemap *c, size_t level, const float *
                                char *err, size_t errlen);
 const float *rf__cubemap_padded_face(const struct rf_cubemap *c, size_t level,
                                      int face);
+
+/* A stage's parts for a pass that runs it row by row on its own threads
+ * (the shading pass): the frame's row layout once rf_stage_run could run
+ * rows y..y+nrows, its thread count, and one row on thread `thread`. */
+struct rf_stage;
+int rf__stage_ready(const struct rf_stage *s, size_t y, size_t nrows, size_t *in_ncomp,
+                    size_t *out_ncomp);
+int rf__stage_threads(const struct rf_stage *s);
+void rf__stage_row(struct rf_stage *s, const float *in, float *out, size_t y, int thread);
 
 #endif

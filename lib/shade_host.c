@@ -51,9 +51,12 @@ struct rf_shade {
 	enum rf_mapping mapping;
 	float steps;
 	struct rf__pool *pool;
-	/* The block rf_shade_run is running. */
+	/* The block rf_shade_run is running, and the stage before the pass
+	 * when rf_shade_run_stage runs both. */
 	const float *block_in;
 	float *block_out;
+	rf_stage *stage;
+	size_t block_y, stage_in_ncomp;
 };
 
 int
@@ -286,6 +289,45 @@ shade_row(void *arg, size_t r, int thread)
 		rf__widen_pixels(out, s->out_ncomp, in, s->in_ncomp, s->ncols);
 	for (x = 0; x < s->ncols; x++)
 		shade_pixel(s, in + x * s->in_ncomp, out + x * s->out_ncomp);
+}
+
+/* Row r: the stage into out, then the pass over it in place, while the
+ * row is still in this core's cache. */
+static void
+stage_and_shade_row(void *arg, size_t r, int thread)
+{
+	const rf_shade *s = arg;
+	const float *in = s->block_in + r * s->ncols * s->stage_in_ncomp;
+	float *out = s->block_out + r * s->ncols * s->out_ncomp;
+	size_t x;
+
+	rf__stage_row(s->stage, in, out, s->block_y + r, thread);
+	for (x = 0; x < s->ncols; x++)
+		shade_pixel(s, out + x * s->out_ncomp, out + x * s->out_ncomp);
+}
+
+int
+rf_shade_run_stage(rf_shade *s, rf_stage *stage, const float *in, float *out, size_t y,
+                   size_t nrows)
+{
+	size_t sin, sout;
+	int rc;
+
+	if (!s->out_h || !s->env)
+		return RF_EINVAL;
+	if ((rc = rf__stage_ready(stage, y, nrows, &sin, &sout)) < 0)
+		return rc;
+	/* The stage's output must be the pass's input, with its channels. */
+	if (sout != s->in_ncomp || s->in_ncomp != s->out_ncomp ||
+	    rf__stage_threads(stage) < rf__pool_threads(s->pool))
+		return RF_EINVAL;
+	s->block_in = in;
+	s->block_out = out;
+	s->block_y = y;
+	s->stage = stage;
+	s->stage_in_ncomp = sin;
+	rf__pool_run(s->pool, nrows, stage_and_shade_row, s);
+	return 0;
 }
 
 int

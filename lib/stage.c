@@ -231,15 +231,12 @@ rf_stage_reserve_channel(rf_stage *s, const char *name)
 	return c;
 }
 
-/* One row of the block being run, on thread `thread`: its input passed
+/* One row (row y of the frame) on thread `thread`: its input passed
  * through, the plugin's inputs gathered, run, its outputs scattered. */
-static void
-run_row(void *arg, size_t r, int thread)
+void
+rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int thread)
 {
-	rf_stage *s = arg;
 	struct worker *w = &s->workers[thread];
-	const float *in = s->block_in + r * s->ncols * s->in_ncomp;
-	float *out = s->block_out + r * s->ncols * s->out_ncomp;
 	struct rf_span span;
 	size_t x, i;
 
@@ -251,7 +248,7 @@ run_row(void *arg, size_t r, int thread)
 	span.npix = (uint32_t)s->ncols;
 	span.in = w->gather;
 	span.out = w->scatter;
-	span.y = (uint32_t)(s->block_y + r);
+	span.y = (uint32_t)y;
 	rf__widen_pixels(out, s->out_ncomp, in, s->in_ncomp, s->ncols);
 	for (x = 0; x < s->ncols; x++) {
 		const float *pi = in + x * s->in_ncomp;
@@ -270,6 +267,32 @@ run_row(void *arg, size_t r, int thread)
 			rf__copy_run(po + s->out_runs[i].dst, q + s->out_runs[i].src,
 			             s->out_runs[i].len);
 	}
+}
+
+int
+rf__stage_threads(const rf_stage *s)
+{
+	return s->nthreads;
+}
+
+int
+rf__stage_ready(const rf_stage *s, size_t y, size_t nrows, size_t *in_ncomp,
+                size_t *out_ncomp)
+{
+	if (!s->out_h || y + nrows > s->nrows || y + nrows < y)
+		return RF_EINVAL;
+	*in_ncomp = s->in_ncomp;
+	*out_ncomp = s->out_ncomp;
+	return 0;
+}
+
+static void
+run_row(void *arg, size_t r, int thread)
+{
+	rf_stage *s = arg;
+
+	rf__stage_row(s, s->block_in + r * s->ncols * s->in_ncomp,
+	              s->block_out + r * s->ncols * s->out_ncomp, s->block_y + r, thread);
 }
 
 int

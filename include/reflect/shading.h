@@ -92,6 +92,13 @@ RF_EXTERN int rf_shade_set_environment(rf_shade *s, const rf_cubemap *env,
  * already (see rf_stage_reserve_channel) in may be out: the rows are
  * shaded in place. */
 RF_EXTERN int rf_shade_run(rf_shade *s, const float *in, float *out, size_t nrows);
+/* The shade mode's stage and the pass in one: rows y..y+nrows of the
+ * stage's input to out, each row through the stage and then shaded in
+ * place while it is in cache.  The stage's output header must be the
+ * pass's input header and hold its channels (rf_stage_reserve_channel),
+ * and the stage must have at least the pass's threads. */
+RF_EXTERN int rf_shade_run_stage(rf_shade *s, rf_stage *stage, const float *in,
+                                 float *out, size_t y, size_t nrows);
 
 #ifdef __cplusplus
 }
