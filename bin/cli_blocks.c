@@ -154,8 +154,9 @@ cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
 {
 	struct blocks b;
 	pthread_t rt, wt;
-	int reading, writing, go, i;
+	int reading = 0, writing, mapping, go, i, rc;
 	size_t k, y, n;
+	const float *src;
 
 	if (!nrows)
 		return 0;
@@ -170,19 +171,37 @@ cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
 	}
 	pthread_mutex_init(&b.mu, NULL);
 	pthread_cond_init(&b.cv, NULL);
-	/* Without a thread (none to be had) its side is done here, in turn. */
+	/* A file is mapped block by block and read where it lies: no
+	 * reader, no copy.  Without a thread (none to be had) its side is
+	 * done here, in turn. */
+	n = block_rows(&b, 0, &y);
+	if ((rc = rf_reader_map_rows(io->reader, n, &src)) < 0) {
+		b.read_rc = rc;
+		b.read_errno = errno;
+		return finish(&b, NULL, NULL);
+	}
+	mapping = src != NULL;
 	writing = out_floats && pthread_create(&wt, NULL, writer, &b) == 0;
-	reading = pthread_create(&rt, NULL, reader, &b) == 0;
+	if (!mapping)
+		reading = pthread_create(&rt, NULL, reader, &b) == 0;
 	for (k = 0; k < b.nblocks; k++) {
 		n = block_rows(&b, k, &y);
-		if (!reading) {
-			int rc = rf_reader_read_rows(io->reader, b.in[k % 2], n);
-
-			if (rc < 0) {
+		if (mapping && k > 0 && (rc = rf_reader_map_rows(io->reader, n, &src)) < 0) {
+			b.read_rc = rc;
+			b.read_errno = errno;
+			break;
+		}
+		if (!reading && (!mapping || !src)) {
+			/* Not mappable (or ending early): read it, for the data
+			 * or for the message. */
+			if ((rc = rf_reader_read_rows(io->reader, b.in[k % 2], n)) < 0) {
 				b.read_rc = rc;
 				b.read_errno = errno;
 				break;
 			}
+			src = b.in[k % 2];
+		} else if (reading) {
+			src = b.in[k % 2];
 		}
 		pthread_mutex_lock(&b.mu);
 		go = (!reading || wait_past(&b, &b.read, k)) &&
@@ -190,11 +209,9 @@ cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
 		pthread_mutex_unlock(&b.mu);
 		if (!go)
 			break;
-		fn(arg, b.in[k % 2], b.out[k % 2], y, n);
+		fn(arg, src, b.out[k % 2], y, n);
 		if (out_floats && !writing) {
-			int rc = rf_writer_write_rows(io->writer, b.out[k % 2], n);
-
-			if (rc < 0) {
+			if ((rc = rf_writer_write_rows(io->writer, b.out[k % 2], n)) < 0) {
 				b.write_rc = rc;
 				b.write_errno = errno;
 				break;

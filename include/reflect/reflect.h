@@ -129,6 +129,12 @@ RF_EXTERN int rf_reader_next_frame(rf_reader *r, const rf_header **h);
 /* Reads nrows rows of the current frame into buf (ncols*ncomp floats a
  * row), converting to native floats. */
 RF_EXTERN int rf_reader_read_rows(rf_reader *r, float *buf, size_t nrows);
+/* The next nrows rows where they lie, without a copy: when the input is a
+ * regular file of float data in this machine's byte order, *rows points
+ * into a read-only mapping of it, valid until the next call on the reader.
+ * Otherwise *rows is NULL and nothing is consumed: read them instead
+ * (as for data that ends early, whose message rf_reader_read_rows gives). */
+RF_EXTERN int rf_reader_map_rows(rf_reader *r, size_t nrows, const float **rows);
 /* Rows of the current frame not yet read. */
 RF_EXTERN size_t rf_reader_rows_left(const rf_reader *r);
 /* Index (from 0) of the current frame. */
