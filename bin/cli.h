@@ -78,7 +78,7 @@ void cli_io_close(struct cli_io *io);
 typedef void cli_block_fn(void *arg, const float *in, float *out, size_t y, size_t n);
 /* Runs fn over a frame's nrows in blocks of `block` rows (in_floats and
  * out_floats a row), reading ahead and writing behind on threads of their
- * own; out_floats 0: no output.  Begin the output frame first.  Dies if
+ * own; in_floats 0: no input (fn gets NULL), out_floats 0: no output.  Begin the output frame first.  Dies if
  * a write fails; returns 0, or the error of a failed read for
  * cli_io_read_failed once the caller has freed what it holds. */
 int cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,

@@ -175,23 +175,27 @@ cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
 	 * reader, no copy.  Without a thread (none to be had) its side is
 	 * done here, in turn. */
 	n = block_rows(&b, 0, &y);
-	if ((rc = rf_reader_map_rows(io->reader, n, &src)) < 0) {
+	src = NULL;
+	if (in_floats && (rc = rf_reader_map_rows(io->reader, n, &src)) < 0) {
 		b.read_rc = rc;
 		b.read_errno = errno;
 		return finish(&b, NULL, NULL);
 	}
-	mapping = src != NULL;
+	mapping = src != NULL || !in_floats; /* no input: nothing to read */
 	writing = out_floats && pthread_create(&wt, NULL, writer, &b) == 0;
 	if (!mapping)
 		reading = pthread_create(&rt, NULL, reader, &b) == 0;
 	for (k = 0; k < b.nblocks; k++) {
 		n = block_rows(&b, k, &y);
-		if (mapping && k > 0 && (rc = rf_reader_map_rows(io->reader, n, &src)) < 0) {
+		if (!in_floats) {
+			src = NULL;
+		} else if (mapping && k > 0 &&
+		           (rc = rf_reader_map_rows(io->reader, n, &src)) < 0) {
 			b.read_rc = rc;
 			b.read_errno = errno;
 			break;
 		}
-		if (!reading && (!mapping || !src)) {
+		if (in_floats && !reading && (!mapping || !src)) {
 			/* Not mappable (or ending early): read it, for the data
 			 * or for the message. */
 			if ((rc = rf_reader_read_rows(io->reader, b.in[k % 2], n)) < 0) {

@@ -177,6 +177,17 @@ flag_camera(const rf_scene *s, const struct rf_camera *cam, const char *file,
 		     "miss it see nothing (objid 0)", frame, p[0], p[1], p[2]);
 }
 
+/* Rows y..y+n while the block before is being written. */
+static void
+render_block(void *g, const float *in, float *out, size_t y, size_t n)
+{
+	int rc = rf_gbuffer_render(g, out, y, n);
+
+	(void)in;
+	if (rc < 0)
+		die_status(rc, NULL);
+}
+
 int
 main(int argc, char **argv)
 {
@@ -185,11 +196,10 @@ main(int argc, char **argv)
 	struct rf_camera start, cam;
 	struct rf_writer_options wopt;
 	const char *channels = NULL, *threads = NULL, *file;
-	size_t width = 640, height = 360, frames = 1, frame, rows, y, n;
+	size_t width = 640, height = 360, frames = 1, frame, rows;
 	char err[1024];
 	rf_gbuffer *g;
 	rf_scene *s;
-	float *buf;
 	int c, rc, verbose = 0;
 
 	cli_init(argc, argv);
@@ -227,7 +237,6 @@ main(int argc, char **argv)
 	rows = rf_block_rows(width, rf_gbuffer_nchannels(g), CLI_BLOCK_BYTES);
 	if (rows > height)
 		rows = height;
-	buf = emalloc(rows * width * rf_gbuffer_nchannels(g) * sizeof(float));
 	rf_scene_camera(s, &start);
 	for (frame = 0; frame < frames; frame++) {
 		rf_header *h;
@@ -240,15 +249,9 @@ main(int argc, char **argv)
 		h = frame_header(s, g, &cam, frame, width, height);
 		cli_io_begin(&io, h);
 		rf_header_free(h);
-		for (y = 0; y < height; y += n) {
-			n = height - y < rows ? height - y : rows;
-			if ((rc = rf_gbuffer_render(g, buf, y, n)) < 0)
-				die_status(rc, NULL);
-			cli_io_write(&io, buf, n);
-		}
+		cli_blocks(&io, height, rows, 0, width * rf_gbuffer_nchannels(g), render_block, g);
 		cli_io_end_frame(&io);
 	}
-	free(buf);
 	rf_gbuffer_destroy(g);
 	rf_scene_free(s);
 	cli_io_close(&io);
