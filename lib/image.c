@@ -5,10 +5,10 @@
  * second and 130 MB before its first pixel, and most stages of a pipeline
  * never touch an image file.
  *
- * PNG, the type a pipeline writes most, is written by libreflect itself
- * (image_png.c) and never loads the module: loading it would cost the
- * last stage of every pipeline those 130 MB.  Everything else, and all
- * reading, goes through the module.
+ * PNG and scanline OpenEXR, the two types a pipeline writes, are written
+ * by libreflect itself (image_png.c, image_exr.c) and never load the
+ * module: loading it would cost the last stage of every pipeline those
+ * 130 MB.  Everything else, and all reading, goes through the module.
  */
 #include <ctype.h>
 #include <dlfcn.h>
@@ -164,18 +164,21 @@ rf_image_type_for_path(const char *path)
 	extension(path, ext);
 	if (!strcmp(ext, "png"))
 		return RF_PIXEL_UINT8;
+	if (!strcmp(ext, "exr"))
+		return RF_PIXEL_FLOAT;
 	return module(NULL, 0) ? api->type_for_path(path) : -1;
 }
 
-/* Who writes a file: libreflect (PNG at 8 and 16 bits, 1 to 4 channels),
- * else the module, as before. */
-enum writer_kind { WRITER_MODULE, WRITER_PNG };
+/* Who writes a file: libreflect (PNG at 8 and 16 bits, 1 to 4 channels;
+ * OpenEXR in half and float), else the module, as before. */
+enum writer_kind { WRITER_MODULE, WRITER_PNG, WRITER_EXR };
 
 struct rf_image_writer {
 	enum writer_kind kind;
 	union {
 		struct rf__module_writer *module;
 		struct rf__png_writer *png;
+		struct rf__exr_writer *exr;
 	} u;
 	size_t height, next_row;
 	char path[];
@@ -190,6 +193,8 @@ writer_kind(const char *path, size_t nchannels, enum rf_pixel_type type)
 	if (!strcmp(ext, "png") && (type == RF_PIXEL_UINT8 || type == RF_PIXEL_UINT16) &&
 	    nchannels >= 1 && nchannels <= 4)
 		return WRITER_PNG;
+	if (!strcmp(ext, "exr") && (type == RF_PIXEL_HALF || type == RF_PIXEL_FLOAT))
+		return WRITER_EXR;
 	return WRITER_MODULE;
 }
 
@@ -214,6 +219,10 @@ rf_image_writer_open(rf_image_writer **wp, const char *path, size_t width,
 	case WRITER_PNG:
 		rc = rf__png_writer_open(&w->u.png, path, width, height, nchannels, type,
 		                         err, errlen);
+		break;
+	case WRITER_EXR:
+		rc = rf__exr_writer_open(&w->u.exr, path, width, height, nchannels, names,
+		                         type, err, errlen);
 		break;
 	default:
 		rc = module(err, errlen) ? api->writer_open(&w->u.module, path, width, height,
@@ -243,6 +252,9 @@ rf_image_writer_write_rows(rf_image_writer *w, size_t y, size_t nrows,
 	case WRITER_PNG:
 		rc = rf__png_writer_write_rows(w->u.png, nrows, pixels, err, errlen);
 		break;
+	case WRITER_EXR:
+		rc = rf__exr_writer_write_rows(w->u.exr, nrows, pixels, err, errlen);
+		break;
 	default:
 		rc = api->writer_write_rows(w->u.module, y, nrows, pixels, err, errlen);
 	}
@@ -261,6 +273,9 @@ rf_image_writer_close(rf_image_writer *w, char *err, size_t errlen)
 	switch (w->kind) {
 	case WRITER_PNG:
 		rc = rf__png_writer_close(w->u.png, err, errlen);
+		break;
+	case WRITER_EXR:
+		rc = rf__exr_writer_close(w->u.exr, err, errlen);
 		break;
 	default:
 		rc = api->writer_close(w->u.module, err, errlen);
