@@ -72,9 +72,11 @@ resolve_format(struct export_opts *o)
 	char ext[8], err[1024];
 	size_t i;
 
-	if (rf_image_module_check(err, sizeof(err)) < 0)
-		die("%s", err);
+	/* libreflect writes PNG and OpenEXR itself; other types need the
+	 * image module, and when it cannot be loaded, that is the error. */
 	o->type = rf_image_type_for_path(o->output);
+	if (o->type < 0 && rf_image_module_check(err, sizeof(err)) < 0)
+		die("%s", err);
 	o->format = NULL;
 	if (dot && o->type >= 0 && strlen(dot + 1) < sizeof(ext)) {
 		for (i = 0; dot[1 + i]; i++)
