@@ -370,8 +370,9 @@ main(int argc, char **argv)
 			break;
 		case 'Q':
 			printf("usage: %s -o FILE [options] [file]\n"
-			       "Writes the channels of each frame as an image (EXR, HDR, PNG, JPEG,\n"
-			       "TIFF, BMP, TGA, PPM) through OpenImageIO. See reflect-export(1).\n"
+			       "Writes the channels of each frame as an image: PNG with libpng, EXR\n"
+			       "with OpenEXR, and HDR, JPEG, TIFF, BMP, TGA, PPM through OpenImageIO\n"
+			       "(loaded for those only). See reflect-export(1).\n"
 			       "  -o FILE  the image; a %%d in FILE numbers the frames\n"
 			       "  -c spec | R,G,B | all  the channels (default R,G,B, else spec)\n"
 			       "  -e STOPS  exposure   --tone=none|filmic   --srgb=on|off\n"
