@@ -12,7 +12,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <openexr.h>
-#include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -147,6 +147,21 @@ write_header(struct rf__exr_writer *w, const char *const *names, exr_pixel_type_
 	                                              (int32_t)w->height,
 	                                              EXR_COMPRESSION_ZIP)))
 		return rv;
+	/* Said here: the library says only "Invalid argument to function". */
+	for (c = 0; names && c < w->nchannels; c++) {
+		size_t j;
+
+		if (!names[c] || !names[c][0]) {
+			rf__format(w->reason, sizeof(w->reason), "channel %zu has no name", c);
+			return EXR_ERR_INVALID_ARGUMENT;
+		}
+		for (j = 0; j < c; j++)
+			if (!strcmp(names[j], names[c])) {
+				rf__format(w->reason, sizeof(w->reason),
+				           "channel '%.64s' is given twice", names[c]);
+				return EXR_ERR_INVALID_ARGUMENT;
+			}
+	}
 	for (c = 0; c < w->nchannels; c++) {
 		default_name(name, sizeof(name), w->nchannels, c);
 		/* Perceptually logarithmic, as OpenImageIO marks them (it
@@ -158,10 +173,6 @@ write_header(struct rf__exr_writer *w, const char *const *names, exr_pixel_type_
 	if ((rv = exr_set_zip_compression_level(w->ctx, part, EXR_ZIP_LEVEL)) ||
 	    (rv = exr_get_channels(w->ctx, part, &list)))
 		return rv;
-	if ((size_t)list->num_channels != w->nchannels) {
-		rf__format(w->reason, sizeof(w->reason), "a channel name is given twice");
-		return EXR_ERR_INVALID_ARGUMENT;
-	}
 	for (k = 0; k < list->num_channels; k++) {
 		for (c = 0; c < w->nchannels; c++) {
 			default_name(name, sizeof(name), w->nchannels, c);
@@ -192,7 +203,9 @@ writer_open(struct rf__exr_writer **wp, const char *path, size_t width, size_t h
 
 	*wp = NULL;
 	if (!width || !height || width > INT32_MAX || height > INT32_MAX || !nchannels ||
-	    nchannels > 1024 || (type != RF_PIXEL_HALF && type != RF_PIXEL_FLOAT)) {
+	    nchannels > 1024 || (type != RF_PIXEL_HALF && type != RF_PIXEL_FLOAT) ||
+	    /* The library takes a row's length in bytes as an int32_t. */
+	    width * nchannels * sizeof(float) > INT32_MAX) {
 		rf__format(err, errlen, "cannot write '%s': bad image size", path);
 		return RF_EINVAL;
 	}

@@ -318,6 +318,7 @@ TEST(writer_errors_png_exr)
 	                            RF_PIXEL_HALF, err, sizeof(err)) < 0);
 	ASSERT(wr == NULL);
 	ASSERT(strstr(err, "cannot write '") == err);
+	ASSERT(strstr(err, "twice.exr': channel 'a' is given twice") != NULL);
 	/* A directory is no file: the system says so, a system error. */
 	ASSERT_EQ(mkdir(tmp_path("d.exr"), 0777), 0);
 	ASSERT_EQ(rf_image_writer_open(&wr, tmp_path("d.exr"), 1, 1, 1, NULL,
