@@ -170,7 +170,8 @@ rf_image_type_for_path(const char *path)
 }
 
 /* Who writes a file: libreflect (PNG at 8 and 16 bits, 1 to 4 channels;
- * OpenEXR in half and float), else the module, as before. */
+ * OpenEXR in half and float), else the module (PNG of floats, say, which
+ * OpenImageIO converts its own way). */
 enum writer_kind { WRITER_MODULE, WRITER_PNG, WRITER_EXR };
 
 struct rf_image_writer {
