@@ -72,9 +72,11 @@ resolve_format(struct export_opts *o)
 	char ext[8], err[1024];
 	size_t i;
 
-	if (rf_image_module_check(err, sizeof(err)) < 0)
-		die("%s", err);
+	/* libreflect writes PNG and OpenEXR itself; other types need the
+	 * image module, and when it cannot be loaded, that is the error. */
 	o->type = rf_image_type_for_path(o->output);
+	if (o->type < 0 && rf_image_module_check(err, sizeof(err)) < 0)
+		die("%s", err);
 	o->format = NULL;
 	if (dot && o->type >= 0 && strlen(dot + 1) < sizeof(ext)) {
 		for (i = 0; dot[1 + i]; i++)
@@ -368,8 +370,9 @@ main(int argc, char **argv)
 			break;
 		case 'Q':
 			printf("usage: %s -o FILE [options] [file]\n"
-			       "Writes the channels of each frame as an image (EXR, HDR, PNG, JPEG,\n"
-			       "TIFF, BMP, TGA, PPM) through OpenImageIO. See reflect-export(1).\n"
+			       "Writes the channels of each frame as an image: PNG with libpng, EXR\n"
+			       "with OpenEXR, and HDR, JPEG, TIFF, BMP, TGA, PPM through OpenImageIO\n"
+			       "(loaded for those only). See reflect-export(1).\n"
 			       "  -o FILE  the image; a %%d in FILE numbers the frames\n"
 			       "  -c spec | R,G,B | all  the channels (default R,G,B, else spec)\n"
 			       "  -e STOPS  exposure   --tone=none|filmic   --srgb=on|off\n"

@@ -4,13 +4,20 @@
  * with it; linking them into every tool would cost each one a quarter of a
  * second and 130 MB before its first pixel, and most stages of a pipeline
  * never touch an image file.
+ *
+ * PNG and scanline OpenEXR, the two types a pipeline writes, are written
+ * by libreflect itself (image_png.c, image_exr.c) and never load the
+ * module: loading it would cost the last stage of every pipeline those
+ * 130 MB.  Everything else, and all reading, goes through the module.
  */
+#include <ctype.h>
 #include <dlfcn.h>
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "image_module.h"
+#include "image_writers.h"
 #include "internal.h"
 
 #ifndef REFLECT_MODULEDIR
@@ -133,34 +140,154 @@ rf_image_attribute(const rf_image *img, const char *name)
 	return api->attribute(img, name);
 }
 
-int
-rf_image_type_for_path(const char *path)
+/* The extension of a file name in lowercase, "" when it has none (or one
+ * too long to be one). */
+static void
+extension(const char *path, char ext[8])
 {
-	return module(NULL, 0) ? api->type_for_path(path) : -1;
+	const char *dot = strrchr(path, '.');
+	size_t i;
+
+	ext[0] = '\0';
+	if (!dot || strchr(dot, '/') || strlen(dot + 1) >= 8)
+		return;
+	for (i = 0; dot[1 + i]; i++)
+		ext[i] = (char)tolower((unsigned char)dot[1 + i]);
+	ext[i] = '\0';
 }
 
 int
-rf_image_writer_open(rf_image_writer **w, const char *path, size_t width, size_t height,
-                     size_t nchannels, const char *const *names, enum rf_pixel_type type,
-                     char *err, size_t errlen)
+rf_image_type_for_path(const char *path)
 {
-	*w = NULL;
-	return module(err, errlen) ? api->writer_open(w, path, width, height, nchannels,
-	                                              names, type, err, errlen)
-	                           : RF_EIMAGE;
+	char ext[8];
+
+	extension(path, ext);
+	if (!strcmp(ext, "png"))
+		return RF_PIXEL_UINT8;
+	if (!strcmp(ext, "exr"))
+		return RF_PIXEL_FLOAT;
+	return module(NULL, 0) ? api->type_for_path(path) : -1;
+}
+
+/* Who writes a file: libreflect (PNG at 8 and 16 bits, 1 to 4 channels;
+ * OpenEXR in half and float), else the module (PNG of floats, say, which
+ * OpenImageIO converts its own way). */
+enum writer_kind { WRITER_MODULE, WRITER_PNG, WRITER_EXR };
+
+struct rf_image_writer {
+	enum writer_kind kind;
+	union {
+		struct rf__module_writer *module;
+		struct rf__png_writer *png;
+		struct rf__exr_writer *exr;
+	} u;
+	size_t height, next_row;
+	char path[];
+};
+
+static enum writer_kind
+writer_kind(const char *path, size_t nchannels, enum rf_pixel_type type)
+{
+	char ext[8];
+
+	extension(path, ext);
+	if (!strcmp(ext, "png") && (type == RF_PIXEL_UINT8 || type == RF_PIXEL_UINT16) &&
+	    nchannels >= 1 && nchannels <= 4)
+		return WRITER_PNG;
+	if (!strcmp(ext, "exr") && (type == RF_PIXEL_HALF || type == RF_PIXEL_FLOAT))
+		return WRITER_EXR;
+	return WRITER_MODULE;
+}
+
+int
+rf_image_writer_open(rf_image_writer **wp, const char *path, size_t width,
+                     size_t height, size_t nchannels, const char *const *names,
+                     enum rf_pixel_type type, char *err, size_t errlen)
+{
+	size_t len = strlen(path);
+	rf_image_writer *w;
+	int rc;
+
+	*wp = NULL;
+	if (!(w = calloc(1, sizeof(*w) + len + 1))) {
+		rf__format(err, errlen, "cannot write '%s': out of memory", path);
+		return RF_ENOMEM;
+	}
+	memcpy(w->path, path, len + 1);
+	w->kind = writer_kind(path, nchannels, type);
+	w->height = height;
+	switch (w->kind) {
+	case WRITER_PNG:
+		rc = rf__png_writer_open(&w->u.png, path, width, height, nchannels, type,
+		                         err, errlen);
+		break;
+	case WRITER_EXR:
+		rc = rf__exr_writer_open(&w->u.exr, path, width, height, nchannels, names,
+		                         type, err, errlen);
+		break;
+	default:
+		rc = module(err, errlen) ? api->writer_open(&w->u.module, path, width, height,
+		                                            nchannels, names, type, err,
+		                                            errlen)
+		                         : RF_EIMAGE;
+	}
+	if (rc < 0) {
+		free(w);
+		return rc;
+	}
+	*wp = w;
+	return 0;
 }
 
 int
 rf_image_writer_write_rows(rf_image_writer *w, size_t y, size_t nrows,
                            const float *pixels, char *err, size_t errlen)
 {
-	return api->writer_write_rows(w, y, nrows, pixels, err, errlen);
+	int rc;
+
+	if (y != w->next_row || nrows > w->height - y) {
+		rf__format(err, errlen, "cannot write '%s': rows out of order", w->path);
+		return RF_EINVAL;
+	}
+	switch (w->kind) {
+	case WRITER_PNG:
+		rc = rf__png_writer_write_rows(w->u.png, nrows, pixels, err, errlen);
+		break;
+	case WRITER_EXR:
+		rc = rf__exr_writer_write_rows(w->u.exr, nrows, pixels, err, errlen);
+		break;
+	default:
+		rc = api->writer_write_rows(w->u.module, y, nrows, pixels, err, errlen);
+	}
+	if (rc == 0)
+		w->next_row += nrows;
+	return rc;
 }
 
 int
 rf_image_writer_close(rf_image_writer *w, char *err, size_t errlen)
 {
-	return w ? api->writer_close(w, err, errlen) : 0;
+	int rc;
+
+	if (!w)
+		return 0;
+	switch (w->kind) {
+	case WRITER_PNG:
+		rc = rf__png_writer_close(w->u.png, err, errlen);
+		break;
+	case WRITER_EXR:
+		rc = rf__exr_writer_close(w->u.exr, err, errlen);
+		break;
+	default:
+		rc = api->writer_close(w->u.module, err, errlen);
+	}
+	/* The module says so itself; an incomplete image is the first error. */
+	if (w->next_row != w->height && w->kind != WRITER_MODULE) {
+		rf__format(err, errlen, "cannot write '%s': image is incomplete", w->path);
+		rc = RF_EINVAL;
+	}
+	free(w);
+	return rc;
 }
 
 int

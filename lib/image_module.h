@@ -6,6 +6,10 @@
 
 #include "reflect/reflect.h"
 
+/* The module's writer; image.c wraps it in an rf_image_writer, whose
+ * other kinds are libreflect's own (image_writers.h). */
+struct rf__module_writer;
+
 #define RF_IMAGE_MODULE_NAME "reflect-oiio.so"
 #define RF_IMAGE_MODULE_ENTRY "rf__image_module"
 
@@ -22,12 +26,12 @@ struct rf__image_api {
 	const float *(*pixels)(const rf_image *img);
 	const char *(*attribute)(const rf_image *img, const char *name);
 	int (*type_for_path)(const char *path);
-	int (*writer_open)(rf_image_writer **w, const char *path, size_t width,
+	int (*writer_open)(struct rf__module_writer **w, const char *path, size_t width,
 	                   size_t height, size_t nchannels, const char *const *names,
 	                   enum rf_pixel_type type, char *err, size_t errlen);
-	int (*writer_write_rows)(rf_image_writer *w, size_t y, size_t nrows,
+	int (*writer_write_rows)(struct rf__module_writer *w, size_t y, size_t nrows,
 	                         const float *pixels, char *err, size_t errlen);
-	int (*writer_close)(rf_image_writer *w, char *err, size_t errlen);
+	int (*writer_close)(struct rf__module_writer *w, char *err, size_t errlen);
 	int (*write_levels)(const char *path, size_t nlevels, const size_t *w,
 	                    const size_t *h, size_t nchannels, const char *const *names,
 	                    const float *const *pixels, const char *const *attributes,

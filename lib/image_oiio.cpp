@@ -65,13 +65,13 @@ private:
 	FILE *fp_;
 };
 
-struct rf_image_writer {
+struct rf__module_writer {
 	// Declared before out, so the image is closed before its file.
 	std::unique_ptr<checked_file> file;
 	std::unique_ptr<ImageOutput> out;
 	std::string path;
 	size_t width, height, nchannels, next_row;
-	~rf_image_writer()
+	~rf__module_writer()
 	{
 		out.reset();
 		if (file) {
@@ -302,7 +302,7 @@ module_type_for_path(const char *path)
 }
 
 static int
-module_writer_open(rf_image_writer **wp, const char *path, size_t width,
+module_writer_open(rf__module_writer **wp, const char *path, size_t width,
                      size_t height, size_t nchannels, const char *const *names,
                      enum rf_pixel_type type, char *err, size_t errlen)
 {
@@ -312,7 +312,7 @@ module_writer_open(rf_image_writer **wp, const char *path, size_t width,
 		set_error(err, errlen, "cannot write", path, "bad image size");
 		return RF_EINVAL;
 	}
-	rf_image_writer *w = new (std::nothrow) rf_image_writer;
+	rf__module_writer *w = new (std::nothrow) rf__module_writer;
 	if (!w)
 		return RF_ENOMEM;
 	w->path = path;
@@ -385,7 +385,7 @@ module_writer_open(rf_image_writer **wp, const char *path, size_t width,
 }
 
 static int
-module_writer_write_rows(rf_image_writer *w, size_t y, size_t nrows,
+module_writer_write_rows(rf__module_writer *w, size_t y, size_t nrows,
                            const float *pixels, char *err, size_t errlen)
 {
 	if (y != w->next_row || y + nrows > w->height) {
@@ -412,7 +412,7 @@ module_writer_write_rows(rf_image_writer *w, size_t y, size_t nrows,
 }
 
 static int
-module_writer_close(rf_image_writer *w, char *err, size_t errlen)
+module_writer_close(rf__module_writer *w, char *err, size_t errlen)
 {
 	int rc = 0;
 

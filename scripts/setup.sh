@@ -8,7 +8,7 @@ setup_say () {
 
 # Debian packages the build and the tests need.
 setup_packages="autoconf automake libtool pkg-config make gcc g++ \
-libopenimageio-dev libopenexr-dev"
+libopenimageio-dev libopenexr-dev libpng-dev"
 # Used by some tests when present (they skip otherwise).
 setup_optional_packages="python3-numpy valgrind clang"
 
@@ -24,9 +24,10 @@ setup_missing () {
 	if command -v pkg-config >/dev/null 2>&1
 	then
 		pkg-config --exists OpenImageIO || missing="$missing libopenimageio-dev"
-		pkg-config --exists OpenEXR || missing="$missing libopenexr-dev"
+		pkg-config --exists 'OpenEXR >= 3.1' || missing="$missing libopenexr-dev"
+		pkg-config --exists libpng || missing="$missing libpng-dev"
 	else
-		missing="$missing libopenimageio-dev libopenexr-dev"
+		missing="$missing libopenimageio-dev libopenexr-dev libpng-dev"
 	fi
 	echo $missing
 }

@@ -20,10 +20,22 @@ test_expect_success 'stages that touch no image file run without the module' '
 	REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so reflect-prefilter --size=8 >/dev/null
 '
 
-test_expect_success 'a missing module is one clear message when an image is needed' '
+test_expect_success 'PNG and OpenEXR are written without the module' '
 	reflect-project gb.txt >p.rfl &&
+	REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so \
+		reflect-export -c all -o x.exr p.rfl &&
+	REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so \
+		reflect-export -c all --half -o h.exr p.rfl &&
+	REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so \
+		reflect-export -c hit.dist --srgb=off -o x.png p.rfl &&
+	REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so \
+		reflect-export -c R --depth=16 -o x16.png p.rfl &&
+	test -s x.exr && test -s h.exr && test -s x.png && test -s x16.png
+'
+
+test_expect_success 'a missing module is one clear message when an image is needed' '
 	test_must_fail 1 env REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so \
-		reflect-export -c all -o x.exr p.rfl 2>err &&
+		reflect-export -c all -o x.tif p.rfl 2>err &&
 	test_one_line_message reflect-export err &&
 	test_grep "cannot load the image module ./nonexistent/reflect-oiio.so." err &&
 	echo "an image file" >some.exr &&
@@ -35,7 +47,7 @@ test_expect_success 'a missing module is one clear message when an image is need
 
 test_expect_success 'a library that is not the module is refused' '
 	lib=$(ls "$builddir"/plugins/.libs/box.so) &&
-	test_must_fail 1 env REFLECT_IMAGE_MODULE="$lib" reflect-export -c all -o x.exr p.rfl 2>err &&
+	test_must_fail 1 env REFLECT_IMAGE_MODULE="$lib" reflect-export -c all -o x.tif p.rfl 2>err &&
 	test_grep "is not reflect.s image module" err
 '
 

@@ -370,4 +370,190 @@ test_expect_success 'bad input and bad options: one line, exit 1' '
 	test_grep "^usage: reflect-export -o FILE" err
 '
 
+# "PIXEL NAME VALUE" a line, sorted: an image dump compared by channel
+# name, whatever order the reader lists the channels in.
+by_name () {
+	awk 'NR == 2 { n = split($0, name) }
+	NR > 2 { for (i = 1; i <= n; i++) print NR - 2, name[i], $i }' "$1" |
+	sort -k1,1n -k2,2
+}
+
+test_expect_success 'png: 16-bit R G B, exposure and sRGB, values by hand' '
+	# As the 8-bit test, x 65535: R 0.7354 1 0.5371 -> 48192 65535 35199
+	# G 0.03876 0 0.2209 -> 2540 0 14478; B 0.4614 0 1 -> 30235 0 65535
+	reflect-export -e 1 --depth=16 -o a16.png in.txt &&
+	"$imgdump" -16 a16.png >dump &&
+	cat >expect <<-\EOF &&
+	3 1 3
+	R G B
+	48192 2540 30235
+	65535 0 0
+	35199 14478 65535
+	EOF
+	test_cmp_numbers expect dump 0
+'
+
+test_expect_success 'png: 16-bit R G B A, straight alpha, values by hand' '
+	# /0.25: 0.5 0.2 1.2 -> sRGB 0.7354 0.4845 1 -> 48192 31754 65535;
+	# A 0.25 x 65535 = 16383.75 -> 16384
+	reflect-export --depth=16 -c R,G,B,A -o rgba16.png rgba.txt &&
+	"$imgdump" -16 rgba16.png >dump &&
+	cat >expect <<-\EOF &&
+	1 1 4
+	R G B A
+	48192 31754 65535 16384
+	EOF
+	test_cmp_numbers expect dump 0
+'
+
+test_expect_success 'png: 8-bit grey, values by hand' '
+	# spec.B 2 0.75 0.1 -> sRGB 1 0.8808 0.3492 -> 255 225 89
+	reflect-export -c spec.B -o grey8.png in.txt &&
+	"$imgdump" -8 grey8.png >dump &&
+	sed 2d dump >values &&
+	printf "3 1 1\n255\n225\n89\n" >expect &&
+	test_cmp_numbers expect values 0
+'
+
+test_expect_success 'exr: every channel read back exactly by name, float and half' '
+	# Float: the values as a float holds them.  Half: the nearest half
+	# (0.0015 -> 0.0015001297, 0.1 -> 0.0999755859).
+	reflect-export -c all -o exact.exr in.txt &&
+	"$imgdump" exact.exr >dump &&
+	by_name dump >got &&
+	cat >want <<-\EOF &&
+	3 1 8
+	R G B A spec.R spec.G spec.B mask
+	0.25 0.00150000001 0.0900000036 1 0.5 1 2 1
+	0.600000024 -1 nan 1 0.125 0.25 0.75 0
+	0.125 0.0199999996 4 1 3 -2 0.100000001 1
+	EOF
+	by_name want >expect &&
+	test_cmp_numbers expect got 0 &&
+	reflect-export -c all --half -o exacth.exr in.txt &&
+	"$imgdump" exacth.exr >dump &&
+	by_name dump >got &&
+	cat >want <<-\EOF &&
+	3 1 8
+	R G B A spec.R spec.G spec.B mask
+	0.25 0.0015001297 0.0900268555 1 0.5 1 2 1
+	0.600097656 -1 nan 1 0.125 0.25 0.75 0
+	0.125 0.0200042725 4 1 3 -2 0.0999755859 1
+	EOF
+	by_name want >expect &&
+	test_cmp_numbers expect got 0
+'
+
+# 300 x 700 pixels of 8 channels: more rows than reflect-export reads in
+# one block (4 MB: 436 rows), and not a whole number of OpenEXR chunks
+# (16 rows) a block.  R G B are k/255 for an integer k; e0..e4 are
+# multiples of 1/16 in [-64, 64), which a half holds exactly.  The values
+# read back are printed as awk prints the expected ones: cmp compares.
+test_expect_success 'setup: a 300x700 stream larger than one block' '
+	awk "BEGIN {
+		w = 300; h = 700
+		print \"#?REFLECT1\"; print \"NCOLS=\" w; print \"NROWS=\" h
+		print \"NCOMP=8\"; print \"CHANNELS=R G B e0 e1 e2 e3 e4\"
+		print \"FORMAT=ascii\"; print \"\"
+		for (y = 0; y < h; y++)
+			for (x = 0; x < w; x++) {
+				r = (x + 3 * y) % 256; g = (7 * x + y) % 256; b = (x * y) % 256
+				e = \"\"
+				for (c = 0; c < 5; c++)
+					e = e sprintf(\" %.9g\", ((7 * x + 13 * y + 31 * c) % 2048) / 16 - 64)
+				printf \"%.9g %.9g %.9g%s\n\", r / 255, g / 255, b / 255, e
+				print r, g, b >\"big-rgb\"
+				print r * 257, g * 257, b * 257 >\"big-rgb16\"
+				print substr(e, 2) >\"big-e\"
+			}
+	}" >big.txt &&
+	test_line_count 210007 big.txt &&
+	test_line_count 210000 big-e
+'
+
+test_expect_success 'png: 300x700, 8 and 16 bits, read back exactly' '
+	reflect-export --srgb=off -o big.png big.txt &&
+	"$imgdump" -8 big.png >dump &&
+	sed -n 1p dump >size && echo "300 700 3" >expect &&
+	test_cmp_numbers expect size 0 &&
+	sed 1,2d dump >values &&
+	cmp big-rgb values &&
+	reflect-export --srgb=off --depth=16 -o big16.png big.txt &&
+	"$imgdump" -16 big16.png >dump &&
+	sed 1,2d dump >values &&
+	cmp big-rgb16 values
+'
+
+test_expect_success 'exr: 300x700, float and half, read back exactly' '
+	reflect-export -c e0,e1,e2,e3,e4 -o big.exr big.txt &&
+	"$imgdump" big.exr >dump &&
+	printf "300 700 5\ne0 e1 e2 e3 e4\n" >expect &&
+	sed 2q dump >head &&
+	cmp expect head &&
+	sed 1,2d dump >values &&
+	cmp big-e values &&
+	reflect-export -c e0,e1,e2,e3,e4 --half -o bigh.exr big.txt &&
+	"$imgdump" bigh.exr >dump &&
+	sed 1,2d dump >values &&
+	cmp big-e values
+'
+
+# The dynamic loader lists every library it loads under LD_DEBUG=files
+# (glibc); a TIFF, written through OpenImageIO, shows that it does.
+if LD_DEBUG=files reflect-info -V 2>&1 >/dev/null | grep "file=libreflect" >/dev/null
+then
+	test_expect_success 'png and exr are written without loading OpenImageIO' '
+		LD_DEBUG=files reflect-export -o ld.tif in.txt 2>ld &&
+		test_grep "libOpenImageIO" ld &&
+		for args in "ld.png in.txt" "ld16.png --depth=16 in.txt" "ld.exr in.txt" \
+			"ldh.exr --half in.txt" "ldbig.png --srgb=off big.txt"
+		do
+			set -- $args &&
+			out=$1 && shift &&
+			LD_DEBUG=files reflect-export -o $out "$@" 2>ld &&
+			test -s $out &&
+			! grep -e libOpenImageIO -e reflect-oiio ld || return 1
+		done
+	'
+else
+	test_skip 'png and exr are written without loading OpenImageIO' 'no LD_DEBUG'
+fi
+
+test_expect_success 'png and exr: a path that cannot be written, one line, exit 2' '
+	test_must_fail 2 reflect-export -o /nonexistent/x.png in.txt 2>err &&
+	test_one_line_message reflect-export err &&
+	test_grep "^reflect-export: cannot write ./nonexistent/x.png.: No such file or directory$" err &&
+	test_must_fail 2 reflect-export --half -o /nonexistent/x.exr in.txt 2>err &&
+	test_one_line_message reflect-export err &&
+	test_grep "^reflect-export: cannot write ./nonexistent/x.exr.: No such file or directory$" err &&
+	mkdir dir.png dir.exr &&
+	test_must_fail 2 reflect-export -o dir.png in.txt 2>err &&
+	test_one_line_message reflect-export err &&
+	test_grep "^reflect-export: cannot write .dir.png.: Is a directory$" err &&
+	test_must_fail 2 reflect-export -o dir.exr in.txt 2>err &&
+	test_one_line_message reflect-export err &&
+	test_grep "^reflect-export: cannot write .dir.exr.: Is a directory$" err
+'
+
+if test -c /dev/full
+then
+	test_expect_success 'png and exr on a full disk: exit 2, No space left on device' '
+		ln -s /dev/full full16.png && ln -s /dev/full fullh.exr &&
+		ln -s /dev/full fullbig.png && ln -s /dev/full fullbig.exr &&
+		for args in "full.png in.txt" "full16.png --depth=16 in.txt" \
+			"full.exr in.txt" "fullh.exr --half in.txt" \
+			"fullbig.png --srgb=off big.txt" "fullbig.exr -c e0,e1 big.txt"
+		do
+			set -- $args &&
+			out=$1 && shift &&
+			test_must_fail 2 reflect-export -o $out "$@" 2>err &&
+			test_one_line_message reflect-export err &&
+			test_grep "^reflect-export: cannot write .$out.: No space left on device$" err ||
+			return 1
+		done
+	'
+else
+	test_skip 'png and exr on a full disk: exit 2, No space left on device' 'no /dev/full'
+fi
+
 test_done

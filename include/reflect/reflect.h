@@ -196,14 +196,18 @@ RF_EXTERN int rf_plugin_parse_params(const struct rf_plugin *p, const char *spec
                                      double *values, char *err, size_t errlen);
 
 /*
- * Images through OpenImageIO (EXR, HDR, PNG, JPEG, TIFF and the rest).
- * Reading loads the whole first subimage as floats, rows top first;
- * 8- and 16-bit sRGB files are returned as stored (0..1), not linearised.
+ * Images through OpenImageIO (EXR, HDR, PNG, JPEG, TIFF and the rest),
+ * but for writing PNG (8 and 16 bits, 1 to 4 channels) and scanline
+ * OpenEXR (half and float), which libreflect does itself, without loading
+ * OpenImageIO.  Reading loads the whole first subimage as floats, rows
+ * top first; 8- and 16-bit sRGB files are returned as stored (0..1), not
+ * linearised.
  */
 typedef struct rf_image rf_image;
 
 /* Image I/O lives in a module loaded on first use; 0 when it loads, else
- * RF_EIMAGE and err saying why (the other functions report it too). */
+ * RF_EIMAGE and err saying why (the other functions report it too).
+ * Writing PNG and OpenEXR does not need it. */
 RF_EXTERN int rf_image_module_check(char *err, size_t errlen);
 
 RF_EXTERN int rf_image_read(rf_image **img, const char *path, char *err,
@@ -239,7 +243,8 @@ RF_EXTERN int rf_image_writer_write_rows(rf_image_writer *w, size_t y, size_t nr
 /* Closes the file; returns its last error. */
 RF_EXTERN int rf_image_writer_close(rf_image_writer *w, char *err, size_t errlen);
 /* The pixel type a file name's extension stores best (8-bit for PNG and
- * JPEG, float for EXR and HDR), or -1 for an extension no plugin writes. */
+ * JPEG, float for EXR and HDR), or -1 for an extension no plugin writes.
+ * PNG and EXR are answered without loading the module. */
 RF_EXTERN int rf_image_type_for_path(const char *path);
 
 /* A MIP-mapped image (OpenEXR, tiled): levels 0..nlevels-1 of sizes

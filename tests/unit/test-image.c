@@ -3,6 +3,7 @@
 #include <errno.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "reflect/reflect.h"
@@ -207,6 +208,130 @@ TEST(png_16bit_roundtrip)
 	rf_image_free(img);
 }
 
+/* Rows in blocks of 1, 15, 16 and 5 (and the rest), across the OpenEXR
+ * chunks of 16 rows and the PNG rows: each value read back as written. */
+static int
+write_in_odd_blocks(const char *path, size_t w, size_t h, size_t nch,
+                    const char *const *names, enum rf_pixel_type type,
+                    const float *px, char *err, size_t errlen)
+{
+	static const size_t blocks[] = { 1, 15, 16, 5 };
+	rf_image_writer *wr;
+	size_t y = 0, k = 0, n;
+	int rc;
+
+	if ((rc = rf_image_writer_open(&wr, path, w, h, nch, names, type, err,
+	                               errlen)) < 0)
+		return rc;
+	for (; y < h; y += n, k++) {
+		n = k < 4 ? blocks[k] : h - y;
+		n = n < h - y ? n : h - y;
+		if ((rc = rf_image_writer_write_rows(wr, y, n, px + y * w * nch, err,
+		                                     errlen)) < 0) {
+			rf_image_writer_close(wr, NULL, 0);
+			return rc;
+		}
+	}
+	return rf_image_writer_close(wr, err, errlen);
+}
+
+TEST(exr_odd_blocks_and_default_names)
+{
+	enum { W = 5, H = 61, N = 3 };
+	static float px[W * H * N];
+	static const char *const rgb[] = { "R", "G", "B" };
+	const char *path = tmp_path("blocks.exr");
+	enum rf_pixel_type types[2] = { RF_PIXEL_FLOAT, RF_PIXEL_HALF };
+	char err[1024];
+	rf_image *img;
+	size_t i, c, t;
+	int k;
+
+	/* Multiples of 1/8 in [-64, 64): exact in half too. */
+	for (i = 0; i < W * H * N; i++)
+		px[i] = (float)((int)(i * 37 % 1024) - 512) / 8.0f;
+	for (t = 0; t < 2; t++) {
+		/* No names: OpenImageIO's defaults, R G B for 3 channels. */
+		ASSERT_EQ(write_in_odd_blocks(path, W, H, N, NULL, types[t], px, err,
+		                              sizeof(err)), 0);
+		ASSERT_EQ(rf_image_read(&img, path, err, sizeof(err)), 0);
+		ASSERT_EQ(rf_image_width(img), W);
+		ASSERT_EQ(rf_image_height(img), H);
+		ASSERT_EQ(rf_image_nchannels(img), N);
+		for (c = 0; c < N; c++) {
+			if ((k = channel_index(img, rgb[c])) < 0)
+				TAP_FAIL("no channel %s", rgb[c]);
+			for (i = 0; i < W * H; i++)
+				if (rf_image_pixels(img)[i * N + (size_t)k] != px[i * N + c])
+					TAP_FAIL("%s pixel %zu: %.9g != %.9g", rgb[c], i,
+					         (double)rf_image_pixels(img)[i * N + (size_t)k],
+					         (double)px[i * N + c]);
+		}
+		rf_image_free(img);
+	}
+	/* One channel without a name is Y. */
+	ASSERT_EQ(write_image(path, 2, 1, 1, NULL, RF_PIXEL_FLOAT, px, err,
+	                      sizeof(err)), 0);
+	ASSERT_EQ(rf_image_read(&img, path, err, sizeof(err)), 0);
+	ASSERT_STR_EQ(rf_image_channel(img, 0), "Y");
+	rf_image_free(img);
+}
+
+TEST(png_odd_blocks_grey_alpha)
+{
+	enum { W = 3, H = 40, N = 2 };
+	static float px[W * H * N];
+	const char *path = tmp_path("ga.png");
+	char err[1024];
+	rf_image *img;
+	size_t i;
+
+	for (i = 0; i < W * H * N; i++)
+		px[i] = (float)(i * 7 % 256) / 255.0f;
+	ASSERT_EQ(write_in_odd_blocks(path, W, H, N, NULL, RF_PIXEL_UINT8, px, err,
+	                              sizeof(err)), 0);
+	ASSERT_EQ(rf_image_read(&img, path, err, sizeof(err)), 0);
+	ASSERT_EQ(rf_image_height(img), H);
+	ASSERT_EQ(rf_image_nchannels(img), N);
+	for (i = 0; i < W * H * N; i++)
+		ASSERT_NEAR(rf_image_pixels(img)[i] * 255.0f, (double)(i * 7 % 256), 1e-4);
+	rf_image_free(img);
+}
+
+TEST(writer_errors_png_exr)
+{
+	static const float px[8] = { 0 };
+	static const char *const twice[] = { "a", "a" };
+	char err[1024] = "";
+	rf_image_writer *wr;
+
+	/* PNG: rows in order, all of them; the writer is freed all the same. */
+	ASSERT_EQ(rf_image_writer_open(&wr, tmp_path("order.png"), 1, 2, 3, NULL,
+	                               RF_PIXEL_UINT16, err, sizeof(err)), 0);
+	ASSERT_EQ(rf_image_writer_write_rows(wr, 0, 3, px, err, sizeof(err)), RF_EINVAL);
+	ASSERT(strstr(err, "rows out of order") != NULL);
+	ASSERT_EQ(rf_image_writer_write_rows(wr, 0, 1, px, err, sizeof(err)), 0);
+	ASSERT_EQ(rf_image_writer_close(wr, err, sizeof(err)), RF_EINVAL);
+	ASSERT(strstr(err, "'") && strstr(err, "order.png': image is incomplete"));
+	/* OpenEXR holds each name once. */
+	ASSERT(rf_image_writer_open(&wr, tmp_path("twice.exr"), 1, 1, 2, twice,
+	                            RF_PIXEL_HALF, err, sizeof(err)) < 0);
+	ASSERT(wr == NULL);
+	ASSERT(strstr(err, "cannot write '") == err);
+	ASSERT(strstr(err, "twice.exr': channel 'a' is given twice") != NULL);
+	/* A directory is no file: the system says so, a system error. */
+	ASSERT_EQ(mkdir(tmp_path("d.exr"), 0777), 0);
+	ASSERT_EQ(rf_image_writer_open(&wr, tmp_path("d.exr"), 1, 1, 1, NULL,
+	                               RF_PIXEL_FLOAT, err, sizeof(err)), RF_EIO);
+	ASSERT(strstr(err, strerror(EISDIR)) != NULL);
+	ASSERT_EQ(mkdir(tmp_path("d.png"), 0777), 0);
+	ASSERT_EQ(rf_image_writer_open(&wr, tmp_path("d.png"), 1, 1, 1, NULL,
+	                               RF_PIXEL_UINT8, err, sizeof(err)), RF_EIO);
+	ASSERT(strstr(err, strerror(EISDIR)) != NULL);
+	rmdir(tmp_path("d.exr"));
+	rmdir(tmp_path("d.png"));
+}
+
 TEST(writer_errors)
 {
 	static const float px[4] = { 0 };
@@ -346,6 +471,9 @@ main(void)
 	RUN(png_8bit_roundtrip);
 	RUN(png_alpha_is_kept_straight);
 	RUN(png_16bit_roundtrip);
+	RUN(exr_odd_blocks_and_default_names);
+	RUN(png_odd_blocks_grey_alpha);
+	RUN(writer_errors_png_exr);
 	RUN(writer_errors);
 	RUN(type_for_path);
 	RUN(srgb_known_points);
@@ -354,7 +482,8 @@ main(void)
 	{
 		static const char *const files[] = {
 			"float.exr", "half.exr", "rgb.png", "rgba.png", "grey16.png",
-			"order.exr", NULL
+			"order.exr", "blocks.exr", "ga.png", "order.png", "twice.exr",
+			NULL
 		};
 		size_t i;
 
