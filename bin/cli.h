@@ -60,6 +60,8 @@ struct cli_io {
 
 #define CLI_IO_OPTSTRING "f:hHx:y:c:"
 #define CLI_IO_USAGE "[-f a|f] [-h] [-H -x W -y H -c CHANNELS]"
+/* Makes a pipe's buffer 1 MB (see cli_io.c); anything else is left alone. */
+void cli_widen_pipe(int fd);
 /* Returns 1 when it took the option. */
 int cli_io_option(struct cli_io *io, int opt, const char *arg);
 /* Opens the input (NULL or "-" is stdin) and the output on stdout. */

@@ -1,6 +1,8 @@
 /* The stream options and the read/write loop shared by the stream tools. */
 #include <errno.h>
+#include <fcntl.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli.h"
 
@@ -49,6 +51,23 @@ raw_channel_names(const char *arg)
 	return names;
 }
 
+/*
+ * A pipe of 1 MB instead of Linux's 64 KB: a block of rows is megabytes,
+ * and through a small pipe every block is dozens of wake-ups of the stages
+ * on both sides, which then never overlap their work; piped export ran at
+ * 0.43 s against 0.16 s from a file.  1 MB is the limit for unprivileged
+ * processes.  Not a pipe, or no such fcntl: nothing happens.
+ */
+void
+cli_widen_pipe(int fd)
+{
+#ifdef F_SETPIPE_SZ
+	(void)fcntl(fd, F_SETPIPE_SZ, 1 << 20);
+#else
+	(void)fd;
+#endif
+}
+
 void
 cli_io_open(struct cli_io *io, const char *path)
 {
@@ -56,9 +75,11 @@ cli_io_open(struct cli_io *io, const char *path)
 	struct rf_writer_options wopt = { io->format, io->no_header };
 	int rc;
 
+	cli_widen_pipe(STDOUT_FILENO);
 	if (!path || !strcmp(path, "-")) {
 		io->input = stdin;
 		io->input_name = "<stdin>";
+		cli_widen_pipe(STDIN_FILENO);
 	} else {
 		if (!(io->input = fopen(path, "rb")))
 			die("cannot open '%s':", path);

@@ -245,6 +245,34 @@ encode_block(float *out, size_t npix, size_t nch, const unsigned char *alpha,
 				out[i] = 0.0f; /* RGBE would make garbage of it */
 }
 
+/* A block of rows on its way to the file: the chosen channels, encoded. */
+struct export_block {
+	const struct export_opts *o;
+	rf_image_writer *w;
+	const int *map;
+	const unsigned char *alpha;
+	size_t nch, ncomp, ncols;
+	int srgb;
+	float *out, *scratch;
+};
+
+static void
+export_block(void *arg, const float *in, float *out, size_t y, size_t n)
+{
+	struct export_block *eb = arg;
+	size_t i, c;
+	char err[1024];
+	int rc;
+
+	(void)out;
+	for (i = 0; i < n * eb->ncols; i++)
+		for (c = 0; c < eb->nch; c++)
+			eb->out[i * eb->nch + c] = in[i * eb->ncomp + (size_t)eb->map[c]];
+	encode_block(eb->out, n * eb->ncols, eb->nch, eb->alpha, eb->o, eb->srgb, eb->scratch);
+	if ((rc = rf_image_writer_write_rows(eb->w, y, n, eb->out, err, sizeof(err))) < 0)
+		die_status(rc, err);
+}
+
 static void
 export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
              size_t frame)
@@ -254,10 +282,10 @@ export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
 	static unsigned char alpha[RF_CHANNELS_MAX];
 	char path[4096], err[1024];
 	size_t nch, ncomp = rf_header_nchannels(h), ncols = rf_header_ncols(h);
-	size_t nrows = rf_header_nrows(h), rows, y, n, i, c, k;
+	size_t nrows = rf_header_nrows(h), rows, c, k;
 	int integer = is_integer(o->type), srgb, rc;
+	struct export_block eb;
 	rf_image_writer *w;
-	float *in, *out, *scratch;
 
 	nch = select_channels(h, o->channels ? o->channels : default_channels(h), map);
 	if (o->format->counts && (integer || !(o->format->depths & (D8 | D16))) &&
@@ -295,24 +323,23 @@ export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
 	rows = rf_block_rows(ncols, ncomp, CLI_BLOCK_BYTES);
 	if (rows > nrows)
 		rows = nrows;
-	in = emalloc(rows * ncols * ncomp * sizeof(float));
-	out = emalloc(rows * ncols * nch * sizeof(float));
-	scratch = emalloc(rows * ncols * sizeof(float));
-	for (y = 0; y < nrows; y += n) {
-		n = nrows - y < rows ? nrows - y : rows;
-		cli_io_read(io, in, n);
-		for (i = 0; i < n * ncols; i++)
-			for (c = 0; c < nch; c++)
-				out[i * nch + c] = in[i * ncomp + (size_t)map[c]];
-		encode_block(out, n * ncols, nch, alpha, o, srgb, scratch);
-		if ((rc = rf_image_writer_write_rows(w, y, n, out, err, sizeof(err))) < 0)
-			die_status(rc, err);
-	}
+	eb.o = o;
+	eb.w = w;
+	eb.map = map;
+	eb.alpha = alpha;
+	eb.nch = nch;
+	eb.ncomp = ncomp;
+	eb.ncols = ncols;
+	eb.srgb = srgb;
+	eb.out = emalloc(rows * ncols * nch * sizeof(float));
+	eb.scratch = emalloc(rows * ncols * sizeof(float));
+	rc = cli_blocks(io, nrows, rows, ncols * ncomp, 0, export_block, &eb);
+	free(eb.out);
+	free(eb.scratch);
+	if (rc < 0)
+		cli_io_read_failed(io, rc);
 	if ((rc = rf_image_writer_close(w, err, sizeof(err))) < 0)
 		die_status(rc, err);
-	free(in);
-	free(out);
-	free(scratch);
 }
 
 int

@@ -1,6 +1,7 @@
 /* reflect-gbuffer: ray cast a scene into a G-buffer stream. */
 #include <getopt.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "reflect/scene.h"
@@ -232,6 +233,7 @@ main(int argc, char **argv)
 		die_status(rc, err);
 	wopt.format = io.format;
 	wopt.no_header = io.no_header;
+	cli_widen_pipe(STDOUT_FILENO);
 	if ((rc = rf_writer_open(&io.writer, stdout, "<stdout>", &wopt)) < 0)
 		die_status(rc, NULL);
 	rows = rf_block_rows(width, rf_gbuffer_nchannels(g), CLI_BLOCK_BYTES);

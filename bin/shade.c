@@ -1,5 +1,4 @@
 /* reflect-shade: environment radiance through each pixel's lobe. */
-#include <fcntl.h>
 #include <getopt.h>
 #include <math.h>
 #include <string.h>
@@ -350,22 +349,6 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	cli_io_end_frame(io);
 }
 
-/*
- * A stage moves some 130 bytes a pixel in blocks of megabytes; through
- * the default 64 KB pipe every block is dozens of wake-ups of the stages
- * on either side, each a trip through the scheduler of a busy machine.
- * A 1 MB pipe (Linux's limit for unprivileged processes) cuts them
- * sixteenfold.  Not a pipe, or no such fcntl: nothing happens.
- */
-static void
-widen_pipes(void)
-{
-#ifdef F_SETPIPE_SZ
-	(void)fcntl(STDIN_FILENO, F_SETPIPE_SZ, 1 << 20);
-	(void)fcntl(STDOUT_FILENO, F_SETPIPE_SZ, 1 << 20);
-#endif
-}
-
 static int
 writes(const struct rf_plugin *p, const char *name)
 {
@@ -482,7 +465,6 @@ main(int argc, char **argv)
 	so.nthreads = o.nthreads;
 	if ((rc = rf_shade_create(&shade, &so)) < 0)
 		die_status(rc, NULL);
-	widen_pipes();
 	cli_io_open(&io, optind < argc ? argv[optind] : NULL);
 	while (cli_io_next(&io, &in))
 		shade_frame(&io, &o, &env, shade, in);
