@@ -104,7 +104,7 @@ rf_cubemap_new(rf_cubemap **cp, size_t size, size_t nlevels)
 		c->offset[k] = total;
 		total += 6 * face_floats(size >> k);
 	}
-	if (!(c->data = calloc(total, sizeof(float)))) {
+	if (!(c->data = rf__alloc_big(total * sizeof(float), 1))) {
 		free(c);
 		return RF_ENOMEM;
 	}
@@ -117,7 +117,7 @@ rf_cubemap_free(rf_cubemap *c)
 {
 	if (!c)
 		return;
-	free(c->data);
+	rf__free_big(c->data);
 	free(c);
 }
 

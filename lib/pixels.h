@@ -32,14 +32,23 @@ struct rf__run {
 	unsigned src, dst, len;
 };
 
-/* len floats, len small: two fixed 16-byte copies cover 4 to 8 (they
+/* len >= 1 floats, len small: two fixed 16-byte copies cover 4 to 8 (they
  * overlap in the middle), so no call and no loop per float. */
 static inline void
 rf__copy_run(float *dst, const float *src, unsigned len)
 {
 	unsigned i;
 
-	if (len >= 4 && len <= 8) {
+	if (len < 4) {
+		/* A channel, or the three of a vector: no loop either. */
+		dst[0] = src[0];
+		if (len > 1)
+			dst[1] = src[1];
+		if (len > 2)
+			dst[2] = src[2];
+		return;
+	}
+	if (len <= 8) {
 		memcpy(dst, src, 16);
 		memcpy(dst + len - 4, src + len - 4, 16);
 		return;

@@ -18,7 +18,7 @@ rf__pyramid_from_cube(struct rf__pyramid *p, const rf_cubemap *c)
 		p->face_stride[l] = (p->size[l] + 2) * (p->size[l] + 2);
 		total += 6 * p->face_stride[l];
 	}
-	if (!(p->data = aligned_alloc(16, total * sizeof(rf__v4))))
+	if (!(p->data = rf__alloc_big(total * sizeof(rf__v4), 0)))
 		return RF_ENOMEM;
 	total = 0;
 	for (l = 0; l < p->nlevels; l++) {
@@ -41,6 +41,6 @@ rf__pyramid_from_cube(struct rf__pyramid *p, const rf_cubemap *c)
 void
 rf__pyramid_free(struct rf__pyramid *p)
 {
-	free(p->data);
+	rf__free_big(p->data);
 	p->data = NULL;
 }

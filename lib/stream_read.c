@@ -733,7 +733,7 @@ rf_reader_map_rows(rf_reader *r, size_t nrows, const float **rows)
 	if (r->file_size - pos < (off_t)want)
 		return 0; /* data that ends early: the reading path says where */
 	start = pos - pos % page;
-	m = mmap(NULL, want + (size_t)(pos - start), PROT_READ, MAP_PRIVATE | MAP_POPULATE,
+	m = mmap(NULL, want + (size_t)(pos - start), PROT_READ, MAP_PRIVATE,
 	         fileno(r->fp), start);
 	if (m == MAP_FAILED)
 		return 0;

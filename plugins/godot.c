@@ -37,16 +37,16 @@ whole_power(double x, unsigned n)
 	return r;
 }
 
+/* whole: the power as a whole number, or -1 when it has a fraction. */
 static double
-godot(const float *in, double power, double distance)
+godot(const float *in, double power, int whole, double distance)
 {
 	double pr = sat(in[0]), d = in[1], nv, f, x, lo;
 
 	if (no_hit(d))
 		return pr;
 	nv = sat((double)in[2] * in[5] + (double)in[3] * in[6] + (double)in[4] * in[7]);
-	f = power == floor(power) ? whole_power(1.0 - nv, (unsigned)power)
-	                          : pow(1.0 - nv, power);
+	f = whole >= 0 ? whole_power(1.0 - nv, (unsigned)whole) : pow(1.0 - nv, power);
 	x = sat(d * (1.0 - f) / distance + (1.0 - f) * pr);
 	if (x >= 1.0)
 		return pr; /* exactly, not lo + (pr - lo) rounded */
@@ -66,10 +66,12 @@ run(void *state, const struct rf_span *span)
 {
 	const struct shade_mode *m = state;
 	const float *in = span->in;
+	const double power = m->p[POWER], distance = m->p[DISTANCE];
+	const int whole = power == floor(power) ? (int)power : -1; /* once, not a pixel */
 	uint32_t i;
 
 	for (i = 0; i < span->npix; i++, in += 8)
-		span->out[i] = (float)godot(in, m->p[POWER], m->p[DISTANCE]);
+		span->out[i] = (float)godot(in, power, whole, distance);
 }
 
 static const struct rf_plugin descriptor = {
