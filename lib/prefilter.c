@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "internal.h"
-#include "lobe_simd.h"
+#include "pyramid_simd.h"
 #include "pyramid.h"
 #include "reflect/envmap.h"
 
@@ -401,7 +401,7 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 		rc = RF_ENOMEM;
 		goto out;
 	}
-	if (o->method == RF_PREFILTER_FILTERED && rf__lobe_simd_usable(&pyramid)) {
+	if (o->method == RF_PREFILTER_FILTERED && rf__pyramid_simd_usable(&pyramid)) {
 		if ((rc = rf__lobe_table_alloc(&table, rf_prefilter_level_samples(o->samples,
 		                                                                   levels - 1))) < 0)
 			goto out;

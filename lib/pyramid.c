@@ -23,6 +23,10 @@ rf__pyramid_from_cube(struct rf__pyramid *p, const rf_cubemap *c)
 	total = 0;
 	for (l = 0; l < p->nlevels; l++) {
 		p->level[l] = p->data + total;
+		p->lvl_scale[l] = (float)p->size[l];
+		p->lvl_base[l] = (int32_t)total; /* within range where the kernels run */
+		p->lvl_face[l] = (int32_t)p->face_stride[l];
+		p->lvl_row[l] = (int32_t)(p->size[l] + 2);
 		for (f = 0; f < 6; f++) {
 			const float *src = rf__cubemap_padded_face(c, l, f);
 			rf__v4 *dst = p->level[l] + (size_t)f * p->face_stride[l];

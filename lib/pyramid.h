@@ -19,6 +19,10 @@ struct rf__pyramid {
 	size_t face_stride[32]; /* vectors from one face to the next */
 	rf__v4 *level[32];
 	rf__v4 *data;
+	/* The same per level as the vector kernels gather them: face
+	 * width, and in texels from data: face 0, face to face, row to row. */
+	float lvl_scale[32];
+	int32_t lvl_base[32], lvl_face[32], lvl_row[32];
 };
 
 typedef int rf__v4i __attribute__((vector_size(16)));

@@ -8,6 +8,7 @@
 #include "pixels.h"
 #include "pool.h"
 #include "pyramid.h"
+#include "pyramid_simd.h"
 #include "reflect/shading.h"
 
 #define THREADS_MAX 256
@@ -57,6 +58,19 @@ struct rf_shade {
 	float *block_out;
 	rf_stage *stage;
 	size_t block_y, stage_in_ncomp;
+	/* Each thread's reads of a row, gathered and made in one go; vector:
+	 * made eight at a time. */
+	struct reads *reads;
+	size_t reads_cols;
+	int vector;
+};
+
+/* One row's environment reads: directions and lods as columns, their
+ * results, and for each pixel which reads are its own (-1: none). */
+struct reads {
+	float *x, *y, *z, *lod;
+	rf__v4 *rgb;
+	int32_t *mirror, *wall;
 };
 
 int
@@ -81,12 +95,66 @@ rf_shade_create(rf_shade **sp, const struct rf_shade_options *o)
 	return 0;
 }
 
+static void
+free_reads(rf_shade *s)
+{
+	int t;
+
+	for (t = 0; s->reads && t < s->nthreads; t++) {
+		struct reads *r = &s->reads[t];
+
+		free(r->x);
+		free(r->y);
+		free(r->z);
+		free(r->lod);
+		free(r->rgb);
+		free(r->mirror);
+		free(r->wall);
+	}
+	free(s->reads);
+	s->reads = NULL;
+	s->reads_cols = 0;
+}
+
+/* Room for two reads a pixel (the mirror and the wall behind a partial
+ * mask) on every thread. */
+static int
+alloc_reads(rf_shade *s, size_t ncols)
+{
+	size_t n = 2 * ncols;
+	int t;
+
+	if (ncols <= s->reads_cols)
+		return 0;
+	free_reads(s);
+	if (!(s->reads = calloc((size_t)s->nthreads, sizeof(*s->reads))))
+		return RF_ENOMEM;
+	for (t = 0; t < s->nthreads; t++) {
+		struct reads *r = &s->reads[t];
+
+		r->x = malloc(n * sizeof(float));
+		r->y = malloc(n * sizeof(float));
+		r->z = malloc(n * sizeof(float));
+		r->lod = malloc(n * sizeof(float));
+		r->rgb = aligned_alloc(16, n * sizeof(rf__v4));
+		r->mirror = malloc(ncols * sizeof(int32_t));
+		r->wall = malloc(ncols * sizeof(int32_t));
+		if (!r->x || !r->y || !r->z || !r->lod || !r->rgb || !r->mirror || !r->wall) {
+			free_reads(s);
+			return RF_ENOMEM;
+		}
+	}
+	s->reads_cols = ncols;
+	return 0;
+}
+
 void
 rf_shade_destroy(rf_shade *s)
 {
 	if (!s)
 		return;
 	rf__pool_free(s->pool);
+	free_reads(s);
 	rf_header_free(s->out_h);
 	rf__pyramid_free(&s->pyramid);
 	free(s);
@@ -103,6 +171,7 @@ rf_shade_set_environment(rf_shade *s, const rf_cubemap *env, enum rf_mapping map
 	if ((rc = rf__pyramid_from_cube(&s->pyramid, env)) < 0)
 		return rc;
 	s->env = env;
+	s->vector = rf__pyramid_simd_usable(&s->pyramid);
 	s->mapping = mapping;
 	s->steps = steps;
 	return 0;
@@ -180,6 +249,8 @@ rf_shade_begin_frame(rf_shade *s, const rf_header *in, const float center[3],
 		           s->out_ncomp);
 		return RF_ETOOBIG;
 	}
+	if ((rc = alloc_reads(s, s->ncols)) < 0)
+		return rc;
 	*out = s->out_h;
 	return 0;
 }
@@ -190,33 +261,6 @@ sat(float x)
 	return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; /* NaN -> 0 */
 }
 
-static int
-finite3(const float v[3])
-{
-	return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
-}
-
-/* Radiance at dir and lod; a direction that is not finite (never from
- * reflect-project) reads black rather than spreading NaN. */
-static void
-sample(const rf_shade *s, const float dir[3], float lod, float rgb[3])
-{
-	struct rf__lod l;
-	rf__v4 c;
-
-	if (!finite3(dir)) {
-		rgb[0] = rgb[1] = rgb[2] = 0.0f;
-		return;
-	}
-	/* What rf_cubemap_sample computes (trilinear, the lod clamped to
-	 * the levels), on the RGBA copy. */
-	l = rf__pyramid_lod(&s->pyramid, lod);
-	c = rf__pyramid_fetch(dir, &l);
-	rgb[0] = c[0];
-	rgb[1] = c[1];
-	rgb[2] = c[2];
-}
-
 /* The optional channel c of pixel p, or 1 when the stream lacks it. */
 static float
 or_one(const rf_shade *s, const float *p, int c)
@@ -224,71 +268,126 @@ or_one(const rf_shade *s, const float *p, int c)
 	return s->in[c] >= 0 ? p[s->in[c]] : 1.0f;
 }
 
-static void
-shade_pixel(const rf_shade *s, const float *p, float *o)
+static float
+mask_of(const rf_shade *s, const float *p)
 {
-	float rgb[3], d[3], m = 1.0f, wall[3] = { 0, 0, 0 };
+	return s->in[IN_MASK] >= 0 ? sat(p[s->in[IN_MASK]]) : 1.0f;
+}
+
+/* Adds a read; a direction that is not finite (never from
+ * reflect-project) reads nothing, so black rather than NaN. */
+static inline int32_t
+add_read(struct reads *r, size_t *n, float x, float y, float z, float lod)
+{
+	if (!isfinite(x) || !isfinite(y) || !isfinite(z))
+		return -1;
+	r->x[*n] = x;
+	r->y[*n] = y;
+	r->z[*n] = z;
+	r->lod[*n] = lod;
+	return (int32_t)(*n)++;
+}
+
+/* The reads of a row's pixels: the mirror direction at the lod of its
+ * effective roughness, and where the mask is partial or 0, the wall it
+ * shows (the environment at lod 0 from the capture point toward P).
+ * The channel numbers are held in locals: stores to the int tables
+ * would otherwise make the compiler read them again for every pixel. */
+static size_t
+plan_reads(const rf_shade *s, const float *in, size_t in_ncomp, struct reads *r)
+{
+	const int cm = s->in[IN_MASK], cr = s->in[IN_REFF];
+	const int cdx = s->in[IN_DX], cdy = s->in[IN_DY], cdz = s->in[IN_DZ];
+	const int cpx = s->in[IN_PX], cpy = s->in[IN_PY], cpz = s->in[IN_PZ];
+	const int mirror = !s->mode_radiance;
+	const float ox = s->center[0], oy = s->center[1], oz = s->center[2];
+	size_t x, n = 0;
+
+	for (x = 0; x < s->ncols; x++, in += in_ncomp) {
+		float m = cm >= 0 ? sat(in[cm]) : 1.0f;
+		int32_t a = -1, b = -1;
+
+		if (m > 0.0f && mirror)
+			a = add_read(r, &n, in[cdx], in[cdy], in[cdz],
+			             rf_roughness_to_lod(s->mapping, s->steps, in[cr]));
+		if (m < 1.0f)
+			b = add_read(r, &n, in[cpx] - ox, in[cpy] - oy, in[cpz] - oz, 0.0f);
+		r->mirror[x] = a;
+		r->wall[x] = b;
+	}
+	return n;
+}
+
+/* Pixel p's outputs into o (which may be p) from its reads. */
+static void
+shade_pixel(const rf_shade *s, const float *p, float *o, const struct reads *r, size_t x)
+{
+	float rgb[3] = { 0, 0, 0 }, wall[3] = { 0, 0, 0 }, m = mask_of(s, p);
 	int k;
 
-	if (s->in[IN_MASK] >= 0)
-		m = sat(p[s->in[IN_MASK]]);
 	if (m > 0.0f && s->mode_radiance) {
 		for (k = 0; k < 3; k++)
 			rgb[k] = p[s->in[IN_SR + k]];
-	} else if (m > 0.0f) {
-		float lod = rf_roughness_to_lod(s->mapping, s->steps, p[s->in[IN_REFF]]);
-
-		d[0] = p[s->in[IN_DX]];
-		d[1] = p[s->in[IN_DY]];
-		d[2] = p[s->in[IN_DZ]];
-		sample(s, d, lod, rgb);
-	} else {
-		rgb[0] = rgb[1] = rgb[2] = 0.0f;
-	}
-	if (m < 1.0f) {
-		/* A wall is what the probe saw there: the environment at lod 0
-		 * from the capture point toward P. */
+	} else if (r->mirror[x] >= 0) {
 		for (k = 0; k < 3; k++)
-			d[k] = p[s->in[IN_PX + k]] - s->center[k];
-		sample(s, d, 0.0f, wall);
+			rgb[k] = r->rgb[r->mirror[x]][k];
 	}
-	for (k = 0; k < 3; k++)
-		o[s->out[OUT_SR + k]] = m * rgb[k] + (1.0f - m) * wall[k];
-	if (!s->final)
-		return;
-	if (m > 0.0f) {
+	if (r->wall[x] >= 0)
+		for (k = 0; k < 3; k++)
+			wall[k] = r->rgb[r->wall[x]][k];
+	if (s->final && m > 0.0f) {
 		float nv = p[s->in[IN_NX]] * p[s->in[IN_VX]] +
 		           p[s->in[IN_NY]] * p[s->in[IN_VY]] +
 		           p[s->in[IN_NZ]] * p[s->in[IN_VZ]];
-		float metal = sat(or_one(s, p, IN_METAL)), a, b;
+		float metal = sat(or_one(s, p, IN_METAL)), a, b, spec[3];
 
 		rf_dfg_lookup(nv, p[s->in[IN_ROUGH]], &a, &b);
 		for (k = 0; k < 3; k++) {
 			float albedo = sat(or_one(s, p, IN_AR + k));
 			float f0 = 0.04f + (albedo - 0.04f) * metal;
 
+			spec[k] = rgb[k];
 			rgb[k] *= f0 * a + b;
 		}
+		/* Every input read: now the outputs, which may overwrite them. */
+		for (k = 0; k < 3; k++)
+			o[s->out[OUT_SR + k]] = m * spec[k] + (1.0f - m) * wall[k];
+		/* Walls are light sources here, not reflectors: no BRDF. */
+		for (k = 0; k < 3; k++)
+			o[s->out[OUT_R + k]] = m * rgb[k] + (1.0f - m) * wall[k];
+		return;
 	}
-	/* Walls are light sources here, not reflectors: no BRDF. */
 	for (k = 0; k < 3; k++)
-		o[s->out[OUT_R + k]] = m * rgb[k] + (1.0f - m) * wall[k];
+		o[s->out[OUT_SR + k]] = m * rgb[k] + (1.0f - m) * wall[k];
+	if (s->final)
+		for (k = 0; k < 3; k++)
+			o[s->out[OUT_R + k]] = m * rgb[k] + (1.0f - m) * wall[k];
 }
 
-/* Row r of the block, on any thread: the pass keeps no state per thread. */
+/* A row of ncols pixels: its reads gathered, made in one go (eight at a
+ * time where the CPU allows), then the pixels finished. */
+static void
+shade_pixels(const rf_shade *s, const float *in, size_t in_ncomp, float *out,
+             struct reads *r)
+{
+	size_t x, n = plan_reads(s, in, in_ncomp, r);
+
+	rf__pyramid_fetch_many(&s->pyramid, s->vector, n, r->x, r->y, r->z, r->lod, r->rgb);
+	for (x = 0; x < s->ncols; x++)
+		shade_pixel(s, in + x * in_ncomp, out + x * s->out_ncomp, r, x);
+}
+
+/* Row r of the block, on thread `thread` (whose reads it uses). */
 static void
 shade_row(void *arg, size_t r, int thread)
 {
 	const rf_shade *s = arg;
 	const float *in = s->block_in + r * s->ncols * s->in_ncomp;
 	float *out = s->block_out + r * s->ncols * s->out_ncomp;
-	size_t x;
 
-	(void)thread;
 	if (in != out)
 		rf__widen_pixels(out, s->out_ncomp, in, s->in_ncomp, s->ncols);
-	for (x = 0; x < s->ncols; x++)
-		shade_pixel(s, in + x * s->in_ncomp, out + x * s->out_ncomp);
+	shade_pixels(s, in, s->in_ncomp, out, &s->reads[thread]);
 }
 
 /* Row r: the stage into out, then the pass over it in place, while the
@@ -299,11 +398,9 @@ stage_and_shade_row(void *arg, size_t r, int thread)
 	const rf_shade *s = arg;
 	const float *in = s->block_in + r * s->ncols * s->stage_in_ncomp;
 	float *out = s->block_out + r * s->ncols * s->out_ncomp;
-	size_t x;
 
 	rf__stage_row(s->stage, in, out, s->block_y + r, thread);
-	for (x = 0; x < s->ncols; x++)
-		shade_pixel(s, out + x * s->out_ncomp, out + x * s->out_ncomp);
+	shade_pixels(s, out, s->out_ncomp, out, &s->reads[thread]);
 }
 
 int

@@ -11,7 +11,7 @@
  * A level's samples as columns (one array per field), so eight samples
  * load as one vector each.  The offsets are in texels from the start of
  * the pyramid's data, hence the int32 limit checked by
- * rf__lobe_simd_usable.
+ * rf__pyramid_simd_usable.
  */
 struct rf__lobe_table {
 	size_t n;
@@ -27,7 +27,7 @@ struct rf__lobe_table {
 /* Whether this CPU has the vector unit the kernel needs and the pyramid
  * is small enough for 32-bit offsets.  REFLECT_SIMD=off in the
  * environment turns the kernel off (to compare it with the scalar path). */
-int rf__lobe_simd_usable(const struct rf__pyramid *p);
+int rf__pyramid_simd_usable(const struct rf__pyramid *p);
 
 int rf__lobe_table_alloc(struct rf__lobe_table *t, size_t n);
 void rf__lobe_table_free(struct rf__lobe_table *t);
@@ -39,5 +39,12 @@ void rf__lobe_table_set(struct rf__lobe_table *t, size_t i, const float l[3],
 rf__v4 rf__lobe_sum8(const struct rf__lobe_table *t, size_t count,
                      const struct rf__pyramid *p, const float n[3],
                      const float tg[3], const float bt[3]);
+
+/* Trilinear reads in count directions (x, y, z, need not be unit) at
+ * their lods, as rf__pyramid_lod and rf__pyramid_fetch make them; eight
+ * at a time when `vector` (rf__pyramid_simd_usable said yes). */
+void rf__pyramid_fetch_many(const struct rf__pyramid *p, int vector, size_t count,
+                            const float *x, const float *y, const float *z, const float *lod,
+                            rf__v4 *rgb);
 
 #endif

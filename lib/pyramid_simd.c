@@ -1,16 +1,17 @@
 /*
- * The prefilter's inner loop with AVX2: eight samples' directions, faces,
- * texel coordinates and bilinear weights are found in one pass of vector
- * arithmetic, then each sample's eight texels are added with one
- * multiply-add apiece.  The scalar loop spends most of its time choosing
- * the face and computing addresses sample by sample; here that work is
- * shared by eight, which roughly halves the instructions per sample.
+ * The pyramid's inner loops with AVX2: the prefilter's lobe sum and the
+ * shading pass's reads.  Eight directions' faces, texel coordinates and
+ * bilinear weights are found in one pass of vector arithmetic, then each
+ * one's eight texels are added with a multiply-add per pair.  The scalar
+ * loops spend most of their time choosing the face and computing
+ * addresses one direction at a time; here eight share that work, which
+ * roughly halves the instructions per read.
  */
 #include <stdlib.h>
 #include <string.h>
 
 #include "internal.h"
-#include "lobe_simd.h"
+#include "pyramid_simd.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #define LOBE_AVX2 1
@@ -86,7 +87,7 @@ pyramid_texels(const struct rf__pyramid *p)
 #ifdef LOBE_AVX2
 
 int
-rf__lobe_simd_usable(const struct rf__pyramid *p)
+rf__pyramid_simd_usable(const struct rf__pyramid *p)
 {
 	const char *env = getenv("REFLECT_SIMD");
 
@@ -100,24 +101,22 @@ rf__lobe_simd_usable(const struct rf__pyramid *p)
 #define AVX2 __attribute__((target("avx2,fma")))
 
 /* One level's texel offsets and four bilinear weights for eight samples:
- * the same arithmetic as rf__pyramid_fetch, lane by lane. */
+ * the same arithmetic as rf__pyramid_fetch, lane by lane.  sc: face
+ * widths, lw: the level's weights, base, face_stride, row: as in the
+ * pyramid's level tables. */
 AVX2 static inline __m256i
-level_corners(__m256 u, __m256 v, __m256i face, const float *scale, const float *weight,
-              const int32_t *base, const int32_t *face_stride, const int32_t *row,
-              float w[4][8])
+corners(__m256 u, __m256 v, __m256i face, __m256 sc, __m256 lw, __m256i base,
+        __m256i face_stride, __m256i row, float w[4][8])
 {
 	const __m256 half = _mm256_set1_ps(0.5f);
-	__m256 sc = _mm256_load_ps(scale), lw = _mm256_load_ps(weight);
 	__m256 s = _mm256_fmadd_ps(u, sc, half), t = _mm256_fmadd_ps(v, sc, half);
 	__m256i is = _mm256_cvttps_epi32(s), it = _mm256_cvttps_epi32(t);
 	__m256 a = _mm256_sub_ps(s, _mm256_cvtepi32_ps(is));
 	__m256 b = _mm256_sub_ps(t, _mm256_cvtepi32_ps(it));
 	__m256 wb1 = _mm256_mul_ps(lw, b), wb0 = _mm256_sub_ps(lw, wb1);
 	__m256i at = _mm256_add_epi32(
-		_mm256_load_si256((const __m256i *)base),
-		_mm256_add_epi32(_mm256_mullo_epi32(face, _mm256_load_si256((const __m256i *)face_stride)),
-		                 _mm256_add_epi32(_mm256_mullo_epi32(it, _mm256_load_si256((const __m256i *)row)),
-		                                  is)));
+		base, _mm256_add_epi32(_mm256_mullo_epi32(face, face_stride),
+		                       _mm256_add_epi32(_mm256_mullo_epi32(it, row), is)));
 	__m256 w10 = _mm256_mul_ps(wb0, a), w11 = _mm256_mul_ps(wb1, a);
 
 	_mm256_store_ps(w[0], _mm256_sub_ps(wb0, w10));
@@ -125,6 +124,51 @@ level_corners(__m256 u, __m256 v, __m256i face, const float *scale, const float 
 	_mm256_store_ps(w[2], _mm256_sub_ps(wb1, w11));
 	_mm256_store_ps(w[3], w11);
 	return at;
+}
+
+AVX2 static inline __m256i
+level_corners(__m256 u, __m256 v, __m256i face, const float *scale, const float *weight,
+              const int32_t *base, const int32_t *face_stride, const int32_t *row,
+              float w[4][8])
+{
+	return corners(u, v, face, _mm256_load_ps(scale), _mm256_load_ps(weight),
+	               _mm256_load_si256((const __m256i *)base),
+	               _mm256_load_si256((const __m256i *)face_stride),
+	               _mm256_load_si256((const __m256i *)row), w);
+}
+
+/* The face of each of eight directions (as rf__cube_face chooses it, ties
+ * to x, then y) and the position on it. */
+AVX2 static inline __m256i
+cube_face8(__m256 dx, __m256 dy, __m256 dz, __m256 *u, __m256 *v)
+{
+	const __m256 half = _mm256_set1_ps(0.5f), sign = _mm256_set1_ps(-0.0f);
+	const __m256 zero = _mm256_setzero_ps();
+	__m256 ax = _mm256_andnot_ps(sign, dx), ay = _mm256_andnot_ps(sign, dy);
+	__m256 az = _mm256_andnot_ps(sign, dz);
+	__m256 on_x = _mm256_and_ps(_mm256_cmp_ps(ax, ay, _CMP_GE_OQ),
+	                            _mm256_cmp_ps(ax, az, _CMP_GE_OQ));
+	__m256 on_y = _mm256_andnot_ps(on_x, _mm256_cmp_ps(ay, az, _CMP_GE_OQ));
+	__m256 major = _mm256_blendv_ps(_mm256_blendv_ps(az, ay, on_y), ax, on_x);
+	__m256 along = _mm256_blendv_ps(_mm256_blendv_ps(dz, dy, on_y), dx, on_x);
+	__m256 pos = _mm256_cmp_ps(along, zero, _CMP_GT_OQ);
+	__m256 flip = _mm256_and_ps(pos, sign), keep = _mm256_andnot_ps(pos, sign);
+	/* across: +-X faces z (negated on +X), Y faces x, Z faces x
+	 * (negated on +Z); down: Y faces z (negated on +Y), else -y. */
+	__m256 across = _mm256_blendv_ps(
+		_mm256_blendv_ps(_mm256_xor_ps(dx, flip), dx, on_y),
+		_mm256_xor_ps(dz, keep), on_x);
+	__m256 down = _mm256_blendv_ps(_mm256_xor_ps(dy, sign), _mm256_xor_ps(dz, flip), on_y);
+	__m256 inv = _mm256_div_ps(half, major);
+	/* Face 2 axis + (negative): masks are -1 where true. */
+	__m256i axis = _mm256_add_epi32(_mm256_set1_epi32(2),
+	                                _mm256_add_epi32(_mm256_slli_epi32(_mm256_castps_si256(on_x), 1),
+	                                                 _mm256_castps_si256(on_y)));
+
+	*u = _mm256_fmadd_ps(across, inv, half);
+	*v = _mm256_fmadd_ps(down, inv, half);
+	return _mm256_add_epi32(_mm256_slli_epi32(axis, 1),
+	                        _mm256_add_epi32(_mm256_set1_epi32(1), _mm256_castps_si256(pos)));
 }
 
 /* Rows of eight weights (one weight of eight samples each) to eight
@@ -159,8 +203,6 @@ AVX2 static rf__v4
 lobe_sum_avx2(const struct rf__lobe_table *tb, size_t count, const struct rf__pyramid *p,
               const float n[3], const float tg[3], const float bt[3])
 {
-	const __m256 half = _mm256_set1_ps(0.5f), sign = _mm256_set1_ps(-0.0f);
-	const __m256 zero = _mm256_setzero_ps();
 	const __m256 tx = _mm256_set1_ps(tg[0]), ty = _mm256_set1_ps(tg[1]), tz = _mm256_set1_ps(tg[2]);
 	const __m256 bx = _mm256_set1_ps(bt[0]), by = _mm256_set1_ps(bt[1]), bz = _mm256_set1_ps(bt[2]);
 	const __m256 nx = _mm256_set1_ps(n[0]), ny = _mm256_set1_ps(n[1]), nz = _mm256_set1_ps(n[2]);
@@ -186,31 +228,8 @@ lobe_sum_avx2(const struct rf__lobe_table *tb, size_t count, const struct rf__py
 		__m256 dx = _mm256_fmadd_ps(lz, nx, _mm256_fmadd_ps(ly, bx, _mm256_mul_ps(lx, tx)));
 		__m256 dy = _mm256_fmadd_ps(lz, ny, _mm256_fmadd_ps(ly, by, _mm256_mul_ps(lx, ty)));
 		__m256 dz = _mm256_fmadd_ps(lz, nz, _mm256_fmadd_ps(ly, bz, _mm256_mul_ps(lx, tz)));
-		__m256 ax = _mm256_andnot_ps(sign, dx), ay = _mm256_andnot_ps(sign, dy);
-		__m256 az = _mm256_andnot_ps(sign, dz);
-		/* The face, as rf__cube_face chooses it (ties go to x, then y). */
-		__m256 on_x = _mm256_and_ps(_mm256_cmp_ps(ax, ay, _CMP_GE_OQ),
-		                            _mm256_cmp_ps(ax, az, _CMP_GE_OQ));
-		__m256 on_y = _mm256_andnot_ps(on_x, _mm256_cmp_ps(ay, az, _CMP_GE_OQ));
-		__m256 major = _mm256_blendv_ps(_mm256_blendv_ps(az, ay, on_y), ax, on_x);
-		__m256 along = _mm256_blendv_ps(_mm256_blendv_ps(dz, dy, on_y), dx, on_x);
-		__m256 pos = _mm256_cmp_ps(along, zero, _CMP_GT_OQ);
-		__m256 flip = _mm256_and_ps(pos, sign), keep = _mm256_andnot_ps(pos, sign);
-		/* across: +-X faces z (negated on +X), Y faces x, Z faces x
-		 * (negated on +Z); down: Y faces z (negated on +Y), else -y. */
-		__m256 across = _mm256_blendv_ps(
-			_mm256_blendv_ps(_mm256_xor_ps(dx, flip), dx, on_y),
-			_mm256_xor_ps(dz, keep), on_x);
-		__m256 down = _mm256_blendv_ps(_mm256_xor_ps(dy, sign), _mm256_xor_ps(dz, flip), on_y);
-		__m256 inv = _mm256_div_ps(half, major);
-		__m256 u = _mm256_fmadd_ps(across, inv, half), v = _mm256_fmadd_ps(down, inv, half);
-		/* Face 2 axis + (negative): masks are -1 where true. */
-		__m256i axis = _mm256_add_epi32(_mm256_set1_epi32(2),
-		                                _mm256_add_epi32(_mm256_slli_epi32(_mm256_castps_si256(on_x), 1),
-		                                                 _mm256_castps_si256(on_y)));
-		__m256i face = _mm256_add_epi32(_mm256_slli_epi32(axis, 1),
-		                                _mm256_add_epi32(_mm256_set1_epi32(1),
-		                                                 _mm256_castps_si256(pos)));
+		__m256 u, v;
+		__m256i face = cube_face8(dx, dy, dz, &u, &v);
 
 		_mm256_store_si256((__m256i *)at0,
 		                   level_corners(u, v, face, tb->scale0 + s, tb->w0 + s, tb->base0 + s,
@@ -244,16 +263,92 @@ rf__lobe_sum8(const struct rf__lobe_table *t, size_t count, const struct rf__pyr
 	return lobe_sum_avx2(t, count, p, n, tg, bt);
 }
 
+/* count reads, eight at a time; what is left over goes the scalar way. */
+AVX2 static size_t
+fetch_many_avx2(const struct rf__pyramid *p, size_t count, const float *x, const float *y,
+                const float *z, const float *lod, rf__v4 *rgb)
+{
+	const __m256i pick[4] = {
+		_mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1), _mm256_setr_epi32(2, 2, 2, 2, 3, 3, 3, 3),
+		_mm256_setr_epi32(4, 4, 4, 4, 5, 5, 5, 5), _mm256_setr_epi32(6, 6, 6, 6, 7, 7, 7, 7),
+	};
+	const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+	const __m256 top = _mm256_set1_ps((float)(p->nlevels - 1));
+	const __m256i top_level = _mm256_set1_epi32((int)p->nlevels - 1);
+	const __m256i next = _mm256_set1_epi32(1);
+	const float *data = (const float *)p->data;
+	__attribute__((aligned(32))) int32_t at0[8], at1[8], r0[8], r1[8];
+	__attribute__((aligned(32))) float w0[4][8], w1[4][8], wt[8][8];
+	size_t s, k;
+
+	for (s = 0; s + 8 <= count; s += 8) {
+		__m256 u, v;
+		__m256i face = cube_face8(_mm256_loadu_ps(x + s), _mm256_loadu_ps(y + s),
+		                          _mm256_loadu_ps(z + s), &u, &v);
+		/* The lod clamped to the levels (NaN to 0: max returns its
+		 * second operand), split into two levels and a weight. */
+		__m256 l = _mm256_min_ps(_mm256_max_ps(_mm256_loadu_ps(lod + s), zero), top);
+		__m256i l0 = _mm256_cvttps_epi32(l);
+		__m256i l1 = _mm256_min_epi32(_mm256_add_epi32(l0, next), top_level);
+		__m256 f1 = _mm256_andnot_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(l1, l0)),
+		                             _mm256_sub_ps(l, _mm256_cvtepi32_ps(l0)));
+		__m256i row0 = _mm256_i32gather_epi32(p->lvl_row, l0, 4);
+		__m256i row1 = _mm256_i32gather_epi32(p->lvl_row, l1, 4);
+
+		_mm256_store_si256((__m256i *)at0,
+		                   corners(u, v, face, _mm256_i32gather_ps(p->lvl_scale, l0, 4),
+		                           _mm256_sub_ps(one, f1),
+		                           _mm256_i32gather_epi32(p->lvl_base, l0, 4),
+		                           _mm256_i32gather_epi32(p->lvl_face, l0, 4), row0, w0));
+		_mm256_store_si256((__m256i *)at1,
+		                   corners(u, v, face, _mm256_i32gather_ps(p->lvl_scale, l1, 4), f1,
+		                           _mm256_i32gather_epi32(p->lvl_base, l1, 4),
+		                           _mm256_i32gather_epi32(p->lvl_face, l1, 4), row1, w1));
+		_mm256_store_si256((__m256i *)r0, _mm256_slli_epi32(row0, 2));
+		_mm256_store_si256((__m256i *)r1, _mm256_slli_epi32(row1, 2));
+		transpose8(w0, w1, wt);
+		for (k = 0; k < 8; k++) {
+			const float *q0 = data + 4 * (size_t)at0[k], *q1 = data + 4 * (size_t)at1[k];
+			__m256 w = _mm256_load_ps(wt[k]);
+			__m256 a = _mm256_mul_ps(_mm256_permutevar8x32_ps(w, pick[0]), _mm256_loadu_ps(q0));
+			__m256 b = _mm256_mul_ps(_mm256_permutevar8x32_ps(w, pick[1]),
+			                         _mm256_loadu_ps(q0 + r0[k]));
+
+			a = _mm256_fmadd_ps(_mm256_permutevar8x32_ps(w, pick[2]), _mm256_loadu_ps(q1), a);
+			b = _mm256_fmadd_ps(_mm256_permutevar8x32_ps(w, pick[3]),
+			                    _mm256_loadu_ps(q1 + r1[k]), b);
+			a = _mm256_add_ps(a, b);
+			_mm_storeu_ps((float *)&rgb[s + k], _mm_add_ps(_mm256_castps256_ps128(a),
+			                                               _mm256_extractf128_ps(a, 1)));
+		}
+	}
+	return s;
+}
+
+void
+rf__pyramid_fetch_many(const struct rf__pyramid *p, int vector, size_t count, const float *x,
+                       const float *y, const float *z, const float *lod, rf__v4 *rgb)
+{
+	size_t i = vector ? fetch_many_avx2(p, count, x, y, z, lod, rgb) : 0;
+
+	for (; i < count; i++) {
+		float d[3] = { x[i], y[i], z[i] };
+		struct rf__lod l = rf__pyramid_lod(p, lod[i]);
+
+		rgb[i] = rf__pyramid_fetch(d, &l);
+	}
+}
+
 #else
 
 int
-rf__lobe_simd_usable(const struct rf__pyramid *p)
+rf__pyramid_simd_usable(const struct rf__pyramid *p)
 {
 	(void)pyramid_texels;
 	return 0;
 }
 
-/* Never called where rf__lobe_simd_usable says no; kept correct anyway,
+/* Never called where rf__pyramid_simd_usable says no; kept correct anyway,
  * as the plain loop over the table. */
 rf__v4
 rf__lobe_sum8(const struct rf__lobe_table *t, size_t count, const struct rf__pyramid *p,
@@ -282,6 +377,21 @@ rf__lobe_sum8(const struct rf__lobe_table *t, size_t count, const struct rf__pyr
 		acc += rf__pyramid_fetch(d, &lod);
 	}
 	return acc;
+}
+
+void
+rf__pyramid_fetch_many(const struct rf__pyramid *p, int vector, size_t count, const float *x,
+                       const float *y, const float *z, const float *lod, rf__v4 *rgb)
+{
+	size_t i;
+
+	(void)vector;
+	for (i = 0; i < count; i++) {
+		float d[3] = { x[i], y[i], z[i] };
+		struct rf__lod l = rf__pyramid_lod(p, lod[i]);
+
+		rgb[i] = rf__pyramid_fetch(d, &l);
+	}
 }
 
 #endif
