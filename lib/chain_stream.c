@@ -93,7 +93,8 @@ read_level(rf_reader *r, rf_cubemap *c, size_t k, const rf_header *h, char *err,
 {
 	size_t n = rf_cubemap_level_size(c, k), f, j, i, nch = rf_header_nchannels(h);
 	int ch[3], rc, q;
-	float *row;
+	const float *mapped = NULL;
+	float *row = NULL;
 
 	if (rf_header_ncols(h) != n || rf_header_nrows(h) != 6 * n) {
 		rf__format(err, errlen, "level %zu is %zux%zu, expected %zux%zu", k,
@@ -108,19 +109,25 @@ read_level(rf_reader *r, rf_cubemap *c, size_t k, const rf_header *h, char *err,
 			return RF_ECHANNEL;
 		}
 	}
-	if (!(row = malloc(n * nch * sizeof(float))))
+	/* A file's level is mapped in one go; otherwise it is read a row at
+	 * a time. */
+	if ((rc = rf_reader_map_rows(r, 6 * n, &mapped)) < 0) {
+		rf__format(err, errlen, "%s", rf_reader_error(r));
+		return rc;
+	}
+	if (!mapped && !(row = malloc(n * nch * sizeof(float))))
 		return RF_ENOMEM;
 	for (f = 0; f < 6; f++)
 		for (j = 0; j < n; j++) {
-			if ((rc = rf_reader_read_rows(r, row, 1)) < 0) {
+			/* A face's row is contiguous, borders aside. */
+			float *t = rf_cubemap_texel(c, k, (enum rf_face)f, 0, j);
+			const float *p = mapped ? mapped + (f * n + j) * n * nch : row;
+
+			if (!mapped && (rc = rf_reader_read_rows(r, row, 1)) < 0) {
 				rf__format(err, errlen, "%s", rf_reader_error(r));
 				free(row);
 				return rc;
 			}
-			/* A face's row is contiguous, borders aside. */
-			float *t = rf_cubemap_texel(c, k, (enum rf_face)f, 0, j);
-			const float *p = row;
-
 			for (i = 0; i < n; i++, t += 3, p += nch) {
 				t[0] = p[ch[0]];
 				t[1] = p[ch[1]];
