@@ -344,8 +344,11 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	rc = cli_blocks(io, nrows, rows, ncols * rf_header_nchannels(in),
 	                ncols * rf_header_nchannels(out), shade_block, &sb);
 	rf_stage_destroy(stage);
-	if (rc < 0)
+	if (rc < 0) {
+		/* Its threads are joined before we die, as the stage's are. */
+		rf_shade_destroy(shade);
 		cli_io_read_failed(io, rc);
+	}
 	cli_io_end_frame(io);
 }
 

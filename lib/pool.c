@@ -16,7 +16,7 @@
 struct rf__pool {
 	int nthreads; /* with the caller's */
 	pthread_t *tid;
-	int started;
+	int started, launched;
 	pthread_mutex_t mu;
 	pthread_cond_t wake, done;
 	unsigned long generation; /* one a batch */
@@ -72,7 +72,6 @@ int
 rf__pool_new(struct rf__pool **pp, int nthreads)
 {
 	struct rf__pool *p;
-	int i;
 
 	*pp = NULL;
 	if (!(p = calloc(1, sizeof(*p))))
@@ -86,8 +85,20 @@ rf__pool_new(struct rf__pool **pp, int nthreads)
 	pthread_cond_init(&p->wake, NULL);
 	pthread_cond_init(&p->done, NULL);
 	atomic_init(&p->next, 0);
-	/* Threads that cannot be had are not an error: the ones there are,
-	 * the caller at least, take every task. */
+	*pp = p;
+	return 0;
+}
+
+/* The threads start with the first batch, not with the pool: a tool that
+ * dies on a bad header before its first row then leaves none behind.
+ * Threads that cannot be had are not an error: the ones there are, the
+ * caller at least, take every task. */
+static void
+start_threads(struct rf__pool *p)
+{
+	int i;
+
+	p->launched = 1;
 	for (i = 1; i < p->nthreads; i++) {
 		struct start *s = malloc(sizeof(*s));
 
@@ -101,8 +112,6 @@ rf__pool_new(struct rf__pool **pp, int nthreads)
 		}
 		p->started++;
 	}
-	*pp = p;
-	return 0;
 }
 
 int
@@ -114,6 +123,8 @@ rf__pool_threads(const struct rf__pool *p)
 void
 rf__pool_run(struct rf__pool *p, size_t ntasks, rf__pool_fn *fn, void *arg)
 {
+	if (!p->launched)
+		start_threads(p);
 	pthread_mutex_lock(&p->mu);
 	p->fn = fn;
 	p->arg = arg;

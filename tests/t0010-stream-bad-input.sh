@@ -309,6 +309,27 @@ then
 			valgrind_bad "$builddir/bin/reflect-project" -j 2 $f || return 1
 		done
 	'
+	# Data that ends early, read from a file (mapped) and from a pipe
+	# (read ahead on a thread): every thread is gone before the exit.
+	test_expect_success 'bad and truncated input under valgrind (reflect-shade, reflect-export)' '
+		for f in wrong-magic size-overflow garbage unclosed-header
+		do
+			valgrind_bad "$builddir/bin/reflect-shade" -j 2 --size=8 $f || return 1
+		done &&
+		# Three blocks of rows: the last one fails after the threads
+		# of the first two have started.
+		reflect-gbuffer -x 1500 -y 60 | reflect-project >whole &&
+		size=$(wc -c <whole) &&
+		head -c $((size - 1000)) whole >shade-truncated &&
+		valgrind_bad "$builddir/bin/reflect-shade" -j 2 --size=8 shade-truncated &&
+		test_grep "data ends" err &&
+		cat shade-truncated | valgrind_bad "$builddir/bin/reflect-shade" -j 2 --size=8 &&
+		test_grep "data ends" err &&
+		valgrind_bad "$builddir/bin/reflect-export" -o out.exr -c D shade-truncated &&
+		test_grep "data ends" err &&
+		cat shade-truncated | valgrind_bad "$builddir/bin/reflect-export" -o out.exr -c D &&
+		test_grep "data ends" err
+	'
 else
 	test_skip 'every bad input under valgrind (reflect-info)' 'no valgrind'
 	test_skip 'every bad input under valgrind (reflect-info -s)' 'no valgrind'
