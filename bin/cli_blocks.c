@@ -26,9 +26,9 @@ struct blocks {
 	float *in[2], *out[2];
 	pthread_mutex_t mu;
 	pthread_cond_t cv;
-	/* Counts of blocks: read in, let go of by the compute, computed,
-	 * written out.  Block k lives in slot k % 2. */
-	size_t read, released, computed, written;
+	/* Counts of blocks: read in, computed (its input let go of, its
+	 * output ready), written out.  Block k lives in slot k % 2. */
+	size_t read, computed, written;
 	/* The first failure (an RF_E* code) and errno with it; stop tells
 	 * the threads to give up. */
 	int read_rc, read_errno, write_rc, write_errno, stop;
@@ -99,7 +99,7 @@ reader(void *arg)
 	for (k = 0; k < b->nblocks; k++) {
 		if (k >= 2) {
 			pthread_mutex_lock(&b->mu);
-			go = wait_past(b, &b->released, k - 2);
+			go = wait_past(b, &b->computed, k - 2);
 			pthread_mutex_unlock(&b->mu);
 			if (!go)
 				break;
@@ -242,7 +242,6 @@ cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
 			}
 		}
 		pthread_mutex_lock(&b.mu);
-		b.released++;
 		b.computed++;
 		pthread_cond_broadcast(&b.cv);
 		pthread_mutex_unlock(&b.mu);

@@ -27,9 +27,8 @@ struct rf_reader {
 	size_t row_floats; /* ncols * ncomp */
 	int swap;
 	/* rf_reader_map_rows: whether the input is a regular file (-1 not
-	 * yet known), its size, and the one mapping held. */
+	 * yet known), and the one mapping held. */
 	int mappable;
-	off_t file_size;
 	void *map;
 	size_t map_len;
 	int status; /* the first error: every later call returns it again */
@@ -728,9 +727,8 @@ rf_reader_map_rows(rf_reader *r, size_t nrows, const float **rows)
 	/* The size again: a file may grow while we read it. */
 	if (fstat(fileno(r->fp), &st) < 0 || (pos = ftello(r->fp)) < 0 || pos % 4)
 		return 0;
-	r->file_size = st.st_size;
 	want = nrows * r->row_floats * sizeof(float);
-	if (r->file_size - pos < (off_t)want)
+	if (st.st_size - pos < (off_t)want)
 		return 0; /* data that ends early: the reading path says where */
 	start = pos - pos % page;
 	m = mmap(NULL, want + (size_t)(pos - start), PROT_READ, MAP_PRIVATE,
