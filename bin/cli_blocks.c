@@ -16,7 +16,6 @@
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 
 #include "cli.h"
 
@@ -33,25 +32,6 @@ struct blocks {
 	 * the threads to give up. */
 	int read_rc, read_errno, write_rc, write_errno, stop;
 };
-
-/* A block buffer on 2 MB pages where the kernel allows: 4 KB pages are
- * faulted in and cleared one by one, a thousand for a block. */
-static float *
-block_buffer(size_t floats)
-{
-	size_t huge = (size_t)2 << 20, bytes = floats * sizeof(float) + 1;
-	void *p;
-
-	if (bytes < huge)
-		return emalloc(bytes);
-	bytes = (bytes + huge - 1) & ~(huge - 1);
-	if (posix_memalign(&p, huge, bytes) != 0)
-		die("out of memory");
-#ifdef MADV_HUGEPAGE
-	(void)madvise(p, bytes, MADV_HUGEPAGE);
-#endif
-	return p;
-}
 
 static size_t
 block_rows(const struct blocks *b, size_t k, size_t *y)
@@ -186,8 +166,8 @@ cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
 	b.block = block ? block : 1;
 	b.nblocks = (nrows + b.block - 1) / b.block;
 	for (i = 0; i < 2; i++) {
-		b.in[i] = in_floats ? block_buffer(b.block * in_floats) : NULL;
-		b.out[i] = out_floats ? block_buffer(b.block * out_floats) : NULL;
+		b.in[i] = in_floats ? emalloc(b.block * in_floats * sizeof(float)) : NULL;
+		b.out[i] = out_floats ? emalloc(b.block * out_floats * sizeof(float)) : NULL;
 	}
 	pthread_mutex_init(&b.mu, NULL);
 	pthread_cond_init(&b.cv, NULL);

@@ -23,9 +23,3 @@ rf__alloc_big(size_t bytes, int zero)
 #endif
 	return p;
 }
-
-void
-rf__free_big(void *p)
-{
-	free(p);
-}

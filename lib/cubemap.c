@@ -117,7 +117,7 @@ rf_cubemap_free(rf_cubemap *c)
 {
 	if (!c)
 		return;
-	rf__free_big(c->data);
+	free(c->data);
 	free(c);
 }
 

@@ -33,9 +33,8 @@ void rf__format(char *buf, size_t size, const char *fmt, ...) RF__PRINTF(3, 4);
 
 /* Big buffers (megabytes: cube levels, pyramids): on 2 MB pages where
  * the system allows, as faulting in and clearing 4 KB pages one by one
- * cost a stage a third of its start-up.  Free with rf__free_big. */
+ * cost a stage a third of its start-up.  Free with free(). */
 void *rf__alloc_big(size_t bytes, int zero);
-void rf__free_big(void *p);
 
 /* x * y * z without overflow; 0 and *out set on success. */
 int rf__mul3(size_t x, size_t y, size_t z, size_t *out);

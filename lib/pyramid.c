@@ -45,6 +45,6 @@ rf__pyramid_from_cube(struct rf__pyramid *p, const rf_cubemap *c)
 void
 rf__pyramid_free(struct rf__pyramid *p)
 {
-	rf__free_big(p->data);
+	free(p->data);
 	p->data = NULL;
 }
