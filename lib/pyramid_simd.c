@@ -14,7 +14,7 @@
 #include "pyramid_simd.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
-#define LOBE_AVX2 1
+#define PYRAMID_AVX2 1
 #include <immintrin.h>
 #endif
 
@@ -84,7 +84,7 @@ pyramid_texels(const struct rf__pyramid *p)
 	return total;
 }
 
-#ifdef LOBE_AVX2
+#ifdef PYRAMID_AVX2
 
 int
 rf__pyramid_simd_usable(const struct rf__pyramid *p)
@@ -325,20 +325,6 @@ fetch_many_avx2(const struct rf__pyramid *p, size_t count, const float *x, const
 	return s;
 }
 
-void
-rf__pyramid_fetch_many(const struct rf__pyramid *p, int vector, size_t count, const float *x,
-                       const float *y, const float *z, const float *lod, rf__v4 *rgb)
-{
-	size_t i = vector ? fetch_many_avx2(p, count, x, y, z, lod, rgb) : 0;
-
-	for (; i < count; i++) {
-		float d[3] = { x[i], y[i], z[i] };
-		struct rf__lod l = rf__pyramid_lod(p, lod[i]);
-
-		rgb[i] = rf__pyramid_fetch(d, &l);
-	}
-}
-
 #else
 
 int
@@ -379,19 +365,26 @@ rf__lobe_sum8(const struct rf__lobe_table *t, size_t count, const struct rf__pyr
 	return acc;
 }
 
+#endif
+
+/* Eight at a time where the kernel exists and was chosen; the rest, or
+ * all of them, the plain way. */
 void
 rf__pyramid_fetch_many(const struct rf__pyramid *p, int vector, size_t count, const float *x,
                        const float *y, const float *z, const float *lod, rf__v4 *rgb)
 {
-	size_t i;
+	size_t i = 0;
 
+#ifdef PYRAMID_AVX2
+	if (vector)
+		i = fetch_many_avx2(p, count, x, y, z, lod, rgb);
+#else
 	(void)vector;
-	for (i = 0; i < count; i++) {
+#endif
+	for (; i < count; i++) {
 		float d[3] = { x[i], y[i], z[i] };
 		struct rf__lod l = rf__pyramid_lod(p, lod[i]);
 
 		rgb[i] = rf__pyramid_fetch(d, &l);
 	}
 }
-
-#endif
