@@ -68,6 +68,7 @@ struct rf_shade {
 /* One row's environment reads: directions and lods as columns, their
  * results, and for each pixel which reads are its own (-1: none). */
 struct reads {
+	float *mask; /* each pixel's mask, clamped (1 without a mask channel) */
 	float *x, *y, *z, *lod;
 	rf__v4 *rgb;
 	int32_t *mirror, *wall;
@@ -103,6 +104,7 @@ free_reads(rf_shade *s)
 	for (t = 0; s->reads && t < s->nthreads; t++) {
 		struct reads *r = &s->reads[t];
 
+		free(r->mask);
 		free(r->x);
 		free(r->y);
 		free(r->z);
@@ -132,6 +134,7 @@ alloc_reads(rf_shade *s, size_t ncols)
 	for (t = 0; t < s->nthreads; t++) {
 		struct reads *r = &s->reads[t];
 
+		r->mask = malloc(ncols * sizeof(float));
 		r->x = malloc(n * sizeof(float));
 		r->y = malloc(n * sizeof(float));
 		r->z = malloc(n * sizeof(float));
@@ -139,7 +142,8 @@ alloc_reads(rf_shade *s, size_t ncols)
 		r->rgb = aligned_alloc(16, n * sizeof(rf__v4));
 		r->mirror = malloc(ncols * sizeof(int32_t));
 		r->wall = malloc(ncols * sizeof(int32_t));
-		if (!r->x || !r->y || !r->z || !r->lod || !r->rgb || !r->mirror || !r->wall) {
+		if (!r->mask || !r->x || !r->y || !r->z || !r->lod || !r->rgb || !r->mirror ||
+		    !r->wall) {
 			free_reads(s);
 			return RF_ENOMEM;
 		}
@@ -268,12 +272,6 @@ or_one(const rf_shade *s, const float *p, int c)
 	return s->in[c] >= 0 ? p[s->in[c]] : 1.0f;
 }
 
-static float
-mask_of(const rf_shade *s, const float *p)
-{
-	return s->in[IN_MASK] >= 0 ? sat(p[s->in[IN_MASK]]) : 1.0f;
-}
-
 /* Adds a read; a direction that is not finite (never from
  * reflect-project) reads nothing, so black rather than NaN. */
 static inline int32_t
@@ -312,6 +310,7 @@ plan_reads(const rf_shade *s, const float *in, size_t in_ncomp, struct reads *r)
 			             rf_roughness_to_lod(s->mapping, s->steps, in[cr]));
 		if (m < 1.0f)
 			b = add_read(r, &n, in[cpx] - ox, in[cpy] - oy, in[cpz] - oz, 0.0f);
+		r->mask[x] = m;
 		r->mirror[x] = a;
 		r->wall[x] = b;
 	}
@@ -322,7 +321,7 @@ plan_reads(const rf_shade *s, const float *in, size_t in_ncomp, struct reads *r)
 static void
 shade_pixel(const rf_shade *s, const float *p, float *o, const struct reads *r, size_t x)
 {
-	float rgb[3] = { 0, 0, 0 }, wall[3] = { 0, 0, 0 }, m = mask_of(s, p);
+	float rgb[3] = { 0, 0, 0 }, wall[3] = { 0, 0, 0 }, spec[3], m = r->mask[x];
 	int k;
 
 	if (m > 0.0f && s->mode_radiance) {
@@ -335,30 +334,26 @@ shade_pixel(const rf_shade *s, const float *p, float *o, const struct reads *r, 
 	if (r->wall[x] >= 0)
 		for (k = 0; k < 3; k++)
 			wall[k] = r->rgb[r->wall[x]][k];
+	for (k = 0; k < 3; k++)
+		spec[k] = rgb[k];
 	if (s->final && m > 0.0f) {
 		float nv = p[s->in[IN_NX]] * p[s->in[IN_VX]] +
 		           p[s->in[IN_NY]] * p[s->in[IN_VY]] +
 		           p[s->in[IN_NZ]] * p[s->in[IN_VZ]];
-		float metal = sat(or_one(s, p, IN_METAL)), a, b, spec[3];
+		float metal = sat(or_one(s, p, IN_METAL)), a, b;
 
 		rf_dfg_lookup(nv, p[s->in[IN_ROUGH]], &a, &b);
 		for (k = 0; k < 3; k++) {
 			float albedo = sat(or_one(s, p, IN_AR + k));
 			float f0 = 0.04f + (albedo - 0.04f) * metal;
 
-			spec[k] = rgb[k];
 			rgb[k] *= f0 * a + b;
 		}
-		/* Every input read: now the outputs, which may overwrite them. */
-		for (k = 0; k < 3; k++)
-			o[s->out[OUT_SR + k]] = m * spec[k] + (1.0f - m) * wall[k];
-		/* Walls are light sources here, not reflectors: no BRDF. */
-		for (k = 0; k < 3; k++)
-			o[s->out[OUT_R + k]] = m * rgb[k] + (1.0f - m) * wall[k];
-		return;
 	}
+	/* Every input is read: now the outputs, which may overwrite them. */
 	for (k = 0; k < 3; k++)
-		o[s->out[OUT_SR + k]] = m * rgb[k] + (1.0f - m) * wall[k];
+		o[s->out[OUT_SR + k]] = m * spec[k] + (1.0f - m) * wall[k];
+	/* Walls are light sources here, not reflectors: no BRDF. */
 	if (s->final)
 		for (k = 0; k < 3; k++)
 			o[s->out[OUT_R + k]] = m * rgb[k] + (1.0f - m) * wall[k];
