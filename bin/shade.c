@@ -272,9 +272,7 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	const char *name;
 	rf_stage *stage;
 	rf_header *mid, *out;
-	static const char *const pass_channels[] = {
-		"spec.R", "spec.G", "spec.B", "R", "G", "B"
-	};
+	const char *channel;
 	size_t rows, k, ncols = rf_header_ncols(in), nrows = rf_header_nrows(in);
 	int rc, prc;
 
@@ -313,8 +311,8 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	if ((rc = rf_stage_begin_frame(stage, in, &mid, err, sizeof(err))) < 0)
 		die_status(rc, err);
 	/* The pass's channels, in the order it would append them. */
-	for (k = 0; k < (o->final ? 6u : 3u); k++)
-		if ((rc = rf_stage_reserve_channel(stage, pass_channels[k])) < 0)
+	for (k = 0; (channel = rf_shade_channel(shade, k)); k++)
+		if ((rc = rf_stage_reserve_channel(stage, channel)) < 0)
 			die_status(rc, NULL);
 	if ((rc = rf_shade_begin_frame(shade, mid, center, &out, err, sizeof(err))) < 0)
 		die_status(rc, err);

@@ -164,6 +164,12 @@ rf_shade_destroy(rf_shade *s)
 	free(s);
 }
 
+const char *
+rf_shade_channel(const rf_shade *s, size_t i)
+{
+	return i < s->nout ? out_names[i] : NULL;
+}
+
 int
 rf_shade_set_environment(rf_shade *s, const rf_cubemap *env, enum rf_mapping mapping,
                          float steps)

@@ -83,6 +83,9 @@ RF_EXTERN void rf_shade_destroy(rf_shade *s);
 RF_EXTERN int rf_shade_begin_frame(rf_shade *s, const rf_header *in,
                                    const float center[3], rf_header **out,
                                    char *err, size_t errlen);
+/* The i-th channel the pass writes (spec.R spec.G spec.B, then R G B
+ * with final), in the order it appends them; NULL past the last. */
+RF_EXTERN const char *rf_shade_channel(const rf_shade *s, size_t i);
 /* The environment every following rf_shade_run samples; the cube stays
  * the caller's, and must outlive the pass or the next call. */
 RF_EXTERN int rf_shade_set_environment(rf_shade *s, const rf_cubemap *env,
