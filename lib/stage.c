@@ -298,8 +298,11 @@ run_row(void *arg, size_t r, int thread)
 int
 rf_stage_run(rf_stage *s, const float *in, float *out, size_t y, size_t nrows)
 {
-	if (!s->out_h || y + nrows > s->nrows || y + nrows < y)
-		return RF_EINVAL;
+	size_t in_ncomp, out_ncomp;
+	int rc;
+
+	if ((rc = rf__stage_ready(s, y, nrows, &in_ncomp, &out_ncomp)) < 0)
+		return rc;
 	s->block_in = in;
 	s->block_out = out;
 	s->block_y = y;
