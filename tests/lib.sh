@@ -21,11 +21,56 @@ rm -rf "$TRASH" && mkdir -p "$TRASH" || {
 cd "$TRASH" || exit 1
 test_log="$TRASH/.log"
 
+# Seconds a step may take before it is killed and fails: a hang must
+# fail its test, never stall the suite.  Steps under valgrind are the
+# slowest (some 40 s here); TEST_TIMEOUT overrides.
+: "${TEST_TIMEOUT:=300}"
+
+# kill_tree PID: stops PID, kills what it started, then PID itself.
+kill_tree () {
+	kill -STOP "$1" 2>/dev/null || return 0
+	for child in $(ps -o pid= --ppid "$1" 2>/dev/null)
+	do
+		kill_tree "$child"
+	done
+	kill -KILL "$1" 2>/dev/null
+}
+
+# Runs a step's body in the background with a watchdog that, when the
+# step outlives TEST_TIMEOUT, kills it and every command it started (a
+# hung tool in a pipeline included).  Returns the body's status, 124 on
+# a timeout (as timeout(1) does).
+test_run_step () {
+	rm -f "$test_log.timeout"
+	(eval "$1") >"$test_log" 2>&1 </dev/null &
+	step=$!
+	(
+		trap 'kill $nap 2>/dev/null; exit 0' TERM
+		sleep "$TEST_TIMEOUT" &
+		nap=$!
+		wait $nap
+		echo timeout >"$test_log.timeout"
+		kill_tree $step
+	) >/dev/null 2>&1 &
+	watchdog=$!
+	wait $step 2>/dev/null
+	status=$?
+	kill -TERM $watchdog 2>/dev/null
+	wait $watchdog 2>/dev/null
+	if test -f "$test_log.timeout"
+	then
+		rm -f "$test_log.timeout"
+		echo "timed out after $TEST_TIMEOUT s (TEST_TIMEOUT)" >>"$test_log"
+		return 124
+	fi
+	return $status
+}
+
 # Runs the body in a subshell with set -e semantics left to &&-chains;
 # its output goes to the log, shown only on failure.
 test_expect_success () {
 	test_count=$((test_count + 1))
-	if (eval "$2") >"$test_log" 2>&1
+	if test_run_step "$2"
 	then
 		echo "ok $test_count - $1"
 	else
