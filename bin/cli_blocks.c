@@ -40,12 +40,16 @@ block_rows(const struct blocks *b, size_t k, size_t *y)
 	return b->nrows - *y < b->block ? b->nrows - *y : b->block;
 }
 
-/* Waits, the lock held, until *count > k or something failed; returns
- * whether to go on. */
+/* Waits, the lock held, until *count > k, or until the side that makes
+ * *count failed (*failed, NULL when only stop ends the wait) or stop;
+ * returns whether to go on.  Each waiter watches only the failure that
+ * starves it: the writer must go on sending the blocks already computed
+ * after a read fails, since the main thread waits for them before it
+ * stops the threads. */
 static int
-wait_past(struct blocks *b, const size_t *count, size_t k)
+wait_past(struct blocks *b, const size_t *count, size_t k, const int *failed)
 {
-	while (*count <= k && !b->stop && !b->read_rc && !b->write_rc)
+	while (*count <= k && !b->stop && !(failed && *failed))
 		pthread_cond_wait(&b->cv, &b->mu);
 	return *count > k;
 }
@@ -79,7 +83,7 @@ reader(void *arg)
 	for (k = 0; k < b->nblocks; k++) {
 		if (k >= 2) {
 			pthread_mutex_lock(&b->mu);
-			go = wait_past(b, &b->computed, k - 2);
+			go = wait_past(b, &b->computed, k - 2, NULL);
 			pthread_mutex_unlock(&b->mu);
 			if (!go)
 				break;
@@ -103,7 +107,7 @@ writer(void *arg)
 
 	for (k = 0; k < b->nblocks; k++) {
 		pthread_mutex_lock(&b->mu);
-		go = wait_past(b, &b->computed, k);
+		go = wait_past(b, &b->computed, k, NULL);
 		pthread_mutex_unlock(&b->mu);
 		if (!go)
 			break;
@@ -208,8 +212,8 @@ cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
 			src = b.in[k % 2];
 		}
 		pthread_mutex_lock(&b.mu);
-		go = (!reading || wait_past(&b, &b.read, k)) &&
-		     (!writing || k < 2 || wait_past(&b, &b.written, k - 2));
+		go = (!reading || wait_past(&b, &b.read, k, &b.read_rc)) &&
+		     (!writing || k < 2 || wait_past(&b, &b.written, k - 2, &b.write_rc));
 		pthread_mutex_unlock(&b.mu);
 		if (!go)
 			break;

@@ -273,6 +273,29 @@ test_expect_success 'truncated data through reflect-export' '
 		reflect-export -o out.exr -c a,b
 '
 
+# A pipe cut in the middle of a frame, while the stage still computes the
+# block before: the writer thread used to give up on the failed read and
+# leave the main thread waiting for it forever (25 hangs in 30 runs).  A
+# run is bounded, so a hang fails the step at once.
+test_expect_success 'truncated piped input ends every stream tool' '
+	reflect-gbuffer -x 320 -y 180 >gbuffer &&
+	head -c 4000000 gbuffer >gbuffer-cut &&
+	reflect-project gbuffer >projected &&
+	head -c 6000000 projected >projected-cut &&
+	for i in 1 2 3 4 5 6 7 8 9 10
+	do
+		test_must_fail 1 timeout 20 sh -c "cat gbuffer-cut | reflect-project" \
+			>/dev/null 2>err &&
+		test_grep "^reflect-project: ${SQ}<stdin>${SQ}: data ends" err &&
+		test_must_fail 1 timeout 20 sh -c "cat projected-cut | reflect-shade --size=8" \
+			>/dev/null 2>err &&
+		test_grep "^reflect-shade: ${SQ}<stdin>${SQ}: data ends" err &&
+		test_must_fail 1 timeout 20 sh -c "cat projected-cut | reflect-export -c D -o out.png" \
+			>/dev/null 2>err &&
+		test_grep "^reflect-export: ${SQ}<stdin>${SQ}: data ends" err || return 1
+	done
+'
+
 # Every bad input under valgrind: the exit status stays 1 (99 would be a
 # memory error or a leak).
 valgrind_bad () {
