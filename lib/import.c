@@ -155,6 +155,20 @@ ends_with(const char *s, const char *suffix)
 	return n >= m && !strcmp(s + n - m, suffix);
 }
 
+/* Output `out` from input `spec` (NAME or FILE:NAME), marked as used. */
+static int
+map_input(struct rf_import *im, const rf_image *const *images, struct input *in, size_t nin,
+          const char *const *paths, size_t n, const char *spec, const char *out, char *err,
+          size_t errlen)
+{
+	long k = find_input(in, nin, paths, n, spec, err, errlen);
+
+	if (k < 0)
+		return RF_EINVAL;
+	in[k].used = 1;
+	return add_output(im, out, image_source(images, &in[k]), err, errlen);
+}
+
 int
 rf_import_new(struct rf_import **imp, const rf_image *const *images,
               const char *const *paths, size_t n, const struct rf_import_options *o,
@@ -199,16 +213,10 @@ rf_import_new(struct rf_import **imp, const rf_image *const *images,
 			in[nin].name = rf_image_channel(images[f], c);
 		}
 	/* 1. explicit mappings */
-	for (i = 0; i < o->nmaps; i++) {
-		long k = find_input(in, nin, paths, n, o->maps[i].in, err, errlen);
-
-		if (k < 0)
+	for (i = 0; i < o->nmaps; i++)
+		if ((rc = map_input(im, images, in, nin, paths, n, o->maps[i].in,
+		                    o->maps[i].out, err, errlen)) < 0)
 			goto fail;
-		in[k].used = 1;
-		if ((rc = add_output(im, o->maps[i].out, image_source(images, &in[k]), err,
-		                     errlen)) < 0)
-			goto fail;
-	}
 	/* 2. the preset's passes that are present */
 	if (o->preset == RF_IMPORT_BLENDER)
 		for (i = 0; i < sizeof(blender) / sizeof(blender[0]); i++) {
@@ -249,17 +257,9 @@ rf_import_new(struct rf_import **imp, const rf_image *const *images,
 			s.value = (float)v;
 			if ((rc = add_output(im, "roughness", s, err, errlen)) < 0)
 				goto fail;
-		} else {
-			long k = find_input(in, nin, paths, n, o->roughness, err, errlen);
-
-			if (k < 0) {
-				rc = RF_EINVAL;
-				goto fail;
-			}
-			in[k].used = 1;
-			if ((rc = add_output(im, "roughness", image_source(images, &in[k]), err,
-			                     errlen)) < 0)
-				goto fail;
+		} else if ((rc = map_input(im, images, in, nin, paths, n, o->roughness,
+		                           "roughness", err, errlen)) < 0) {
+			goto fail;
 		}
 	}
 	/* 4. every other input under its own name, when that name is unique */
