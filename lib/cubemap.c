@@ -360,6 +360,12 @@ bilinear(const rf_cubemap *c, size_t level, enum rf_face f, float u, float v,
 	               b * ((1 - a) * p[stride + 2] + a * p[stride + 5]));
 }
 
+static int
+finite_direction(const float d[3])
+{
+	return isfinite(d[0]) && isfinite(d[1]) && isfinite(d[2]);
+}
+
 void
 rf_cubemap_sample_level(const rf_cubemap *c, size_t level, const float dir[3],
                         float rgb[3])
@@ -368,6 +374,8 @@ rf_cubemap_sample_level(const rf_cubemap *c, size_t level, const float dir[3],
 	enum rf_face f = rf_cube_face(dir, &u, &v);
 
 	rgb[0] = rgb[1] = rgb[2] = 0.0f;
+	if (!finite_direction(dir))
+		return;
 	if (level >= c->nlevels)
 		level = c->nlevels - 1;
 	bilinear(c, level, f, u, v, 1.0f, rgb);
@@ -381,6 +389,8 @@ rf_cubemap_sample(const rf_cubemap *c, const float dir[3], float lod, float rgb[
 	size_t l;
 
 	rgb[0] = rgb[1] = rgb[2] = 0.0f;
+	if (!finite_direction(dir))
+		return;
 	if (!(lod > 0.0f))
 		lod = 0.0f; /* NaN too */
 	if (lod > top)

@@ -143,7 +143,7 @@ AVX2 static inline __m256i
 cube_face8(__m256 dx, __m256 dy, __m256 dz, __m256 *u, __m256 *v)
 {
 	const __m256 half = _mm256_set1_ps(0.5f), sign = _mm256_set1_ps(-0.0f);
-	const __m256 zero = _mm256_setzero_ps();
+	const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
 	__m256 ax = _mm256_andnot_ps(sign, dx), ay = _mm256_andnot_ps(sign, dy);
 	__m256 az = _mm256_andnot_ps(sign, dz);
 	__m256 on_x = _mm256_and_ps(_mm256_cmp_ps(ax, ay, _CMP_GE_OQ),
@@ -159,14 +159,22 @@ cube_face8(__m256 dx, __m256 dy, __m256 dz, __m256 *u, __m256 *v)
 		_mm256_blendv_ps(_mm256_xor_ps(dx, flip), dx, on_y),
 		_mm256_xor_ps(dz, keep), on_x);
 	__m256 down = _mm256_blendv_ps(_mm256_xor_ps(dy, sign), _mm256_xor_ps(dz, flip), on_y);
-	__m256 inv = _mm256_div_ps(half, major);
+	/* As rf__cube_face: a denormal major axis scaled up first, 0 for
+	 * zero and NaN (the compare is false), u and v clamped (max and min
+	 * return their second operand on NaN). */
+	__m256 scale = _mm256_blendv_ps(_mm256_set1_ps(1.0f), _mm256_set1_ps(0x1p24f),
+	                                _mm256_cmp_ps(major, _mm256_set1_ps(0x1p-126f), _CMP_LT_OQ));
+	__m256 inv = _mm256_and_ps(_mm256_div_ps(half, _mm256_mul_ps(major, scale)),
+	                           _mm256_cmp_ps(major, zero, _CMP_GT_OQ));
 	/* Face 2 axis + (negative): masks are -1 where true. */
 	__m256i axis = _mm256_add_epi32(_mm256_set1_epi32(2),
 	                                _mm256_add_epi32(_mm256_slli_epi32(_mm256_castps_si256(on_x), 1),
 	                                                 _mm256_castps_si256(on_y)));
 
-	*u = _mm256_fmadd_ps(across, inv, half);
-	*v = _mm256_fmadd_ps(down, inv, half);
+	*u = _mm256_min_ps(_mm256_max_ps(_mm256_fmadd_ps(_mm256_mul_ps(across, scale), inv, half),
+	                                 zero), one);
+	*v = _mm256_min_ps(_mm256_max_ps(_mm256_fmadd_ps(_mm256_mul_ps(down, scale), inv, half),
+	                                 zero), one);
 	return _mm256_add_epi32(_mm256_slli_epi32(axis, 1),
 	                        _mm256_add_epi32(_mm256_set1_epi32(1), _mm256_castps_si256(pos)));
 }

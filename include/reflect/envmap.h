@@ -82,7 +82,10 @@ RF_EXTERN void rf_cubemap_average_edges(rf_cubemap *c, size_t level);
 RF_EXTERN void rf_cubemap_box_chain(rf_cubemap *c, size_t from);
 
 /* Bilinear sample of one level; trilinear across levels, lod clamped to
- * [0, levels - 1].  dir need not be unit; a zero direction reads +X. */
+ * [0, levels - 1] (NaN to 0).  dir need not be unit: any finite one reads
+ * inside the cube (a zero direction the centre of -X, a denormal one its
+ * face); a NaN or infinite component reads black, as the shading pass
+ * does. */
 RF_EXTERN void rf_cubemap_sample_level(const rf_cubemap *c, size_t level,
                                        const float dir[3], float rgb[3]);
 RF_EXTERN void rf_cubemap_sample(const rf_cubemap *c, const float dir[3], float lod,

@@ -85,7 +85,8 @@ struct rf_host {
 	const char *(*header_get)(void *ctx, const char *key);
 	/* The probe, from the tool's options or the stream's header keys. */
 	const struct rf_probe *probe;
-	/* Environment radiance in direction dir (need not be unit) at a lod. */
+	/* Environment radiance in direction dir (need not be unit) at a lod;
+	 * black where dir is not finite (rf_cubemap_sample). */
 	void (*sample)(void *ctx, const float dir[3], float lod, float rgb[3]);
 	/* The one roughness-to-lod mapping of the environment, and back. */
 	float (*roughness_to_lod)(void *ctx, float roughness);
