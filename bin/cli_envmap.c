@@ -1,8 +1,11 @@
 /* Loading an environment from the options every tool shares. */
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "cli_envmap.h"
 
@@ -213,16 +216,15 @@ load_level_files(const struct envmap_opts *o, struct rf_chain_info *info)
 		die("--env: '%s' needs one %%d to number the levels", o->path);
 	one.prefiltered = 0;
 	for (n = 0; n < 16; n++) {
-		FILE *fp;
+		struct stat st;
 
 		snprintf(path, sizeof(path), "%.*s%zu%s", (int)(pct - o->path), o->path, n,
 		         pct + 2);
-		if (!(fp = fopen(path, "rb"))) {
+		if (stat(path, &st) < 0) {
 			if (n == 0)
 				die("cannot open '%s':", path);
 			break;
 		}
-		fclose(fp);
 		one.path = path;
 		levels[n] = envmap_load(&one, info);
 		if (n && rf_cubemap_size(levels[n]) * 2 != rf_cubemap_size(levels[n - 1]))
@@ -335,6 +337,41 @@ load_dds(const struct envmap_opts *o, struct rf_chain_info *info)
 	return raw;
 }
 
+/*
+ * The environment file, opened without waiting for a writer: a regular
+ * file, or (*piped) a pipe such as --env=<(reflect-prefilter ...), which
+ * can only carry a stream.  A FIFO nobody writes to then reads as empty
+ * instead of blocking the open for ever; devices and directories, and
+ * anything but a file when a stream's header named it, are refused.
+ */
+static FILE *
+open_env_file(const struct envmap_opts *o, int *piped)
+{
+	struct stat st;
+	FILE *fp;
+	int fd, flags;
+
+	*piped = 0;
+	if ((fd = open(o->path, O_RDONLY | O_NONBLOCK | O_CLOEXEC)) < 0)
+		return NULL;
+	if (fstat(fd, &st) < 0) {
+		close(fd);
+		return NULL;
+	}
+	if (!S_ISREG(st.st_mode) && (!S_ISFIFO(st.st_mode) || o->from_header))
+		die("cannot open '%s': not a regular file (%s)", o->path,
+		    S_ISDIR(st.st_mode) ? "a directory" : S_ISFIFO(st.st_mode) ? "a FIFO, "
+		    "named by PROBE_ENV" : S_ISCHR(st.st_mode) ? "a character device"
+		    : "not a file");
+	*piped = S_ISFIFO(st.st_mode);
+	if ((flags = fcntl(fd, F_GETFL)) < 0 || fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) < 0 ||
+	    !(fp = fdopen(fd, "rb"))) {
+		close(fd);
+		return NULL;
+	}
+	return fp;
+}
+
 static int
 has_suffix(const char *s, const char *suffix)
 {
@@ -350,7 +387,7 @@ envmap_load(const struct envmap_opts *o, struct rf_chain_info *info)
 	rf_image *img;
 	rf_cubemap *c;
 	FILE *fp;
-	int rc;
+	int rc, piped;
 
 	memset(info, 0, sizeof(*info));
 	info->mapping = RF_MAPPING_DEFAULT;
@@ -361,16 +398,22 @@ envmap_load(const struct envmap_opts *o, struct rf_chain_info *info)
 		rf_default_environment_cube_threads(c, o->nthreads);
 		return c;
 	}
-	if (!strcmp(o->path, "-"))
+	if (!strcmp(o->path, "-")) {
+		if (o->from_header)
+			die("PROBE_ENV '-': a stream's header cannot name standard input; "
+			    "give the environment with --env");
 		return load_stream(o, stdin, "<stdin>", info);
+	}
 	if (strchr(o->path, '%'))
 		return o->prefiltered ? load_level_files(o, info) : load_faces(o);
 	if (has_suffix(o->path, ".dds"))
 		return load_dds(o, info);
-	if (!(fp = fopen(o->path, "rb")))
+	if (!(fp = open_env_file(o, &piped)))
 		die("cannot open '%s':", o->path);
-	if (fread(magic, 1, 9, fp) == 9 && !memcmp(magic, "#?REFLECT", 9)) {
-		rewind(fp);
+	/* A pipe can only carry a stream: its reader says if it is none. */
+	if (piped || (fread(magic, 1, 9, fp) == 9 && !memcmp(magic, "#?REFLECT", 9))) {
+		if (!piped)
+			rewind(fp);
 		c = load_stream(o, fp, o->path, info);
 		fclose(fp);
 		return c;

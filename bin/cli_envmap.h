@@ -15,6 +15,7 @@ struct envmap_opts {
 	int strict;             /* -S: refuse NaN and Inf texels */
 	size_t size;            /* --size: face size of level 0 (0: the file's) */
 	int nthreads;           /* for rendering the embedded room */
+	int from_header;        /* path named by a stream (PROBE_ENV): a file */
 };
 
 void envmap_opts_init(struct envmap_opts *o);

@@ -170,6 +170,7 @@ load_environment(const struct shade_opts *o, const char *name, struct environmen
 	free(e->name);
 	e->name = estrdup(name);
 	eo.path = name;
+	eo.from_header = !o->env.path;
 	c = envmap_load(&eo, &info);
 	levels = rf_cubemap_levels(c);
 	e->mapping = o->mapping_set ? o->mapping : RF_MAPPING_DEFAULT;

@@ -512,6 +512,8 @@ rf_chain_read_dds(rf_cubemap **cp, struct rf_chain_info *info, size_t *nonfinite
 	memset(info, 0, sizeof(*info));
 	info->mapping = RF_MAPPING_DEFAULT;
 	info->base_copied = 1;
+	if ((rc = rf__regular_file(path, err, errlen)) < 0)
+		return rc;
 	if (!(fp = fopen(path, "rb"))) {
 		rf__format(err, errlen, "cannot open '%s': %s", path, strerror(errno));
 		return RF_EIO;

@@ -100,15 +100,18 @@ rf_image_module_check(char *err, size_t errlen)
 int
 rf_image_read(rf_image **img, const char *path, char *err, size_t errlen)
 {
-	*img = NULL;
-	return module(err, errlen) ? api->read_level(img, path, 0, err, errlen) : RF_EIMAGE;
+	return rf_image_read_level(img, path, 0, err, errlen);
 }
 
 int
 rf_image_read_level(rf_image **img, const char *path, size_t level, char *err,
                     size_t errlen)
 {
+	int rc;
+
 	*img = NULL;
+	if ((rc = rf__regular_file(path, err, errlen)) < 0)
+		return rc;
 	return module(err, errlen) ? api->read_level(img, path, level, err, errlen)
 	                           : RF_EIMAGE;
 }
@@ -116,6 +119,10 @@ rf_image_read_level(rf_image **img, const char *path, size_t level, char *err,
 int
 rf_image_count_levels(const char *path, size_t *nlevels, char *err, size_t errlen)
 {
+	int rc;
+
+	if ((rc = rf__regular_file(path, err, errlen)) < 0)
+		return rc;
 	return module(err, errlen) ? api->count_levels(path, nlevels, err, errlen)
 	                           : RF_EIMAGE;
 }

@@ -36,6 +36,11 @@ void rf__format(char *buf, size_t size, const char *fmt, ...) RF__PRINTF(3, 4);
  * cost a stage a third of its start-up.  Free with free(). */
 void *rf__alloc_big(size_t bytes, int zero);
 
+/* RF_EINVAL with "cannot open 'path': not a regular file (a FIFO)" when
+ * path exists and is no regular file; 0 otherwise (lib/file.c says why
+ * decoders see only files). */
+int rf__regular_file(const char *path, char *err, size_t errlen);
+
 /* x * y * z without overflow; 0 and *out set on success. */
 int rf__mul3(size_t x, size_t y, size_t z, size_t *out);
 
