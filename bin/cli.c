@@ -36,6 +36,45 @@ cli_init(int argc, char **argv)
 	signal(SIGPIPE, SIG_DFL);
 }
 
+/*
+ * Inputs read where they lie (mapped): a file truncated under the mapping
+ * faults on the next read of a page it lost, and SIGBUS would end the
+ * tool with no word of why.  The handler says which files it maps, in
+ * the usual form, and exits as for any bad input.  The message is made
+ * when a file is added, since a handler may not format.
+ */
+static char mapped_message[2048];
+static size_t mapped_len, mapped_count;
+
+static void
+on_sigbus(int sig)
+{
+	(void)sig;
+	if (write(STDERR_FILENO, mapped_message, mapped_len) < 0) {
+		/* nothing left to tell it with */
+	}
+	_exit(EXIT_BAD_INPUT);
+}
+
+void
+cli_guard_mapped(const char *name)
+{
+	static char names[1024];
+	static size_t used;
+	int n;
+
+	if (mapped_count++ == 0)
+		signal(SIGBUS, on_sigbus);
+	n = snprintf(names + used, sizeof(names) - used, "%s'%s'", used ? " or " : "", name);
+	if (n > 0 && (size_t)n < sizeof(names) - used)
+		used += (size_t)n;
+	n = snprintf(mapped_message, sizeof(mapped_message), "%s: %s: the file shrank "
+	             "while it was read (bus error); let a file be while a tool reads it\n",
+	             argv0, names);
+	mapped_len = n < 0 ? 0 : (size_t)n < sizeof(mapped_message) ? (size_t)n
+	                                                             : sizeof(mapped_message) - 1;
+}
+
 void
 cli_record_command(rf_header *h)
 {

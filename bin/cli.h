@@ -23,6 +23,10 @@ extern const char *argv0;
 void cli_init(int argc, char **argv);
 /* Appends the command line, in the order it was given, to a header. */
 void cli_record_command(rf_header *h);
+/* A file the tool may read through a mapping: should it shrink under
+ * the mapping, the tool dies with a message naming it (not a bare bus
+ * error). */
+void cli_guard_mapped(const char *name);
 /* A format ending in ':' gets ": strerror(errno)" appended (sbase rule). */
 CLI_NORETURN void die(const char *fmt, ...) CLI_PRINTF(1, 2);
 CLI_NORETURN void die_sys(const char *fmt, ...) CLI_PRINTF(1, 2);

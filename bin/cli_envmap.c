@@ -266,6 +266,7 @@ load_stream(const struct envmap_opts *o, FILE *fp, const char *name,
 	rf_cubemap *c;
 	int rc;
 
+	cli_guard_mapped(name);
 	if ((rc = rf_reader_open(&r, fp, name, NULL)) < 0)
 		die_status(rc, NULL);
 	if ((rc = rf_chain_read_stream(&c, info, r, err, sizeof(err))) < 0)

@@ -85,6 +85,7 @@ cli_io_open(struct cli_io *io, const char *path)
 			die("cannot open '%s':", path);
 		io->input_name = path;
 	}
+	cli_guard_mapped(io->input_name);
 	if (io->headerless) {
 		if (!io->x || !io->y || !io->channels)
 			die("headerless input (-H) needs -x WIDTH, -y HEIGHT and -c CHANNELS");

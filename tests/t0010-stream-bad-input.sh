@@ -296,6 +296,24 @@ test_expect_success 'truncated piped input ends every stream tool' '
 	done
 '
 
+# A file truncated while a tool reads it where it lies (mapped): the
+# tool's output pipe is full, so it waits with a block mapped and not
+# yet read; the file then loses those pages, and reading on used to end
+# the tool with a bare SIGBUS (status 135).
+test_expect_success 'a mapped input that shrinks ends the tool with a message' '
+	reflect-gbuffer -x 1000 -y 1000 | reflect-project >big.rfl &&
+	reflect-prefilter --size=8 >env.rfl &&
+	for tool in reflect-project "reflect-shade --env=env.rfl"
+	do
+		cp big.rfl shrinks.rfl &&
+		{ timeout 60 $tool shrinks.rfl 2>err; echo $? >status; } |
+		{ sleep 1 && truncate -s 1000 shrinks.rfl && cat >/dev/null; } &&
+		echo 1 >expect && cmp expect status &&
+		test_one_line_message "${tool%% *}" err &&
+		test_grep "${SQ}shrinks.rfl${SQ}.*: the file shrank while it was read" err || return 1
+	done
+'
+
 # Every bad input under valgrind: the exit status stays 1 (99 would be a
 # memory error or a leak).
 valgrind_bad () {
