@@ -158,7 +158,7 @@ cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
 {
 	struct blocks b;
 	pthread_t rt, wt;
-	int reading = 0, writing, mapping, go, i, rc;
+	int reading = 0, writing, mapping, threads, go, i, rc;
 	size_t k, y, n;
 	const float *src;
 
@@ -186,8 +186,11 @@ cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
 		return finish(&b, NULL, NULL);
 	}
 	mapping = src != NULL || !in_floats; /* no input: nothing to read */
-	writing = out_floats && pthread_create(&wt, NULL, writer, &b) == 0;
-	if (!mapping)
+	/* One block leaves nothing to overlap: a stream of many small frames
+	 * would otherwise start two threads a frame. */
+	threads = b.nblocks > 1;
+	writing = threads && out_floats && pthread_create(&wt, NULL, writer, &b) == 0;
+	if (threads && !mapping)
 		reading = pthread_create(&rt, NULL, reader, &b) == 0;
 	for (k = 0; k < b.nblocks; k++) {
 		n = block_rows(&b, k, &y);

@@ -123,6 +123,12 @@ rf__pool_threads(const struct rf__pool *p)
 void
 rf__pool_run(struct rf__pool *p, size_t ntasks, rf__pool_fn *fn, void *arg)
 {
+	/* One task needs no other thread: a stream of one-row frames starts
+	 * none. */
+	if (ntasks == 1 && !p->started) {
+		fn(arg, 0, 0);
+		return;
+	}
 	if (!p->launched)
 		start_threads(p);
 	pthread_mutex_lock(&p->mu);

@@ -10,7 +10,7 @@ setup_say () {
 setup_packages="autoconf automake libtool pkg-config make gcc g++ \
 libopenimageio-dev libopenexr-dev libpng-dev"
 # Used by some tests when present (they skip otherwise).
-setup_optional_packages="python3-numpy valgrind clang"
+setup_optional_packages="python3-numpy valgrind clang strace"
 
 setup_missing () {
 	missing=""
@@ -37,6 +37,7 @@ setup_optional_missing () {
 	/usr/bin/python3 -c 'import numpy' >/dev/null 2>&1 || missing="$missing python3-numpy"
 	command -v valgrind >/dev/null 2>&1 || missing="$missing valgrind"
 	command -v clang >/dev/null 2>&1 || missing="$missing clang"
+	command -v strace >/dev/null 2>&1 || missing="$missing strace"
 	echo $missing
 }
 
