@@ -117,11 +117,19 @@ static int
 lex_quoted(struct parser *p, struct token *t)
 {
 	struct lexer *lx = &p->lx;
-	size_t n = 0;
+	size_t n = 0, end;
 	char *buf;
 	int c;
 
-	if (!(buf = malloc(lx->len - lx->pos + 1)))
+	/* The word's own length, not the rest of the file: a scene of many
+	 * short quoted words would otherwise allocate the file again for
+	 * each.  Escapes only shorten it. */
+	for (end = lx->pos + 1; end < lx->len && lx->src[end] != '"' && lx->src[end] != '\n';
+	     end++)
+		if (lx->src[end] == '\\' && end + 1 < lx->len &&
+		    (lx->src[end + 1] == '"' || lx->src[end + 1] == '\\'))
+			end++;
+	if (!(buf = malloc(end - lx->pos + 1)))
 		return RF_ENOMEM;
 	lx_advance(lx);
 	while ((c = lx_peek(lx, 0)) != '"') {

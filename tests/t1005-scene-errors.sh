@@ -153,4 +153,19 @@ test_expect_success 'camera outside the room: flagged with -v' '
 	test_grep "frame 0: the camera at (0 1.6 9) is outside the room" err
 '
 
+# A quoted word used to allocate the rest of the file: one 4 MB line of
+# "" took some 40 s and gigabytes; now each is its own size.  The line is
+# lexed whole before the statement is refused.
+test_expect_success 'a scene of many quoted words is parsed in its own size' '
+	{
+		echo "probe box -1 -1 -1 1 1 1" &&
+		printf "name \"a \\\\\"quoted\\\\\" name\"" &&
+		awk "BEGIN { for (i = 0; i < 1400000; i++) printf \" \\\"\\\"\"; print \"\" }"
+	} >quotes.scene &&
+	test $(wc -c <quotes.scene) -gt 4000000 &&
+	test_must_fail 1 timeout 5 reflect-gbuffer -x 2 -y 2 quotes.scene >out 2>err &&
+	test_one_line_message reflect-gbuffer err &&
+	test_grep "quotes.scene:2:26: expected the end of the line after the name" err
+'
+
 test_done
