@@ -136,6 +136,23 @@ is_srgb(const struct envmap_opts *o, const rf_image *img)
 	return cs && !strcasecmp(cs, "sRGB");
 }
 
+rf_cubemap *
+envmap_cube_new(size_t size, size_t levels)
+{
+	char err[256];
+	rf_cubemap *c;
+	int rc;
+
+	if ((rc = rf_cubemap_check_size(size, levels, err, sizeof(err))) < 0)
+		die("%s", err);
+	if ((rc = rf_cubemap_new(&c, size, levels)) < 0) {
+		if (rc == RF_EINVAL)
+			die("a cube of %zu texels cannot have %zu levels", size, levels);
+		die_status(rc, NULL);
+	}
+	return c;
+}
+
 static rf_cubemap *
 load_pixels(const struct envmap_opts *o, const char *path, const float *px, size_t w,
             size_t h, size_t nch, enum rf_layout layout, int srgb)
@@ -156,8 +173,7 @@ load_pixels(const struct envmap_opts *o, const char *path, const float *px, size
 		die("'%s': %s", path, err);
 	if (o->size)
 		face = o->size;
-	if ((rc = rf_cubemap_new(&c, face, 1)) < 0)
-		die_status(rc, NULL);
+	c = envmap_cube_new(face, 1);
 	if ((rc = rf_envmap_from_pixels(c, px, w, h, nch, layout, &dc, &bad, err,
 	                                sizeof(err))) < 0)
 		die("'%s': %s", path, err);
@@ -206,11 +222,10 @@ static rf_cubemap *
 load_level_files(const struct envmap_opts *o, struct rf_chain_info *info)
 {
 	rf_cubemap *levels[16], *c;
-	char path[4096], err[1024];
+	char path[4096];
 	struct envmap_opts one = *o;
 	size_t n = 0, k, f, i, j;
 	const char *pct = strchr(o->path, '%');
-	int rc;
 
 	if (!pct || pct[1] != 'd' || strchr(pct + 1, '%'))
 		die("--env: '%s' needs one %%d to number the levels", o->path);
@@ -232,11 +247,7 @@ load_level_files(const struct envmap_opts *o, struct rf_chain_info *info)
 			    "%zu", path, n, rf_cubemap_size(levels[n]),
 			    rf_cubemap_size(levels[n - 1]), n - 1);
 	}
-	if ((rc = rf_cubemap_new(&c, rf_cubemap_size(levels[0]), n)) < 0) {
-		snprintf(err, sizeof(err), "a cube of %zu texels cannot have %zu levels",
-		         rf_cubemap_size(levels[0]), n);
-		die("%s", err);
-	}
+	c = envmap_cube_new(rf_cubemap_size(levels[0]), n);
 	for (k = 0; k < n; k++) {
 		size_t m = rf_cubemap_level_size(c, k);
 
@@ -324,8 +335,7 @@ load_dds(const struct envmap_opts *o, struct rf_chain_info *info)
 	if (o->prefiltered || rf_cubemap_levels(c) == 1)
 		return c;
 	n = rf_cubemap_size(c);
-	if ((rc = rf_cubemap_new(&raw, n, 1)) < 0)
-		die_status(rc, NULL);
+	raw = envmap_cube_new(n, 1);
 	for (f = 0; f < 6; f++)
 		for (j = 0; j < n; j++)
 			for (i = 0; i < n; i++)
@@ -394,8 +404,7 @@ envmap_load(const struct envmap_opts *o, struct rf_chain_info *info)
 	info->mapping = RF_MAPPING_DEFAULT;
 	info->base_copied = 1;
 	if (!o->path || !strcmp(o->path, "default")) {
-		if ((rc = rf_cubemap_new(&c, o->size ? o->size : 256, 1)) < 0)
-			die_status(rc, NULL);
+		c = envmap_cube_new(o->size ? o->size : 256, 1);
 		rf_default_environment_cube_threads(c, o->nthreads);
 		return c;
 	}

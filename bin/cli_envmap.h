@@ -19,6 +19,9 @@ struct envmap_opts {
 };
 
 void envmap_opts_init(struct envmap_opts *o);
+/* A cube, or death with a message (over the memory limit, levels the
+ * size cannot halve to). */
+rf_cubemap *envmap_cube_new(size_t size, size_t levels);
 /* Handles one long option by name; 1 when taken, dies on a bad value. */
 int envmap_opts_parse(struct envmap_opts *o, const char *name, const char *arg);
 

@@ -225,9 +225,8 @@ main(int argc, char **argv)
 		fshut(stdout, "<stdout>");
 		return 0;
 	}
-	if ((rc = rf_cubemap_new(&out, rf_cubemap_size(src),
-	                         envmap_chain_levels(rf_cubemap_size(src), o.levels, o.min_size))) < 0)
-		die_status(rc, NULL);
+	out = envmap_cube_new(rf_cubemap_size(src),
+	                      envmap_chain_levels(rf_cubemap_size(src), o.levels, o.min_size));
 	info.mapping = o.pf.mapping;
 	info.steps = o.pf.steps > 0 ? o.pf.steps : (float)(rf_cubemap_levels(out) - 1);
 	info.base_copied = 1;

@@ -150,8 +150,7 @@ prefilter(const struct shade_opts *o, const char *name, rf_cubemap *src,
 	/* Worth a line: it is the slow part of a short pipeline. */
 	fprintf(stderr, "%s: prefiltering the environment%s (%zux%zu per face, %zu "
 	        "levels)\n", argv0, what, size, size, levels);
-	if ((rc = rf_cubemap_new(&out, size, levels)) < 0)
-		die_status(rc, NULL);
+	out = envmap_cube_new(size, levels);
 	if ((rc = rf_prefilter(src, out, &pf, err, sizeof(err))) < 0)
 		die_status(rc, err);
 	e->steps = pf.steps;

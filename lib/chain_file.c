@@ -140,7 +140,8 @@ rf_chain_read_file(rf_cubemap **cp, struct rf_chain_info *info, int *is_reflect,
 		    (l = strtoul(v, &end, 10)) >= 1 && !*end && l <= levels)
 			levels = l;
 	}
-	if ((rc = rf_cubemap_new(cp, n, levels)) < 0)
+	if ((rc = rf_cubemap_check_size(n, levels, err, errlen)) < 0 ||
+	    (rc = rf_cubemap_new(cp, n, levels)) < 0)
 		goto fail;
 	for (k = 0; k < levels; k++) {
 		size_t got;

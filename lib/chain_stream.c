@@ -175,6 +175,8 @@ rf_chain_read_stream(rf_cubemap **cp, struct rf_chain_info *info, rf_reader *r,
 	info->base_copied = !(v = rf_header_get(h, "BASE")) || strcmp(v, "filtered");
 	info->steps = (float)steps;
 	info->samples = (unsigned)samples;
+	if ((rc = rf_cubemap_check_size(n, (size_t)levels, err, errlen)) < 0)
+		return rc;
 	if ((rc = rf_cubemap_new(cp, n, (size_t)levels)) < 0) {
 		rf__format(err, errlen, "a cube of %zu texels cannot have %g levels", n,
 		           levels);

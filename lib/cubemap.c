@@ -1,5 +1,7 @@
 /* Cubemaps: face geometry, storage with seamless borders, sampling. */
+#include <errno.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -81,6 +83,67 @@ rf_latlong_position(const float d[3], float *u, float *v)
 	*v = (float)(theta / -M_PI + 0.5);
 }
 
+/* Face widths past this could overflow the index arithmetic. */
+#define CUBE_SIZE_MAX ((size_t)1 << 15)
+
+/* Halve while even: 256 -> 9 levels, 96 -> 6. */
+static size_t
+max_levels(size_t size)
+{
+	size_t n = 1;
+
+	while (!((size >> (n - 1)) & 1))
+		n++;
+	return n;
+}
+
+size_t
+rf_cubemap_bytes(size_t size, size_t nlevels)
+{
+	size_t k, total = 0;
+
+	if (size == 0 || size > CUBE_SIZE_MAX)
+		return SIZE_MAX;
+	if (nlevels == 0 || nlevels > max_levels(size))
+		nlevels = max_levels(size);
+	for (k = 0; k < nlevels; k++)
+		total += 6 * face_floats(size >> k);
+	return total * sizeof(float);
+}
+
+static size_t
+max_bytes(void)
+{
+	const char *env = getenv("REFLECT_MAX_CUBE_MB");
+	char *end;
+	unsigned long long mb;
+
+	if (env && *env) {
+		errno = 0;
+		mb = strtoull(env, &end, 10);
+		if (!errno && !*end && mb > 0 && mb < ((unsigned long long)SIZE_MAX >> 20))
+			return (size_t)mb << 20;
+	}
+	return (size_t)1024 << 20;
+}
+
+int
+rf_cubemap_check_size(size_t size, size_t nlevels, char *err, size_t errlen)
+{
+	size_t bytes = rf_cubemap_bytes(size, nlevels), limit = max_bytes();
+
+	if (bytes <= limit)
+		return 0;
+	if (bytes == SIZE_MAX)
+		rf__format(err, errlen, "a cube of %zu-texel faces is over the largest, %zu",
+		           size, CUBE_SIZE_MAX);
+	else
+		rf__format(err, errlen, "a cube of %zu-texel faces takes %.1f MB, over the "
+		           "limit of %zu MB (REFLECT_MAX_CUBE_MB raises it)", size,
+		           (double)bytes / (1 << 20), limit >> 20);
+	return RF_ETOOBIG;
+}
+
 int
 rf_cubemap_new(rf_cubemap **cp, size_t size, size_t nlevels)
 {
@@ -88,14 +151,15 @@ rf_cubemap_new(rf_cubemap **cp, size_t size, size_t nlevels)
 	size_t k, total = 0, maxlevels = 1;
 
 	*cp = NULL;
-	if (size == 0 || size > ((size_t)1 << 15))
+	if (size == 0 || size > CUBE_SIZE_MAX)
 		return RF_ETOOBIG;
-	while (!((size >> (maxlevels - 1)) & 1))
-		maxlevels++; /* halve while even: 256 -> 9 levels, 96 -> 6 */
+	maxlevels = max_levels(size);
 	if (nlevels == 0)
 		nlevels = maxlevels;
 	if (nlevels > maxlevels)
 		return RF_EINVAL;
+	if (rf_cubemap_check_size(size, nlevels, NULL, 0) < 0)
+		return RF_ETOOBIG;
 	if (!(c = calloc(1, sizeof(*c))))
 		return RF_ENOMEM;
 	c->size = size;

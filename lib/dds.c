@@ -500,6 +500,7 @@ rf_chain_read_dds(rf_cubemap **cp, struct rf_chain_info *info, size_t *nonfinite
                   const char *path, char *err, size_t errlen)
 {
 	unsigned char h[4 + DDS_HEADER_SIZE + DDS_DX10_SIZE];
+	char msg[256];
 	struct dds_layout l;
 	off_t file_size;
 	size_t got;
@@ -533,8 +534,9 @@ rf_chain_read_dds(rf_cubemap **cp, struct rf_chain_info *info, size_t *nonfinite
 		fclose(fp);
 		return rc;
 	}
-	if ((rc = rf_cubemap_new(cp, l.size, l.levels)) < 0) {
-		rf__format(err, errlen, "'%s': %s", path, rf_strerror(rc));
+	if ((rc = rf_cubemap_check_size(l.size, l.levels, msg, sizeof(msg))) < 0 ||
+	    (rc = rf_cubemap_new(cp, l.size, l.levels)) < 0) {
+		rf__format(err, errlen, "'%s': %s", path, rc == RF_ETOOBIG ? msg : rf_strerror(rc));
 		fclose(fp);
 		return rc;
 	}

@@ -2,6 +2,8 @@
 test_description='reflect-prefilter: inputs in every layout, chains out, bad input'
 . "$srcdir/tests/lib.sh"
 
+SQ="'"
+
 # header values of the frames of an ascii chain, one line per frame
 frame_keys () {
 	awk -v key="$1" 'index($0, key "=") == 1 { sub(key "=", ""); print }' "$2"
@@ -133,6 +135,31 @@ test_expect_success 'a DDS cube with mips: a chain with --prefiltered, else raw'
 	reflect-prefilter -fa --levels=2 cube.dds >raw.txt &&
 	test "$(frame_keys NCOLS raw.txt | tr "\n" " ")" = "8 4 " &&
 	test "$(frame_keys PREFILTER raw.txt | sort -u)" = ggx
+'
+
+# A DDS header may claim any size, and a sparse file backs the claim with
+# no disk at all: 4096-texel faces in a 1.6 GB file that holds 4 KB.  The
+# cube it would need, 6 faces of (4096 + 2)^2 bordered RGB float texels,
+# 1153.1 MB, is over the memory limit, so nothing is allocated; before,
+# reflect-shade took 2.8 GB for such a file.
+test_expect_success 'a sparse DDS is refused at the cube limit, before any allocation' '
+	"$builddir/tests/mkdds" sparse.dds 8 1 &&
+	printf "\000\020\000\000\000\020\000\000" |
+	dd of=sparse.dds bs=1 seek=12 conv=notrunc 2>/dev/null &&
+	truncate -s $((128 + 4096 * 4096 * 6 * 16)) sparse.dds &&
+	test_must_fail 1 timeout 20 reflect-prefilter --prefiltered sparse.dds >/dev/null 2>err &&
+	test_one_line_message reflect-prefilter err &&
+	test_grep "${SQ}sparse.dds${SQ}: a cube of 4096-texel faces takes 1153.1 MB, over the limit of 1024 MB (REFLECT_MAX_CUBE_MB raises it)" err &&
+	reflect-gbuffer -x 4 -y 4 | reflect-project >frame.rfl &&
+	test_must_fail 1 timeout 20 reflect-shade --env=sparse.dds --prefiltered frame.rfl >/dev/null 2>err &&
+	test_grep "over the limit of 1024 MB" err
+'
+
+# The embedded room's raw cube at 256: 6 x 258^2 x 12 bytes = 4.6 MB.
+test_expect_success 'REFLECT_MAX_CUBE_MB sets the limit' '
+	REFLECT_MAX_CUBE_MB=1 test_must_fail 1 reflect-prefilter --size=256 >/dev/null 2>err &&
+	test_grep "a cube of 256-texel faces takes 4.6 MB, over the limit of 1 MB" err &&
+	REFLECT_MAX_CUBE_MB=1 reflect-prefilter --size=64 >/dev/null
 '
 
 test_expect_success 'NaN and Inf texels are counted and zeroed, or refused with -S' '

@@ -61,8 +61,17 @@ RF_EXTERN void rf_latlong_position(const float dir[3], float *u, float *v);
  * seamless across edges at every level. */
 typedef struct rf_cubemap rf_cubemap;
 
-/* size: level 0 face width; nlevels: 0 means down to 1x1. */
+/* size: level 0 face width; nlevels: 0 means down to 1x1.  RF_ETOOBIG
+ * past the memory limit (rf_cubemap_check_size). */
 RF_EXTERN int rf_cubemap_new(rf_cubemap **c, size_t size, size_t nlevels);
+/* The bytes a cube of these levels takes (its texels, borders
+ * included), and whether that fits: RF_ETOOBIG with a message when it
+ * is over the limit, REFLECT_MAX_CUBE_MB megabytes (default 1024: faces
+ * of 2048 texels with every level take 0.4 GB; the shading pass holds a
+ * second copy a third larger).  A reader checks before it allocates, so
+ * that a forged or sparse file cannot make it take gigabytes. */
+RF_EXTERN size_t rf_cubemap_bytes(size_t size, size_t nlevels);
+RF_EXTERN int rf_cubemap_check_size(size_t size, size_t nlevels, char *err, size_t errlen);
 RF_EXTERN void rf_cubemap_free(rf_cubemap *c);
 RF_EXTERN size_t rf_cubemap_size(const rf_cubemap *c);
 RF_EXTERN size_t rf_cubemap_levels(const rf_cubemap *c);
