@@ -12,9 +12,14 @@
  */
 #include <ctype.h>
 #include <dlfcn.h>
+#include <errno.h>
+#include <fcntl.h>
 #include <pthread.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "image_module.h"
 #include "image_writers.h"
@@ -189,8 +194,123 @@ struct rf_image_writer {
 		struct rf__exr_writer *exr;
 	} u;
 	size_t height, next_row;
+	char *temp;               /* written here, renamed to path at close */
+	struct rf_image_writer *next_temp;
 	char path[];
 };
+
+/*
+ * An image is written to a temporary file beside its path and renamed
+ * over it once whole, as git and sqlite write theirs: a write that fails
+ * (a full disk, input that ends early) leaves an existing file as it
+ * was, and a reader never sees half an image.  The temporary file keeps
+ * the path's extension, since the module picks the format by it.  One
+ * that is still open when the process exits (a tool dying on bad input)
+ * is removed then.  Devices, FIFOs and symbolic links are written in
+ * place: a rename would replace them.
+ */
+static pthread_mutex_t temps_lock = PTHREAD_MUTEX_INITIALIZER;
+static struct rf_image_writer *temps;
+
+static void
+remove_temps(void)
+{
+	struct rf_image_writer *w;
+
+	pthread_mutex_lock(&temps_lock);
+	for (w = temps; w; w = w->next_temp)
+		unlink(w->temp);
+	temps = NULL;
+	pthread_mutex_unlock(&temps_lock);
+}
+
+static void
+register_removal(void)
+{
+	atexit(remove_temps);
+}
+
+static void
+forget_temp(rf_image_writer *w)
+{
+	struct rf_image_writer **p;
+
+	pthread_mutex_lock(&temps_lock);
+	for (p = &temps; *p && *p != w; p = &(*p)->next_temp)
+		;
+	if (*p)
+		*p = w->next_temp;
+	pthread_mutex_unlock(&temps_lock);
+}
+
+/* w->temp made and registered; 0, or RF_EIO with a message. */
+static int
+make_temp(rf_image_writer *w, char *err, size_t errlen)
+{
+	static pthread_once_t registered = PTHREAD_ONCE_INIT;
+	const char *slash = strrchr(w->path, '/'), *base = slash ? slash + 1 : w->path;
+	const char *dot = strrchr(base, '.');
+	size_t dirlen = (size_t)(base - w->path), suffix = dot ? strlen(dot) : 0;
+	struct stat st;
+	mode_t mask;
+	int fd;
+
+	if (lstat(w->path, &st) == 0 && !S_ISREG(st.st_mode))
+		return 0;
+	if (!(w->temp = malloc(strlen(w->path) + 10))) {
+		rf__format(err, errlen, "cannot write '%s': out of memory", w->path);
+		return RF_ENOMEM;
+	}
+	sprintf(w->temp, "%.*s.%.*s.XXXXXX%s", (int)dirlen, w->path,
+	        (int)(strlen(base) - suffix), base, dot ? dot : "");
+	if ((fd = mkostemps(w->temp, (int)suffix, O_CLOEXEC)) < 0) {
+		rf__format(err, errlen, "cannot write '%s': %s", w->path, strerror(errno));
+		free(w->temp);
+		w->temp = NULL;
+		return RF_EIO;
+	}
+	/* The mode a new file would get, or the one the old file has. */
+	if (lstat(w->path, &st) == 0) {
+		(void)fchmod(fd, st.st_mode & 07777);
+	} else {
+		mask = umask(0);
+		umask(mask);
+		(void)fchmod(fd, 0666 & ~mask);
+	}
+	close(fd);
+	pthread_once(&registered, register_removal);
+	pthread_mutex_lock(&temps_lock);
+	w->next_temp = temps;
+	temps = w;
+	pthread_mutex_unlock(&temps_lock);
+	return 0;
+}
+
+/* Frees a writer whose file is not to be kept: its temporary file goes. */
+static void
+discard(rf_image_writer *w)
+{
+	if (w->temp) {
+		forget_temp(w);
+		unlink(w->temp);
+		free(w->temp);
+	}
+	free(w);
+}
+
+/* A sub-writer's message names the file it was handed: name the path. */
+static void
+name_path(const rf_image_writer *w, char *err, size_t errlen)
+{
+	char *at, out[1024];
+	size_t tl;
+
+	if (!w->temp || !err || !(at = strstr(err, w->temp)))
+		return;
+	tl = strlen(w->temp);
+	rf__format(out, sizeof(out), "%.*s%s%s", (int)(at - err), err, w->path, at + tl);
+	rf__format(err, errlen, "%s", out);
+}
 
 static enum writer_kind
 writer_kind(const char *path, size_t nchannels, enum rf_pixel_type type)
@@ -212,6 +332,7 @@ rf_image_writer_open(rf_image_writer **wp, const char *path, size_t width,
                      enum rf_pixel_type type, char *err, size_t errlen)
 {
 	size_t len = strlen(path);
+	const char *file;
 	rf_image_writer *w;
 	int rc;
 
@@ -223,23 +344,31 @@ rf_image_writer_open(rf_image_writer **wp, const char *path, size_t width,
 	memcpy(w->path, path, len + 1);
 	w->kind = writer_kind(path, nchannels, type);
 	w->height = height;
+	if (w->kind == WRITER_MODULE && !module(err, errlen)) {
+		free(w);
+		return RF_EIMAGE;
+	}
+	if ((rc = make_temp(w, err, errlen)) < 0) {
+		free(w);
+		return rc;
+	}
+	file = w->temp ? w->temp : path;
 	switch (w->kind) {
 	case WRITER_PNG:
-		rc = rf__png_writer_open(&w->u.png, path, width, height, nchannels, type,
+		rc = rf__png_writer_open(&w->u.png, file, width, height, nchannels, type,
 		                         err, errlen);
 		break;
 	case WRITER_EXR:
-		rc = rf__exr_writer_open(&w->u.exr, path, width, height, nchannels, names,
+		rc = rf__exr_writer_open(&w->u.exr, file, width, height, nchannels, names,
 		                         type, err, errlen);
 		break;
 	default:
-		rc = module(err, errlen) ? api->writer_open(&w->u.module, path, width, height,
-		                                            nchannels, names, type, err,
-		                                            errlen)
-		                         : RF_EIMAGE;
+		rc = api->writer_open(&w->u.module, file, width, height, nchannels, names, type,
+		                      err, errlen);
 	}
 	if (rc < 0) {
-		free(w);
+		name_path(w, err, errlen);
+		discard(w);
 		return rc;
 	}
 	*wp = w;
@@ -268,6 +397,8 @@ rf_image_writer_write_rows(rf_image_writer *w, size_t y, size_t nrows,
 	}
 	if (rc == 0)
 		w->next_row += nrows;
+	else
+		name_path(w, err, errlen);
 	return rc;
 }
 
@@ -288,12 +419,23 @@ rf_image_writer_close(rf_image_writer *w, char *err, size_t errlen)
 	default:
 		rc = api->writer_close(w->u.module, err, errlen);
 	}
+	name_path(w, err, errlen);
 	/* The module says so itself; an incomplete image is the first error. */
 	if (w->next_row != w->height && w->kind != WRITER_MODULE) {
 		rf__format(err, errlen, "cannot write '%s': image is incomplete", w->path);
 		rc = RF_EINVAL;
 	}
-	free(w);
+	if (rc == 0 && w->temp && rename(w->temp, w->path) < 0) {
+		rf__format(err, errlen, "cannot write '%s': %s", w->path, strerror(errno));
+		rc = RF_EIO;
+	}
+	if (rc == 0 && w->temp) {
+		forget_temp(w);
+		free(w->temp);
+		free(w);
+	} else {
+		discard(w);
+	}
 	return rc;
 }
 

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <memory>
 #include <string>
 #include <vector>
@@ -301,6 +302,21 @@ module_type_for_path(const char *path)
 	return can_write(ext) ? type : -1;
 }
 
+static std::string
+fixed_date()
+{
+	const char *env = getenv("SOURCE_DATE_EPOCH");
+	char *end = nullptr;
+	long long t = env && *env ? strtoll(env, &end, 10) : 0;
+	time_t when = (end && *end) || t < 0 ? 0 : (time_t)t;
+	struct tm tm;
+	char buf[32];
+
+	gmtime_r(&when, &tm);
+	strftime(buf, sizeof(buf), "%Y:%m:%d %H:%M:%S", &tm);
+	return buf;
+}
+
 static int
 module_writer_open(rf__module_writer **wp, const char *path, size_t width,
                      size_t height, size_t nchannels, const char *const *names,
@@ -365,6 +381,10 @@ module_writer_open(rf__module_writer **wp, const char *path, size_t width,
 			if (!strcmp(names[c], "A"))
 				spec.alpha_channel = (int)c;
 	}
+	// Formats that carry a date (TIFF's DateTime tag) get a fixed one, so
+	// the same pixels make the same bytes: SOURCE_DATE_EPOCH when set, as
+	// reproducible builds do, else the epoch itself.
+	spec.attribute("DateTime", fixed_date());
 	if (type == RF_PIXEL_UINT8 || type == RF_PIXEL_UINT16) {
 		spec.attribute("oiio:ColorSpace", "sRGB");
 		// Integer files get their alpha as given (straight, not

@@ -556,4 +556,52 @@ else
 	test_skip 'png and exr on a full disk: exit 2, No space left on device' 'no /dev/full'
 fi
 
+# The image is written beside its path and renamed over it once whole:
+# input that ends early leaves the old file as it was, and no temporary
+# file behind (one per type: libpng, OpenEXR's core, OpenImageIO).
+test_expect_success 'a failed export leaves the existing file as it was' '
+	head -c $(($(wc -c <big.txt) / 2)) big.txt >half.txt &&
+	for ext in png exr tif
+	do
+		reflect-export -o keep.$ext -c e0,e1,e2 big.txt &&
+		cp keep.$ext before.$ext &&
+		test_must_fail 1 reflect-export -o keep.$ext -c e0,e1,e2 half.txt 2>err &&
+		test_grep "data ends" err &&
+		cmp before.$ext keep.$ext &&
+		test -z "$(ls -A | grep "^\.keep")" || return 1
+	done
+'
+
+test_expect_success 'a replaced file keeps its mode; a new one gets the umask' '
+	reflect-export -o mode.png in.txt &&
+	chmod 640 mode.png &&
+	reflect-export -e 1 -o mode.png in.txt &&
+	test "$(stat -c %a mode.png)" = 640 &&
+	(umask 027 && reflect-export -o new.png in.txt) &&
+	test "$(stat -c %a new.png)" = 640 &&
+	(umask 022 && reflect-export -o new2.png in.txt) &&
+	test "$(stat -c %a new2.png)" = 644
+'
+
+test_expect_success 'a symbolic link is written through, not replaced' '
+	reflect-export -o target.png in.txt &&
+	ln -s target.png link.png &&
+	reflect-export -e 1 -o link.png in.txt &&
+	test -h link.png &&
+	reflect-export -e 1 -o want.png in.txt &&
+	cmp want.png target.png
+'
+
+# TIFF's DateTime tag held the time of writing; it is now fixed (the
+# epoch, or SOURCE_DATE_EPOCH), so the same pixels make the same bytes.
+test_expect_success 'tiff: the same pixels make the same bytes' '
+	reflect-export -o t1.tif in.txt &&
+	sleep 1 &&
+	reflect-export -o t2.tif in.txt &&
+	cmp t1.tif t2.tif &&
+	SOURCE_DATE_EPOCH=86400 reflect-export -o t3.tif in.txt &&
+	grep -a "1970:01:02 00:00:00" t3.tif >/dev/null &&
+	grep -a "1970:01:01 00:00:00" t1.tif >/dev/null
+'
+
 test_done
