@@ -314,19 +314,31 @@ test_expect_success 'a mapped input that shrinks ends the tool with a message' '
 	done
 '
 
-# Every bad input under valgrind: the exit status stays 1 (99 would be a
-# memory error or a leak).
+# Every bad input under valgrind: the exit status stays 1 and the tool
+# says why (99 would be a memory error or a leak).  Valgrind exits 1 too
+# when it cannot run a program (clang's DWARF 5 on valgrind 3.19), so a
+# bare 1 proves nothing: the tool's own message must be there, and a
+# valgrind that cannot run the tools skips these tests with its reason.
 valgrind_bad () {
 	"$builddir/libtool" --mode=execute \
 		$VALGRIND -q --error-exitcode=99 --leak-check=full "$@" >/dev/null 2>err
 	got=$?
-	if test "$got" -ne 1
+	if test "$got" -ne 1 || ! grep "^$(basename "$1"): " err >/dev/null
 	then
-		echo "expected exit status 1 under valgrind, got $got: $*" >&2
+		echo "expected exit status 1 and a message under valgrind, got $got: $*" >&2
 		cat err >&2
 		return 1
 	fi
 }
+
+valgrind_reason=
+if test -n "$VALGRIND" &&
+	! "$builddir/libtool" --mode=execute $VALGRIND -q --error-exitcode=99 \
+		"$builddir/bin/reflect-info" -V >/dev/null 2>valgrind.err
+then
+	valgrind_reason="valgrind cannot run the tools: $(head -n 1 valgrind.err)"
+	VALGRIND=
+fi
 
 if test -n "$VALGRIND"
 then
@@ -372,9 +384,13 @@ then
 		test_grep "data ends" err
 	'
 else
-	test_skip 'every bad input under valgrind (reflect-info)' 'no valgrind'
-	test_skip 'every bad input under valgrind (reflect-info -s)' 'no valgrind'
-	test_skip 'bad input under valgrind (reflect-project)' 'no valgrind'
+	for t in 'every bad input under valgrind (reflect-info)' \
+		'every bad input under valgrind (reflect-info -s)' \
+		'bad input under valgrind (reflect-project)' \
+		'bad and truncated input under valgrind (reflect-shade, reflect-export)'
+	do
+		test_skip "$t" "${valgrind_reason:-no valgrind}"
+	done
 fi
 
 test_done
