@@ -84,14 +84,41 @@ cli_record_command(rf_header *h)
 		die_status(rc, NULL);
 }
 
+/* Writes s, each control byte (ESC, a tab, a newline...) as '?': a
+ * message quotes names from files and command lines, and none of them
+ * may move the terminal's cursor or change its colours. */
+static void
+put_clean(FILE *fp, const char *s)
+{
+	for (; *s; s++)
+		fputc((unsigned char)*s < 0x20 || *s == 0x7f ? '?' : *s, fp);
+}
+
+void
+cli_message_start(void)
+{
+	put_clean(stderr, argv0);
+	fputs(": ", stderr);
+}
+
+void
+cli_put_quoted(FILE *fp, const char *s)
+{
+	fputc('\'', fp);
+	put_clean(fp, s);
+	fputc('\'', fp);
+}
+
 static void
 vmessage(const char *fmt, va_list ap)
 {
 	size_t n = strlen(fmt);
 	int e = errno;
+	char buf[4096];
 
-	fprintf(stderr, "%s: ", argv0);
-	vfprintf(stderr, fmt, ap);
+	vsnprintf(buf, sizeof(buf), fmt, ap);
+	cli_message_start();
+	put_clean(stderr, buf);
 	if (n && fmt[n - 1] == ':')
 		fprintf(stderr, " %s", strerror(e));
 	fputc('\n', stderr);
@@ -124,7 +151,9 @@ die_status(int status, const char *msg)
 {
 	if (status == RF_EIO && errno == EPIPE)
 		exit(EXIT_SYSTEM); /* downstream closed: no message */
-	fprintf(stderr, "%s: %s\n", argv0, msg && *msg ? msg : rf_strerror(status));
+	cli_message_start();
+	put_clean(stderr, msg && *msg ? msg : rf_strerror(status));
+	fputc('\n', stderr);
 	exit(status == RF_EIO || status == RF_ENOMEM ? EXIT_SYSTEM : EXIT_BAD_INPUT);
 }
 

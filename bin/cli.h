@@ -33,6 +33,10 @@ CLI_NORETURN void die_sys(const char *fmt, ...) CLI_PRINTF(1, 2);
 /* Exit status for a libreflect error: 2 for system errors, else 1. */
 CLI_NORETURN void die_status(int status, const char *msg);
 void warn(const char *fmt, ...) CLI_PRINTF(1, 2);
+/* For a message written in pieces: "tool: ", and a name in quotes; both
+ * write control bytes as '?', as every message does. */
+void cli_message_start(void);
+void cli_put_quoted(FILE *fp, const char *s);
 void *emalloc(size_t n);
 void *ecalloc(size_t n, size_t size);
 char *estrdup(const char *s);

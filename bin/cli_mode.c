@@ -166,8 +166,9 @@ mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose)
 		const struct rf_plugin *p = m->plugin;
 		uint32_t i;
 
-		fprintf(stderr, "%s: mode '%s' from '%s'", argv0, p->name,
-		        rf_module_path(m->module));
+		cli_message_start();
+		fprintf(stderr, "mode '%s' from ", p->name);
+		cli_put_quoted(stderr, rf_module_path(m->module));
 		for (i = 0; i < p->nparams; i++) {
 			const struct rf_param *q = &p->params[i];
 

@@ -75,7 +75,7 @@ dump_levels(const rf_cubemap *c, const char *spec)
 		    (rc = rf_image_writer_write_rows(iw, 0, h, px, err, sizeof(err))) < 0 ||
 		    (rc = rf_image_writer_close(iw, err, sizeof(err))) < 0)
 			die_status(rc, err);
-		fprintf(stderr, "%s: wrote '%s'\n", argv0, path);
+		warn("wrote '%s'", path);
 		free(px);
 	}
 }
@@ -214,9 +214,8 @@ main(int argc, char **argv)
 	src = envmap_load(&eo, &info);
 	if (info.prefiltered || rf_cubemap_levels(src) > 1) {
 		/* A chain is written as it is: a change of form, not of content. */
-		fprintf(stderr, "%s: '%s' is already a %s chain of %zu levels; writing it "
-		        "as it is\n", argv0, eo.path, info.prefiltered ? "prefiltered" : "plain",
-		        rf_cubemap_levels(src));
+		warn("'%s' is already a %s chain of %zu levels; writing it as it is", eo.path,
+		     info.prefiltered ? "prefiltered" : "plain", rf_cubemap_levels(src));
 		if (o.dump)
 			dump_levels(src, o.dump);
 		if (!o.dump || o.output)

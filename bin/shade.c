@@ -175,9 +175,8 @@ load_environment(const struct shade_opts *o, const char *name, struct environmen
 	e->mapping = o->mapping_set ? o->mapping : RF_MAPPING_DEFAULT;
 	if (!info.prefiltered) {
 		if (levels > 1 && o->verbose)
-			fprintf(stderr, "%s: '%s' has box-filtered levels, not GGX ones: "
-			        "prefiltering its level 0 (--prefiltered takes them as "
-			        "they are)\n", argv0, name);
+			warn("'%s' has box-filtered levels, not GGX ones: prefiltering its "
+			     "level 0 (--prefiltered takes them as they are)", name);
 		e->cube = prefilter(o, name, c, e);
 		rf_cubemap_free(c);
 	} else {
@@ -200,10 +199,9 @@ load_environment(const struct shade_opts *o, const char *name, struct environmen
 	}
 	e->fresh = 1;
 	if (o->verbose)
-		fprintf(stderr, "%s: environment '%s': %zu texels, %zu levels, mapping "
-		        "%s, steps %g\n", argv0, name, rf_cubemap_size(e->cube),
-		        rf_cubemap_levels(e->cube), rf_mapping_name(e->mapping),
-		        (double)e->steps);
+		warn("environment '%s': %zu texels, %zu levels, mapping %s, steps %g", name,
+		     rf_cubemap_size(e->cube), rf_cubemap_levels(e->cube),
+		     rf_mapping_name(e->mapping), (double)e->steps);
 }
 
 /* The mode's inputs, checked before the environment is loaded, so that a

@@ -171,6 +171,25 @@ test_expect_success 'only stream data on stdout' '
 	printf "#?REFLECT1\n" | cmp - magic
 '
 
+# A message quotes names from command lines and files: none of their
+# control bytes (ESC above all, which recolours or clears a terminal)
+# may reach it; each is written as "?".
+test_expect_success 'messages carry no control bytes' '
+	esc=$(printf "\033") &&
+	test_must_fail 1 reflect-shade -m "x${esc}[31mred" </dev/null 2>err &&
+	! grep "$esc" err && test_grep "x?\[31mred" err &&
+	test_must_fail 1 reflect-project -m "box:a${esc}=1" </dev/null 2>err &&
+	! grep "$esc" err &&
+	printf "probe box -1 -1 -1 1 1 1\n${esc}[2Jfoo\n" >esc.scene &&
+	test_must_fail 1 reflect-gbuffer esc.scene >/dev/null 2>err &&
+	! grep "$esc" err && test_grep "unknown keyword .?\[2Jfoo." err &&
+	test_must_fail 1 reflect-info "no${esc}]0;title" 2>err &&
+	! grep "$esc" err && test_one_line_message reflect-info err &&
+	tab=$(printf "\t") &&
+	test_must_fail 1 reflect-export -o "a${tab}b.nosuch" </dev/null 2>err &&
+	! grep "$tab" err
+'
+
 # 20,000 one-pixel frames: a frame of one block has nothing to overlap,
 # and a batch of one row needs no pool thread, so no frame starts one
 # (before: 60,000 clones and 3.9 s here, now none and 0.15 s).
