@@ -156,12 +156,18 @@ mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose)
 		*colon = '\0';
 		params = colon + 1;
 	}
-	if ((rc = rf_module_load(&m->module, name, kind, err, sizeof(err))) < 0)
+	/* The messages are made before name (params lies in it) is freed. */
+	if ((rc = rf_module_load(&m->module, name, kind, err, sizeof(err))) < 0) {
+		free(name);
 		die_status(rc == RF_ENOMEM ? rc : RF_EPLUGIN, err);
+	}
 	m->plugin = rf_module_plugin(m->module);
 	m->values = ecalloc(m->plugin->nparams + 1, sizeof(double));
-	if (rf_plugin_parse_params(m->plugin, params, m->values, err, sizeof(err)) < 0)
+	if (rf_plugin_parse_params(m->plugin, params, m->values, err, sizeof(err)) < 0) {
+		free(name);
+		mode_unload(m);
 		die("%s", err);
+	}
 	if (verbose) {
 		const struct rf_plugin *p = m->plugin;
 		uint32_t i;
