@@ -1035,6 +1035,15 @@ rf_scene_parse(rf_scene **sp, const char *text, size_t len, const char *name,
 		rc = name_from_file(p.s, p.name);
 	if (rc == RF_ENOMEM)
 		rf__format(err, errlen, "%s: %s", p.name, rf_strerror(rc));
+	if (rc < 0 && err) {
+		/* Messages quote the scene's words: none of its control bytes
+		 * may reach a terminal. */
+		char *c;
+
+		for (c = err; *c; c++)
+			if ((unsigned char)*c < 0x20 || *c == 0x7f)
+				*c = '?';
+	}
 	if (rc < 0) {
 		rf_scene_free(p.s);
 		return rc;

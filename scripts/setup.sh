@@ -37,6 +37,10 @@ setup_optional_missing () {
 	/usr/bin/python3 -c 'import numpy' >/dev/null 2>&1 || missing="$missing python3-numpy"
 	command -v valgrind >/dev/null 2>&1 || missing="$missing valgrind"
 	command -v clang >/dev/null 2>&1 || missing="$missing clang"
+	# libFuzzer's runtime, for make fuzz
+	command -v clang >/dev/null 2>&1 &&
+		test -f "$(clang -print-file-name=libclang_rt.fuzzer-x86_64.a)" ||
+		missing="$missing libclang-rt-14-dev"
 	command -v strace >/dev/null 2>&1 || missing="$missing strace"
 	echo $missing
 }

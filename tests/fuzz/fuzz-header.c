@@ -8,17 +8,8 @@
  * of each frame that parsed is written again with rf_writer and read back:
  * a header the reader took must come back the same, or the harness aborts.
  *
- * Build and run (from the build directory; clang with libFuzzer, e.g.
- * clang 14 and libclang-rt-14-dev on Debian):
- *
- *	make fuzz
- *	cp -R "$srcdir/tests/fuzz/corpus" fuzz-work
- *	./tests/fuzz/fuzz-header -max_len=8192 -max_total_time=600 \
- *		-jobs=1 -workers=1 -print_final_stats=1 fuzz-work
- *
- * A crash leaves crash-<sha1> in the current directory; replay it with
- * ./tests/fuzz/fuzz-header crash-<sha1>, and add the input as a case to
- * tests/t0010-stream-bad-input.sh.  See tests/fuzz/README.
+ * make fuzz builds and runs it; make check replays its corpus (see
+ * tests/fuzz/README).
  */
 #include <stdint.h>
 #include <stdio.h>

@@ -1,0 +1,39 @@
+#!/bin/sh
+test_description='the fuzz harnesses replayed over their corpora and the bugs they found'
+. "$srcdir/tests/lib.sh"
+
+# Each harness aborts on what it checks (a message without text or with a
+# control byte, a header that does not come back, radiance that is not
+# finite, the vector and plain reads disagreeing) and, in the sanitizer
+# build, on any memory error or undefined behaviour.
+for t in header scene dds numeric
+do
+	test_expect_success "replay the $t corpus" '
+		"$builddir/tests/fuzz/replay-'$t'" "$srcdir/tests/fuzz/corpus/'$t'" >out &&
+		test $(grep -c "^ran " out) -ge 3
+	'
+done
+
+# The harnesses must fail on what they check, or they test nothing.
+test_expect_success 'the numeric harness takes the box projection' '
+	"$builddir/tests/fuzz/replay-numeric" "$srcdir/tests/fuzz/corpus/numeric/floor" &&
+	REFLECT_PLUGIN_PATH=/nonexistent \
+		"$builddir/tests/fuzz/replay-numeric" "$srcdir/tests/fuzz/corpus/numeric/floor"
+'
+
+test_expect_success 'random bytes through every harness' '
+	for t in header scene dds numeric
+	do
+		for seed in 1 2 3 4 5 6 7 8
+		do
+			awk -v seed=$seed -v t=$t "BEGIN {
+				srand(seed); n = 64 + int(rand() * 2000)
+				for (i = 0; i < n; i++) printf \"%c\", int(rand() * 256)
+			}" >random-$t-$seed || return 1
+		done &&
+		"$builddir/tests/fuzz/replay-$t" random-$t-* >out &&
+		test $(grep -c "^ran " out) -eq 8 || return 1
+	done
+'
+
+test_done
