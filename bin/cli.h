@@ -64,6 +64,8 @@ struct cli_io {
 	FILE *input;
 	rf_reader *reader;
 	rf_writer *writer;
+	size_t frames;          /* read so far: the current one's number */
+	enum rf_invalid invalid; /* --invalid, for the stages that check input */
 };
 
 #define CLI_IO_OPTSTRING "f:hHx:y:c:"
@@ -79,18 +81,29 @@ int cli_io_next(struct cli_io *io, const rf_header **h);
 void cli_io_read(struct cli_io *io, float *buf, size_t nrows);
 /* Dies with the reader's message for error rc. */
 void cli_io_read_failed(struct cli_io *io, int rc);
+/* --invalid=error|clamp|zero into io->invalid; dies on another word. */
+void cli_io_invalid_option(struct cli_io *io, const char *arg);
+#define CLI_INVALID_USAGE "[--invalid=error|clamp|zero]"
+/* Dies: the input's pixel broke a rule (why: the library's message). */
+CLI_NORETURN void cli_io_invalid_failed(struct cli_io *io, const char *why);
+/* Says, once a frame, how many pixels were clamped or zeroed. */
+void cli_io_invalid_note(struct cli_io *io, size_t count);
 void cli_io_begin(struct cli_io *io, const rf_header *h);
 void cli_io_write(struct cli_io *io, const float *buf, size_t nrows);
 void cli_io_end_frame(struct cli_io *io);
 void cli_io_close(struct cli_io *io);
 
-/* Computes one block: n rows from row y, in to out (NULL without output). */
-typedef void cli_block_fn(void *arg, const float *in, float *out, size_t y, size_t n);
+/* Computes one block: n rows from row y, in to out (NULL without output);
+ * 0, or an error (bad input: a message of the caller's own) that stops
+ * the frame. */
+typedef int cli_block_fn(void *arg, const float *in, float *out, size_t y, size_t n);
 /* Runs fn over a frame's nrows in blocks of `block` rows (in_floats and
  * out_floats a row), reading ahead and writing behind on threads of their
- * own; in_floats 0: no input (fn gets NULL), out_floats 0: no output.  Begin the output frame first.  Dies if
- * a write fails; returns 0, or the error of a failed read for
- * cli_io_read_failed once the caller has freed what it holds. */
+ * own; in_floats 0: no input (fn gets NULL), out_floats 0: no output.
+ * Begin the output frame first.  Dies if a write fails; returns 0, the
+ * error fn returned (fn's arg tells which), or the error of a failed
+ * read for cli_io_read_failed, once the threads are gone, so that the
+ * caller can free what it holds first. */
 int cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
                 size_t out_floats, cli_block_fn *fn, void *arg);
 

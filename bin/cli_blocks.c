@@ -31,6 +31,7 @@ struct blocks {
 	/* The first failure (an RF_E* code) and errno with it; stop tells
 	 * the threads to give up. */
 	int read_rc, read_errno, write_rc, write_errno, stop;
+	int fn_rc; /* the main thread's alone */
 };
 
 static size_t
@@ -149,7 +150,7 @@ finish(struct blocks *b, pthread_t *rt, pthread_t *wt)
 		free(b->out[i]);
 	}
 	errno = b->read_errno;
-	return b->read_rc;
+	return b->fn_rc < 0 ? b->fn_rc : b->read_rc;
 }
 
 int
@@ -220,7 +221,8 @@ cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
 		pthread_mutex_unlock(&b.mu);
 		if (!go)
 			break;
-		fn(arg, src, b.out[k % 2], y, n);
+		if ((b.fn_rc = fn(arg, src, b.out[k % 2], y, n)) < 0)
+			break;
 		if (out_floats && !writing) {
 			if ((rc = rf_writer_write_rows(io->writer, b.out[k % 2], n)) < 0) {
 				b.write_rc = rc;

@@ -111,7 +111,31 @@ cli_io_next(struct cli_io *io, const rf_header **h)
 
 	if (rc < 0)
 		die_status(rc, rf_reader_error(io->reader));
+	io->frames += rc == 1;
 	return rc;
+}
+
+void
+cli_io_invalid_option(struct cli_io *io, const char *arg)
+{
+	if (rf_invalid_parse(arg, &io->invalid) < 0)
+		die("--invalid: '%s' is not error, clamp or zero", arg);
+}
+
+void
+cli_io_invalid_failed(struct cli_io *io, const char *why)
+{
+	die("'%s': frame %zu, %s (--invalid=clamp or --invalid=zero goes on)", io->input_name,
+	    io->frames, why);
+}
+
+void
+cli_io_invalid_note(struct cli_io *io, size_t count)
+{
+	if (count)
+		warn("'%s': frame %zu: %zu pixel%s with invalid input %s", io->input_name,
+		     io->frames, count, count == 1 ? "" : "s",
+		     io->invalid == RF_INVALID_CLAMP ? "clamped (or zeroed)" : "zeroed");
 }
 
 void

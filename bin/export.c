@@ -256,7 +256,7 @@ struct export_block {
 	float *out, *scratch;
 };
 
-static void
+static int
 export_block(void *arg, const float *in, float *out, size_t y, size_t n)
 {
 	struct export_block *eb = arg;
@@ -271,6 +271,7 @@ export_block(void *arg, const float *in, float *out, size_t y, size_t n)
 	encode_block(eb->out, n * eb->ncols, eb->nch, eb->alpha, eb->o, eb->srgb, eb->scratch);
 	if ((rc = rf_image_writer_write_rows(eb->w, y, n, eb->out, err, sizeof(err))) < 0)
 		die_status(rc, err);
+	return 0;
 }
 
 static void

@@ -179,7 +179,7 @@ flag_camera(const rf_scene *s, const struct rf_camera *cam, const char *file,
 }
 
 /* Rows y..y+n while the block before is being written. */
-static void
+static int
 render_block(void *g, const float *in, float *out, size_t y, size_t n)
 {
 	int rc = rf_gbuffer_render(g, out, y, n);
@@ -187,6 +187,7 @@ render_block(void *g, const float *in, float *out, size_t y, size_t n)
 	(void)in;
 	if (rc < 0)
 		die_status(rc, NULL);
+	return 0;
 }
 
 int

@@ -10,7 +10,8 @@ usage(void)
 {
 	fprintf(stderr, "usage: %s [-lvV] [-m MODE[:KEY=VALUE...]] [-j THREADS] "
 	        "[--box=XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX] [--center=X,Y,Z] "
-	        "[--box-projection=on|off] " CLI_IO_USAGE " [file]\n", argv0);
+	        "[--box-projection=on|off] " CLI_INVALID_USAGE " " CLI_IO_USAGE " [file]\n",
+	        argv0);
 	exit(EXIT_BAD_INPUT);
 }
 
@@ -18,6 +19,7 @@ static const struct option long_options[] = {
 	{ "box", required_argument, NULL, 'B' },
 	{ "center", required_argument, NULL, 'C' },
 	{ "box-projection", required_argument, NULL, 'P' },
+	{ "invalid", required_argument, NULL, 'I' },
 	{ "help", no_argument, NULL, '?' + 256 },
 	{ NULL, 0, NULL, 0 },
 };
@@ -28,13 +30,21 @@ header_get(void *ctx, const char *key)
 	return rf_header_get(ctx, key);
 }
 
-static void
-project_block(void *stage, const float *in, float *out, size_t y, size_t n)
-{
-	int rc = rf_stage_run(stage, in, out, y, n);
+struct project_block {
+	rf_stage *stage;
+	int failed; /* the stage refused a pixel (rf_stage_error says why) */
+};
 
-	if (rc < 0)
+static int
+project_block(void *arg, const float *in, float *out, size_t y, size_t n)
+{
+	struct project_block *pb = arg;
+	int rc = rf_stage_run(pb->stage, in, out, y, n);
+
+	pb->failed = rc == RF_EINVAL && *rf_stage_error(pb->stage);
+	if (rc < 0 && !pb->failed)
 		die_status(rc, NULL);
+	return rc;
 }
 
 static void
@@ -43,6 +53,7 @@ project_frame(struct cli_io *io, struct cli_mode *mode, const struct probe_opts 
 {
 	struct rf_host host;
 	struct rf_probe probe;
+	struct project_block pb;
 	char err[1024], perr[512];
 	rf_stage *stage;
 	rf_header *out;
@@ -62,6 +73,7 @@ project_frame(struct cli_io *io, struct cli_mode *mode, const struct probe_opts 
 	if ((rc = rf_stage_create(&stage, mode->plugin, mode->values, &host,
 	                          nthreads, err, sizeof(err))) < 0)
 		die_status(rc, err);
+	rf_stage_set_invalid(stage, io->invalid);
 	if ((rc = rf_stage_begin_frame(stage, in, &out, err, sizeof(err))) < 0)
 		die_status(rc, err);
 	cli_record_command(out);
@@ -73,10 +85,17 @@ project_frame(struct cli_io *io, struct cli_mode *mode, const struct probe_opts 
 	                     CLI_BLOCK_BYTES);
 	if (rows > rf_header_nrows(in))
 		rows = rf_header_nrows(in);
+	pb.stage = stage;
+	pb.failed = 0;
 	rc = cli_blocks(io, rf_header_nrows(in), rows,
 	                rf_header_ncols(in) * rf_header_nchannels(in),
-	                rf_header_ncols(out) * rf_header_nchannels(out), project_block, stage);
+	                rf_header_ncols(out) * rf_header_nchannels(out), project_block, &pb);
+	if (pb.failed)
+		snprintf(err, sizeof(err), "%s", rf_stage_error(stage));
+	cli_io_invalid_note(io, rf_stage_invalid_count(stage));
 	rf_stage_destroy(stage);
+	if (pb.failed)
+		cli_io_invalid_failed(io, err);
 	if (rc < 0)
 		cli_io_read_failed(io, rc);
 	cli_io_end_frame(io);
@@ -106,12 +125,14 @@ main(int argc, char **argv)
 		case 'B': po.box = optarg; break;
 		case 'C': po.center = optarg; break;
 		case 'P': po.projection = optarg; break;
+		case 'I': cli_io_invalid_option(&io, optarg); break;
 		case '?' + 256:
 			printf("usage: %s [options] [file]\n"
 			       "Adds R (reflection vector), D (lookup direction), hit.dist and\n"
 			       "probe.dist to a G-buffer stream (P, N, V). See reflect-project(1).\n"
 			       "  -m MODE[:K=V...]  projection mode (default box); -l lists them\n"
 			       "  --box=...  --center=X,Y,Z  --box-projection=on|off  the probe\n"
+			       "  --invalid=error|clamp|zero  NaN, Inf, zero vectors in P N V\n"
 			       "  -j N  threads   -v  say which plugin   -V  versions\n"
 			       "  -f a|f  output format   -h  no output header\n"
 			       "  -H -x W -y H -c CHANNELS  headerless input\n", argv0);

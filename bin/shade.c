@@ -16,14 +16,15 @@ usage(void)
 	        "[--rgbm=M[,E]] [--intensity=X] [--size=N] "
 	        "[--mapping=unity|linear|exact] [--steps=N] [--samples=N] [--final] "
 	        "[--box=XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX] [--center=X,Y,Z] "
-	        "[--box-projection=on|off] [--seed=N] " CLI_IO_USAGE " [file]\n", argv0);
+	        "[--box-projection=on|off] [--seed=N] " CLI_INVALID_USAGE " " CLI_IO_USAGE
+	        " [file]\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
 
 enum {
 	OPT_ENVMAP = 256, /* handed to envmap_opts_parse by name */
 	OPT_MAPPING, OPT_STEPS, OPT_SAMPLES, OPT_FINAL, OPT_BOX, OPT_CENTER,
-	OPT_PROJECTION, OPT_SEED, OPT_HELP
+	OPT_PROJECTION, OPT_SEED, OPT_INVALID, OPT_HELP
 };
 
 static const struct option long_options[] = {
@@ -42,6 +43,7 @@ static const struct option long_options[] = {
 	{ "center", required_argument, NULL, OPT_CENTER },
 	{ "box-projection", required_argument, NULL, OPT_PROJECTION },
 	{ "seed", required_argument, NULL, OPT_SEED },
+	{ "invalid", required_argument, NULL, OPT_INVALID },
 	{ "help", no_argument, NULL, OPT_HELP },
 	{ NULL, 0, NULL, 0 },
 };
@@ -245,16 +247,20 @@ check_frame(const struct shade_opts *o, rf_shade *shade, const rf_header *in,
 struct shade_block {
 	rf_stage *stage;
 	rf_shade *shade;
+	int failed; /* the stage refused a pixel (rf_stage_error says why) */
 };
 
-static void
+static int
 shade_block(void *arg, const float *in, float *out, size_t y, size_t n)
 {
 	struct shade_block *sb = arg;
-	int rc;
+	int rc = rf_shade_run_stage(sb->shade, sb->stage, in, out, y, n);
 
-	if ((rc = rf_shade_run_stage(sb->shade, sb->stage, in, out, y, n)) < 0)
+	sb->failed = rc == RF_EINVAL &&
+	             (*rf_stage_error(sb->stage) || *rf_shade_error(sb->shade));
+	if (rc < 0 && !sb->failed)
 		die_status(rc, NULL);
+	return rc;
 }
 
 static void
@@ -266,7 +272,7 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	struct rf_probe probe;
 	struct shade_block sb;
 	float centre[3], *center = NULL;
-	char err[1024], perr[512], buf[64];
+	char err[1024], perr[512], buf[64], why[320];
 	const char *name;
 	rf_stage *stage;
 	rf_header *mid, *out;
@@ -306,6 +312,8 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	if ((rc = rf_stage_create(&stage, o->mode.plugin, o->mode.values, &host,
 	                          o->nthreads, err, sizeof(err))) < 0)
 		die_status(rc, err);
+	rf_stage_set_invalid(stage, io->invalid);
+	rf_shade_set_invalid(shade, io->invalid);
 	if ((rc = rf_stage_begin_frame(stage, in, &mid, err, sizeof(err))) < 0)
 		die_status(rc, err);
 	/* The pass's channels, in the order it would append them. */
@@ -337,12 +345,19 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 		rows = nrows ? nrows : 1;
 	sb.stage = stage;
 	sb.shade = shade;
+	sb.failed = 0;
 	rc = cli_blocks(io, nrows, rows, ncols * rf_header_nchannels(in),
 	                ncols * rf_header_nchannels(out), shade_block, &sb);
+	if (sb.failed)
+		snprintf(why, sizeof(why), "%s", *rf_stage_error(stage) ? rf_stage_error(stage)
+		                                                       : rf_shade_error(shade));
+	cli_io_invalid_note(io, rf_stage_invalid_count(stage));
 	rf_stage_destroy(stage);
 	if (rc < 0) {
 		/* Its threads are joined before we die, as the stage's are. */
 		rf_shade_destroy(shade);
+		if (sb.failed)
+			cli_io_invalid_failed(io, why);
 		cli_io_read_failed(io, rc);
 	}
 	cli_io_end_frame(io);
@@ -430,6 +445,7 @@ main(int argc, char **argv)
 		case OPT_SEED:
 			o.seed = (uint32_t)parse_whole("seed", optarg, 4294967295.0);
 			break;
+		case OPT_INVALID: cli_io_invalid_option(&io, optarg); break;
 		case OPT_HELP:
 			printf("usage: %s [options] [file]\n"
 			       "Samples the environment through each pixel's lobe: a mode gives\n"
@@ -444,6 +460,7 @@ main(int argc, char **argv)
 			       "  --final  also R G B = spec x (F0 A + B), the split-sum BRDF\n"
 			       "  --box=... --center=X,Y,Z --box-projection=on|off  the probe\n"
 			       "  --seed=N  for modes that draw samples\n"
+			       "  --invalid=error|clamp|zero  NaN, Inf, roughness out of [0, 1]\n"
 			       "  -j N  threads   -v  say which plugin and environment   -V  versions\n"
 			       "  -f a|f  output format   -h  no output header\n"
 			       "  -H -x W -y H -c CHANNELS  headerless input\n", argv0);

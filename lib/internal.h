@@ -10,15 +10,6 @@
 #define RF__PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
 #define RF__PRINTF(a, b)
-/* A stage's parts for a pass that runs it row by row on its own threads
- * (the shading pass): the frame's row layout once rf_stage_run could run
- * rows y..y+nrows, its thread count, and one row on thread `thread`. */
-struct rf_stage;
-int rf__stage_ready(const struct rf_stage *s, size_t y, size_t nrows, size_t *in_ncomp,
-                    size_t *out_ncomp);
-int rf__stage_threads(const struct rf_stage *s);
-void rf__stage_row(struct rf_stage *s, const float *in, float *out, size_t y, int thread);
-
 #endif
 
 /* Header fields the reader fills while parsing. */
@@ -64,5 +55,9 @@ int rf__stage_ready(const struct rf_stage *s, size_t y, size_t nrows, size_t *in
                     size_t *out_ncomp);
 int rf__stage_threads(const struct rf_stage *s);
 void rf__stage_row(struct rf_stage *s, const float *in, float *out, size_t y, int thread);
+/* Around a block of rf__stage_row calls: the invalid input they met
+ * counted, and RF_EINVAL (rf_stage_error) for the first under ERROR. */
+void rf__stage_block_begin(struct rf_stage *s);
+int rf__stage_block_end(struct rf_stage *s);
 
 #endif

@@ -1,6 +1,8 @@
 /* The sampling pass of reflect-shade: effective roughness -> lod -> the
  * environment, per row, on several threads. */
 #include <math.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -63,6 +65,13 @@ struct rf_shade {
 	struct reads *reads;
 	size_t reads_cols;
 	int vector;
+	/* Invalid input (reflect.h's rules for the pass's own reads: D, mask,
+	 * and P where the wall shows): under RF_INVALID_ERROR the first is
+	 * an error; otherwise a mask is clamped and a direction that is not
+	 * finite reads black, as they always were. */
+	enum rf_invalid invalid;
+	size_t rows_done;
+	char error[320];
 };
 
 /* One row's environment reads: directions and lods as columns, their
@@ -72,6 +81,8 @@ struct reads {
 	float *x, *y, *z, *lod;
 	rf__v4 *rgb;
 	int32_t *mirror, *wall;
+	size_t bad_at; /* the first invalid pixel this thread met (row-major) */
+	char bad[200];
 };
 
 int
@@ -211,6 +222,8 @@ rf_shade_begin_frame(rf_shade *s, const rf_header *in, const float center[3],
 	int c, rc;
 
 	*out = NULL;
+	s->rows_done = 0;
+	s->error[0] = '\0';
 	for (i = 0; i < IN_COUNT; i++)
 		s->in[i] = rf_header_find_channel(in, in_names[i]);
 	if (s->mode_radiance) {
@@ -297,8 +310,43 @@ add_read(struct reads *r, size_t *n, float x, float y, float z, float lod)
  * shows (the environment at lod 0 from the capture point toward P).
  * The channel numbers are held in locals: stores to the int tables
  * would otherwise make the compiler read them again for every pixel. */
+/* Under RF_INVALID_ERROR: pixel x of row y breaks a rule (why). */
+static void
+note_invalid(const rf_shade *s, struct reads *r, size_t y, size_t x, const char *name,
+             float v, const char *what)
+{
+	size_t at = y * s->ncols + x;
+
+	if (at < r->bad_at) {
+		r->bad_at = at;
+		snprintf(r->bad, sizeof(r->bad), "channel '%s' is %g%s", name, (double)v, what);
+	}
+}
+
+/* The pass's own reads of pixel x (row y) checked, only under ERROR. */
+static void
+check_pixel(const rf_shade *s, const float *p, size_t y, size_t x, struct reads *r)
+{
+	static const char *const names[6] = { "D.X", "D.Y", "D.Z", "P.X", "P.Y", "P.Z" };
+	const int at[6] = { s->in[IN_DX], s->in[IN_DY], s->in[IN_DZ],
+		            s->in[IN_PX], s->in[IN_PY], s->in[IN_PZ] };
+	float m = s->in[IN_MASK] >= 0 ? p[s->in[IN_MASK]] : 1.0f;
+	int k;
+
+	if (!(m >= 0.0f && m <= 1.0f)) {
+		note_invalid(s, r, y, x, "mask", m, ", outside [0, 1]");
+		return;
+	}
+	for (k = 0; k < 6; k++)
+		if (at[k] >= 0 && ((k < 3 && m > 0.0f && !s->mode_radiance) || (k >= 3 && m < 1.0f)) &&
+		    !isfinite(p[at[k]])) {
+			note_invalid(s, r, y, x, names[k], p[at[k]], "");
+			return;
+		}
+}
+
 static size_t
-plan_reads(const rf_shade *s, const float *in, size_t in_ncomp, struct reads *r)
+plan_reads(const rf_shade *s, const float *in, size_t in_ncomp, size_t y, struct reads *r)
 {
 	const int cm = s->in[IN_MASK], cr = s->in[IN_REFF];
 	const int cdx = s->in[IN_DX], cdy = s->in[IN_DY], cdz = s->in[IN_DZ];
@@ -311,6 +359,8 @@ plan_reads(const rf_shade *s, const float *in, size_t in_ncomp, struct reads *r)
 		float m = cm >= 0 ? sat(in[cm]) : 1.0f;
 		int32_t a = -1, b = -1;
 
+		if (s->invalid == RF_INVALID_ERROR)
+			check_pixel(s, in, y, x, r);
 		if (m > 0.0f && mirror)
 			a = add_read(r, &n, in[cdx], in[cdy], in[cdz],
 			             rf_roughness_to_lod(s->mapping, s->steps, in[cr]));
@@ -368,10 +418,10 @@ shade_pixel(const rf_shade *s, const float *p, float *o, const struct reads *r, 
 /* A row of ncols pixels: its reads gathered, made in one go (eight at a
  * time where the CPU allows), then the pixels finished. */
 static void
-shade_pixels(const rf_shade *s, const float *in, size_t in_ncomp, float *out,
+shade_pixels(const rf_shade *s, const float *in, size_t in_ncomp, float *out, size_t y,
              struct reads *r)
 {
-	size_t x, n = plan_reads(s, in, in_ncomp, r);
+	size_t x, n = plan_reads(s, in, in_ncomp, y, r);
 
 	rf__pyramid_fetch_many(&s->pyramid, s->vector, n, r->x, r->y, r->z, r->lod, r->rgb);
 	for (x = 0; x < s->ncols; x++)
@@ -388,7 +438,7 @@ shade_row(void *arg, size_t r, int thread)
 
 	if (in != out)
 		rf__widen_pixels(out, s->out_ncomp, in, s->in_ncomp, s->ncols);
-	shade_pixels(s, in, s->in_ncomp, out, &s->reads[thread]);
+	shade_pixels(s, in, s->in_ncomp, out, s->block_y + r, &s->reads[thread]);
 }
 
 /* Row r: the stage into out, then the pass over it in place, while the
@@ -401,7 +451,47 @@ stage_and_shade_row(void *arg, size_t r, int thread)
 	float *out = s->block_out + r * s->ncols * s->out_ncomp;
 
 	rf__stage_row(s->stage, in, out, s->block_y + r, thread);
-	shade_pixels(s, out, s->out_ncomp, out, &s->reads[thread]);
+	shade_pixels(s, out, s->out_ncomp, out, s->block_y + r, &s->reads[thread]);
+}
+
+static void
+block_begin(rf_shade *s)
+{
+	int t;
+
+	for (t = 0; t < s->nthreads; t++)
+		s->reads[t].bad_at = SIZE_MAX;
+}
+
+/* RF_EINVAL with s->error for the block's first invalid pixel. */
+static int
+block_end(rf_shade *s)
+{
+	size_t first = SIZE_MAX;
+	int t, at = -1;
+
+	for (t = 0; t < s->nthreads; t++)
+		if (s->reads[t].bad_at < first) {
+			first = s->reads[t].bad_at;
+			at = t;
+		}
+	if (at < 0)
+		return 0;
+	rf__format(s->error, sizeof(s->error), "row %zu, pixel %zu: %s", first / s->ncols + 1,
+	           first % s->ncols + 1, s->reads[at].bad);
+	return RF_EINVAL;
+}
+
+void
+rf_shade_set_invalid(rf_shade *s, enum rf_invalid policy)
+{
+	s->invalid = policy;
+}
+
+const char *
+rf_shade_error(const rf_shade *s)
+{
+	return s->error;
 }
 
 int
@@ -424,8 +514,12 @@ rf_shade_run_stage(rf_shade *s, rf_stage *stage, const float *in, float *out, si
 	s->block_y = y;
 	s->stage = stage;
 	s->stage_in_ncomp = sin;
+	rf__stage_block_begin(stage);
+	block_begin(s);
 	rf__pool_run(s->pool, nrows, stage_and_shade_row, s);
-	return 0;
+	if ((rc = rf__stage_block_end(stage)) < 0)
+		return rc;
+	return block_end(s);
 }
 
 int
@@ -435,6 +529,9 @@ rf_shade_run(rf_shade *s, const float *in, float *out, size_t nrows)
 		return RF_EINVAL;
 	s->block_in = in;
 	s->block_out = out;
+	s->block_y = s->rows_done;
+	s->rows_done += nrows;
+	block_begin(s);
 	rf__pool_run(s->pool, nrows, shade_row, s);
-	return 0;
+	return block_end(s);
 }

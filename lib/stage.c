@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "internal.h"
+#include "invalid.h"
 #include "pixels.h"
 #include "pool.h"
 #include "reflect/plugin.h"
@@ -13,6 +14,11 @@ struct worker {
 	void *state;    /* the plugin's instance */
 	float *gather;  /* one row of the plugin's inputs */
 	float *scatter; /* one row of the plugin's outputs */
+	unsigned char *zero; /* pixels of the row written as 0 */
+	/* Invalid input the worker met in the block: how many pixels were
+	 * fixed, and the first (in row order) under RF_INVALID_ERROR. */
+	size_t fixed, bad_at;
+	char bad[256];
 };
 
 struct rf_stage {
@@ -33,6 +39,11 @@ struct rf_stage {
 	const float *block_in;
 	float *block_out;
 	size_t block_y;
+	enum rf_invalid invalid;
+	struct rf__check check; /* on the plugin's inputs, as gathered */
+	int mask_col;           /* the stream's mask, or -1 */
+	size_t fixed;           /* pixels of the frame clamped or zeroed */
+	char error[320];
 };
 
 static size_t
@@ -115,6 +126,7 @@ rf_stage_destroy(rf_stage *s)
 			s->p->destroy(s->workers[i].state);
 		free(s->workers[i].gather);
 		free(s->workers[i].scatter);
+		free(s->workers[i].zero);
 	}
 	free(s->workers);
 	free(s->in_map);
@@ -178,6 +190,10 @@ rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
 		}
 		s->out_map[i] = c;
 	}
+	rf__check_plan(&s->check, s->p->inputs, s->nin);
+	s->mask_col = rf_header_find_channel(in, "mask");
+	s->fixed = 0;
+	s->error[0] = '\0';
 	s->nin_runs = rf__channel_runs(s->in_map, s->nin, 0, s->in_runs);
 	s->nout_runs = rf__channel_runs(s->out_map, s->nout, 1, s->out_runs);
 	if (frame_number(in, s->frames, &s->frame) < 0) {
@@ -201,9 +217,11 @@ rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
 
 			free(w->gather);
 			free(w->scatter);
+			free(w->zero);
 			w->gather = malloc(s->ncols * (s->nin + 1) * sizeof(float));
 			w->scatter = malloc(s->ncols * s->nout * sizeof(float));
-			if (!w->gather || !w->scatter) {
+			w->zero = malloc(s->ncols);
+			if (!w->gather || !w->scatter || !w->zero) {
 				s->row_cap = 0;
 				return RF_ENOMEM;
 			}
@@ -231,6 +249,81 @@ rf_stage_reserve_channel(rf_stage *s, const char *name)
 	return c;
 }
 
+/* The gathered row's pixels checked, clamped, or marked in w->zero;
+ * whether any is to be written as 0. */
+static int
+check_row(rf_stage *s, struct worker *w, const float *in, size_t y)
+{
+	size_t x;
+	int any = 0, r;
+
+	for (x = 0; x < s->ncols; x++) {
+		int wall = s->mask_col >= 0 && in[x * s->in_ncomp + (size_t)s->mask_col] == 0.0f;
+		char why[200];
+
+		r = rf__check_pixel(&s->check, w->gather + x * s->nin, wall, s->invalid, why,
+		                    sizeof(why));
+		w->zero[x] = r == 2;
+		any |= r == 2;
+		if (r > 0)
+			w->fixed++;
+		if (r < 0 && y * s->ncols + x < w->bad_at) {
+			w->bad_at = y * s->ncols + x;
+			rf__format(w->bad, sizeof(w->bad), "%s", why);
+		}
+	}
+	return any;
+}
+
+void
+rf__stage_block_begin(rf_stage *s)
+{
+	int t;
+
+	for (t = 0; t < s->nthreads; t++) {
+		s->workers[t].fixed = 0;
+		s->workers[t].bad_at = SIZE_MAX;
+	}
+}
+
+int
+rf__stage_block_end(rf_stage *s)
+{
+	size_t first = SIZE_MAX;
+	int t, at = -1;
+
+	for (t = 0; t < s->nthreads; t++) {
+		s->fixed += s->workers[t].fixed;
+		if (s->workers[t].bad_at < first) {
+			first = s->workers[t].bad_at;
+			at = t;
+		}
+	}
+	if (at < 0)
+		return 0;
+	rf__format(s->error, sizeof(s->error), "row %zu, pixel %zu: %s", first / s->ncols + 1,
+	           first % s->ncols + 1, s->workers[at].bad);
+	return RF_EINVAL;
+}
+
+void
+rf_stage_set_invalid(rf_stage *s, enum rf_invalid policy)
+{
+	s->invalid = policy;
+}
+
+const char *
+rf_stage_error(const rf_stage *s)
+{
+	return s->error;
+}
+
+size_t
+rf_stage_invalid_count(const rf_stage *s)
+{
+	return s->fixed;
+}
+
 /* One row (row y of the frame) on thread `thread`: its input passed
  * through, the plugin's inputs gathered, run, its outputs scattered. */
 void
@@ -239,6 +332,7 @@ rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int thread)
 	struct worker *w = &s->workers[thread];
 	struct rf_span span;
 	size_t x, i;
+	int zeroed;
 
 	memset(&span, 0, sizeof(span));
 	span.size = sizeof(span);
@@ -258,11 +352,14 @@ rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int thread)
 			rf__copy_run(g + s->in_runs[i].dst, pi + s->in_runs[i].src,
 			             s->in_runs[i].len);
 	}
+	zeroed = s->check.n ? check_row(s, w, in, y) : 0;
 	s->p->run(w->state, &span);
 	for (x = 0; x < s->ncols; x++) {
 		float *po = out + x * s->out_ncomp;
 		const float *q = w->scatter + x * s->nout;
 
+		if (zeroed && w->zero[x])
+			memset(w->scatter + x * s->nout, 0, s->nout * sizeof(float));
 		for (i = 0; i < s->nout_runs; i++)
 			rf__copy_run(po + s->out_runs[i].dst, q + s->out_runs[i].src,
 			             s->out_runs[i].len);
@@ -306,7 +403,8 @@ rf_stage_run(rf_stage *s, const float *in, float *out, size_t y, size_t nrows)
 	s->block_in = in;
 	s->block_out = out;
 	s->block_y = y;
+	rf__stage_block_begin(s);
 	/* A row is a task: threads that start late or run slow take fewer. */
 	rf__pool_run(s->pool, nrows, run_row, s);
-	return 0;
+	return rf__stage_block_end(s);
 }

@@ -102,7 +102,7 @@ then
 
 	test_expect_success 'a big stream on a full disk fails while writing' '
 		head -c 720000 /dev/zero >big.raw &&
-		test_must_fail 2 reflect-project -H -x 200 -y 100 \
+		test_must_fail 2 reflect-project --invalid=zero -H -x 200 -y 100 \
 			-c "P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z" \
 			--box=-3,0,-2,3,3,2 --center=0,1.5,0 big.raw >/dev/full 2>err &&
 		test_one_line_message reflect-project err &&
@@ -119,7 +119,7 @@ fi
 # the status is the signal's.
 test_expect_success 'a closed downstream pipe ends the tool quietly' '
 	head -c 36000000 /dev/zero >big.raw &&
-	{ reflect-project -H -x 2000 -y 500 \
+	{ reflect-project --invalid=zero -H -x 2000 -y 500 \
 		-c "P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z" \
 		--box=-3,0,-2,3,3,2 --center=0,1.5,0 big.raw 2>err; } |
 	head -c 100 >out &&
@@ -131,7 +131,7 @@ test_expect_success 'a closed downstream pipe ends the tool quietly' '
 test_expect_success 'quiet too when the parent ignores SIGPIPE' '
 	(
 		trap "" PIPE &&
-		{ reflect-project -H -x 2000 -y 500 \
+		{ reflect-project --invalid=zero -H -x 2000 -y 500 \
 			-c "P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z" \
 			--box=-3,0,-2,3,3,2 --center=0,1.5,0 big.raw 2>err; } |
 		head -c 100 >out

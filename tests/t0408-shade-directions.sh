@@ -16,7 +16,8 @@ test_description='any float lookup direction: the plain and vector samplers agre
 #     (1e-40,5e-41,-2e-41) -> +X, off centre -> -
 #   huge: (3e38,-3e38,1) is a tie of x and y, and ties go to x -> -;
 #     (1e30,1e-30,0) -> +X 10
-#   infinite or NaN anywhere: black (0), in the pass and the service
+#   infinite or NaN anywhere: refused by default; black (0) with
+#     --invalid=zero, in the pass and the service
 #   exact axes -> their faces; (1,1,0), (1,1,1), (-1,-1,-1): edges and
 #     corners -> -
 cat >dirs <<\EOF_DIRS
@@ -55,8 +56,8 @@ test_expect_success 'the directions, at roughness 0 and 0.5' '
 for r in 0 1
 do
 	test_expect_success "plain and vector reads agree (roughness file d$r)" '
-		REFLECT_SIMD=off reflect-shade -h -f a -m none --env=chain.rfl d'$r'.txt >plain &&
-		reflect-shade -h -f a -m none --env=chain.rfl d'$r'.txt >vector &&
+		REFLECT_SIMD=off reflect-shade -h -f a -m none --invalid=zero --env=chain.rfl d'$r'.txt >plain &&
+		reflect-shade -h -f a -m none --invalid=zero --env=chain.rfl d'$r'.txt >vector &&
 		cmp_numbers plain vector 1e-5
 	'
 done
@@ -64,7 +65,7 @@ done
 test_expect_success 'every read is finite and inside the cube' '
 	for f in d0 d1
 	do
-		REFLECT_SIMD=off reflect-shade -f a -m none --env=chain.rfl $f.txt >$f.out &&
+		REFLECT_SIMD=off reflect-shade -f a -m none --invalid=zero --env=chain.rfl $f.txt >$f.out &&
 		column $f.out spec.R spec.G spec.B >$f.spec &&
 		awk "{ for (i = 1; i <= 3; i++) if (!(\$i >= 0 && \$i <= 15)) exit 1 }" $f.spec ||
 		return 1
@@ -88,7 +89,7 @@ test_expect_success 'the host service agrees with the pass' '
 	radiance="$REFLECT_TEST_PLUGINS/shade_radiance.so" &&
 	for f in d0 d1
 	do
-		reflect-shade -f a -m "$radiance" --env=chain.rfl $f.txt >service.out &&
+		reflect-shade -f a -m "$radiance" --invalid=zero --env=chain.rfl $f.txt >service.out &&
 		column service.out spec.R spec.G spec.B >service &&
 		cmp_numbers $f.spec service 1e-5 || return 1
 	done

@@ -299,9 +299,39 @@ RF_EXTERN int rf_stage_begin_frame(rf_stage *s, const rf_header *in,
  * the same rows to fill in place; returns its index, or the existing
  * channel's of that name.  After rf_stage_begin_frame. */
 RF_EXTERN int rf_stage_reserve_channel(rf_stage *s, const char *name);
-/* Processes nrows rows starting at row y of the current frame. */
+/* Processes nrows rows starting at row y of the current frame.  Under
+ * RF_INVALID_ERROR (the default) a pixel whose input is invalid (see
+ * below) makes it return RF_EINVAL, with the first such pixel of the
+ * rows in rf_stage_error. */
 RF_EXTERN int rf_stage_run(rf_stage *s, const float *in, float *out, size_t y,
                            size_t nrows);
+
+/*
+ * Invalid input: of the channels a stage's plugin reads, P.*, R.* and D.*
+ * must be finite; hit.dist and probe.dist must not be NaN (negative is
+ * behind the point, +inf nothing hit);
+ * N, Ng and V (all three components read) directions, finite and neither
+ * so long nor so short that their squared length leaves float's range,
+ * but where the stream's mask is 0 (a wall reflects nothing); roughness,
+ * metallic and mask must lie in [0, 1].  What to do with a pixel that
+ * breaks a rule: stop with a message naming the frame, row, pixel and
+ * channel (ERROR); clamp a scalar to its range (NaN to its low end, a
+ * distance's NaN to +inf), an infinite coordinate to +-FLT_MAX, and
+ * normalise a vector, in double
+ * (CLAMP); or write the plugin's outputs of that pixel as 0 (ZERO, and
+ * CLAMP for a vector without any direction, such as zero).  Clamped and
+ * zeroed pixels are counted.
+ */
+enum rf_invalid { RF_INVALID_ERROR = 0, RF_INVALID_CLAMP = 1, RF_INVALID_ZERO = 2 };
+/* "error", "clamp" or "zero"; RF_EINVAL for anything else. */
+RF_EXTERN int rf_invalid_parse(const char *name, enum rf_invalid *policy);
+RF_EXTERN void rf_stage_set_invalid(rf_stage *s, enum rf_invalid policy);
+/* The message of the last RF_EINVAL from rf_stage_run in this frame
+ * ("row 3, pixel 5: channel 'N.X' is nan", counted from 1), "" when there
+ * was none. */
+RF_EXTERN const char *rf_stage_error(const rf_stage *s);
+/* Pixels of the current frame clamped or zeroed so far. */
+RF_EXTERN size_t rf_stage_invalid_count(const rf_stage *s);
 
 #ifdef __cplusplus
 }

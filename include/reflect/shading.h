@@ -102,6 +102,14 @@ RF_EXTERN int rf_shade_run(rf_shade *s, const float *in, float *out, size_t nrow
  * and the stage must have at least the pass's threads. */
 RF_EXTERN int rf_shade_run_stage(rf_shade *s, rf_stage *stage, const float *in,
                                  float *out, size_t y, size_t nrows);
+/* Invalid input (rf_invalid in reflect.h) in what the pass reads itself:
+ * D where the mirror shows, P where the wall does, and mask.  Under
+ * RF_INVALID_ERROR (the default) the run returns RF_EINVAL with the
+ * first such pixel in rf_shade_error (a stage's own error comes first);
+ * otherwise the mask is clamped and a direction that is not finite reads
+ * black. */
+RF_EXTERN void rf_shade_set_invalid(rf_shade *s, enum rf_invalid policy);
+RF_EXTERN const char *rf_shade_error(const rf_shade *s);
 
 #ifdef __cplusplus
 }

@@ -4,7 +4,9 @@
  * NaN, infinities, denormals and zero vectors come often) through the box
  * projection plugin and then the shading pass, once with the vector
  * reads and once with the plain ones.  The shaded radiance must be
- * finite, and the two paths must agree; memory errors are the
+ * finite, and the two paths must agree (both under --invalid=clamp, as
+ * the projection is after it was run under error, where a refusal must
+ * come with a printable message); memory errors are the
  * sanitizers' to find.  The plugin is found as the tools find it
  * (REFLECT_PLUGIN_PATH); without it, D is taken from the input too.
  */
@@ -93,6 +95,8 @@ shade(const rf_header *in, const float *row, int vector, size_t *ncomp)
 	else
 		setenv("REFLECT_SIMD", "off", 1);
 	check(rf_shade_create(&s, &o) == 0, "shade_create");
+	/* Clamped, as reflect-shade --invalid=clamp: every pixel is shaded. */
+	rf_shade_set_invalid(s, RF_INVALID_CLAMP);
 	if (rf_shade_begin_frame(s, in, NULL, &out, err, sizeof(err)) < 0) {
 		rf_shade_destroy(s);
 		return NULL;
@@ -152,7 +156,17 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		check(proj != NULL, "header_dup");
 		check((projected = malloc(ncols * rf_header_nchannels(proj) * sizeof(float))) != NULL,
 		      "malloc");
-		check(rf_stage_run(st, gb, projected, 0, 1) == 0, "stage_run");
+		/* Refused, with a message, or taken; then clamped, always taken. */
+		if (rf_stage_run(st, gb, projected, 0, 1) < 0) {
+			const char *msg = rf_stage_error(st);
+
+			check(msg[0] != '\0', "an invalid pixel without a message");
+			for (i = 0; msg[i]; i++)
+				check((unsigned char)msg[i] >= 0x20 && msg[i] != 0x7f,
+				      "a control character in a message");
+		}
+		rf_stage_set_invalid(st, RF_INVALID_CLAMP);
+		check(rf_stage_run(st, gb, projected, 0, 1) == 0, "stage_run with clamp");
 		rf_stage_destroy(st);
 		row = projected;
 	} else {

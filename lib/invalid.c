@@ -1,0 +1,183 @@
+/*
+ * The rules a plugin's inputs must keep (reflect.h says which), checked
+ * on the row a stage gathers for its plugin, where a clamped value can
+ * be written without touching the input (which may be a read-only
+ * mapping of the file).  A rule is planned once a frame from the input
+ * names, so a pixel costs a few compares per checked channel.
+ */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "internal.h"
+#include "invalid.h"
+
+int
+rf_invalid_parse(const char *name, enum rf_invalid *policy)
+{
+	static const char *const names[] = { "error", "clamp", "zero" };
+	int i;
+
+	for (i = 0; i < 3; i++)
+		if (!strcmp(name, names[i])) {
+			*policy = (enum rf_invalid)i;
+			return 0;
+		}
+	return RF_EINVAL;
+}
+
+static int
+is(const char *name, const char *base, const char *suffix)
+{
+	size_t n = strlen(base);
+
+	return !strncmp(name, base, n) && !strcmp(name + n, suffix);
+}
+
+static int
+find(const char *const *names, size_t n, const char *base, const char *suffix)
+{
+	size_t i;
+
+	for (i = 0; i < n; i++)
+		if (is(names[i], base, suffix))
+			return (int)i;
+	return -1;
+}
+
+void
+rf__check_plan(struct rf__check *c, const char *const *names, size_t n)
+{
+	static const char *const finite[] = { "P", "R", "D" };
+	static const char *const unit[] = { "roughness", "metallic", "mask" };
+	static const char *const dist[] = { "hit.dist", "probe.dist" };
+
+	static const char *const vectors[] = { "N", "Ng", "V" };
+	static const char *const axes[] = { ".X", ".Y", ".Z" };
+	size_t i, k;
+	int j;
+
+	c->n = 0;
+	for (i = 0; i < 3; i++) {
+		int at[3];
+
+		for (k = 0; k < 3; k++)
+			at[k] = find(names, n, vectors[i], axes[k]);
+		if (at[0] >= 0 && at[1] >= 0 && at[2] >= 0 && c->n < RF__CHECK_MAX) {
+			struct rf__check_item *it = &c->item[c->n++];
+
+			it->kind = RF__CHECK_DIRECTION;
+			it->name = vectors[i];
+			memcpy(it->at, at, sizeof(at));
+		}
+	}
+	for (i = 0; i < n && c->n < RF__CHECK_MAX; i++) {
+		struct rf__check_item *it = &c->item[c->n];
+		int kind = -1;
+
+		for (k = 0; k < 3; k++)
+			for (j = 0; j < 3; j++)
+				if (is(names[i], finite[k], axes[j]))
+					kind = RF__CHECK_FINITE;
+		for (k = 0; k < 2; k++)
+			if (!strcmp(names[i], dist[k]))
+				kind = RF__CHECK_DISTANCE;
+		for (k = 0; k < 3; k++)
+			if (!strcmp(names[i], unit[k]))
+				kind = RF__CHECK_UNIT;
+		if (kind < 0)
+			continue;
+		it->kind = kind;
+		it->name = names[i];
+		it->at[0] = (int)i;
+		c->n++;
+	}
+}
+
+static void
+describe(char *why, size_t len, const char *name, float v, const char *what)
+{
+	if (why)
+		snprintf(why, len, "channel '%s' is %g%s", name, (double)v, what);
+}
+
+int
+rf__check_pixel(const struct rf__check *c, float *px, int wall, enum rf_invalid policy,
+                char *why, size_t whylen)
+{
+	int result = 0;
+	size_t i;
+
+	for (i = 0; i < c->n; i++) {
+		const struct rf__check_item *it = &c->item[i];
+		float *v = px + it->at[0];
+
+		if (it->kind == RF__CHECK_DIRECTION && wall)
+			continue;
+		if (it->kind == RF__CHECK_DISTANCE) {
+			/* Any sign (behind the point), +-inf (nothing hit). */
+			if (!isnan(*v))
+				continue;
+			if (policy == RF_INVALID_ERROR) {
+				describe(why, whylen, it->name, *v, ", not a distance");
+				return -1;
+			}
+			if (policy == RF_INVALID_ZERO)
+				return 2;
+			*v = INFINITY;
+			result = 1;
+		} else if (it->kind == RF__CHECK_UNIT) {
+			if (*v >= 0.0f && *v <= 1.0f)
+				continue;
+			if (policy == RF_INVALID_ERROR) {
+				describe(why, whylen, it->name, *v, ", outside [0, 1]");
+				return -1;
+			}
+			if (policy == RF_INVALID_ZERO)
+				return 2;
+			*v = *v > 0.0f ? (*v < 1.0f ? *v : 1.0f) : 0.0f;
+			result = 1;
+		} else if (it->kind == RF__CHECK_FINITE) {
+			if (isfinite(*v))
+				continue;
+			if (policy == RF_INVALID_ERROR) {
+				describe(why, whylen, it->name, *v, "");
+				return -1;
+			}
+			if (policy == RF_INVALID_ZERO)
+				return 2;
+			*v = isnan(*v) ? 0.0f : *v > 0.0f ? FLT_MAX : -FLT_MAX;
+			result = 1;
+		} else {
+			float *x = px + it->at[0], *y = px + it->at[1], *z = px + it->at[2];
+			float l2 = *x * *x + *y * *y + *z * *z;
+			double dl;
+
+			if (isfinite(l2) && l2 >= FLT_MIN)
+				continue;
+			if (policy == RF_INVALID_ERROR) {
+				if (why)
+					snprintf(why, whylen, "%s is (%g, %g, %g), %s", it->name,
+					         (double)*x, (double)*y, (double)*z,
+					         !isfinite(*x) || !isfinite(*y) || !isfinite(*z)
+					                 ? "not finite"
+					         : *x == 0.0f && *y == 0.0f && *z == 0.0f
+					                 ? "not a direction"
+					         : l2 < FLT_MIN ? "too short to normalise in float"
+					                        : "too long to normalise in float");
+				return -1;
+			}
+			dl = isfinite(*x) && isfinite(*y) && isfinite(*z)
+			             ? sqrt((double)*x * *x + (double)*y * *y + (double)*z * *z)
+			             : 0.0;
+			if (policy == RF_INVALID_ZERO || !(dl > 0.0))
+				return 2;
+			*x = (float)(*x / dl);
+			*y = (float)(*y / dl);
+			*z = (float)(*z / dl);
+			result = 1;
+		}
+	}
+	return result;
+}

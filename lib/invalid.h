@@ -1,0 +1,33 @@
+/* Internal: the rules of valid input (reflect.h), planned for a row
+ * layout and checked a pixel at a time. */
+#ifndef REFLECT_INVALID_H
+#define REFLECT_INVALID_H
+
+#include <stddef.h>
+
+#include "reflect/reflect.h"
+
+enum { RF__CHECK_FINITE, RF__CHECK_DISTANCE, RF__CHECK_UNIT, RF__CHECK_DIRECTION };
+#define RF__CHECK_MAX 32
+
+struct rf__check_item {
+	int kind;
+	const char *name; /* the channel, or the vector's base name */
+	int at[3];        /* its place in the pixel (three for a vector) */
+};
+
+struct rf__check {
+	size_t n;
+	struct rf__check_item item[RF__CHECK_MAX];
+};
+
+/* The rules that apply to a pixel laid out as names[0..n-1]; names must
+ * outlive the plan. */
+void rf__check_plan(struct rf__check *c, const char *const *names, size_t n);
+/* 0: valid; 1: clamped in place (CLAMP); 2: to be written as 0; -1: the
+ * first broken rule in why (ERROR).  A wall (mask 0: nothing reflects
+ * there) needs no directions. */
+int rf__check_pixel(const struct rf__check *c, float *px, int wall, enum rf_invalid policy,
+                    char *why, size_t whylen);
+
+#endif
