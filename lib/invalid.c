@@ -95,6 +95,60 @@ rf__check_plan(struct rf__check *c, const char *const *names, size_t n)
 	}
 }
 
+/*
+ * The common case: every pixel valid, walls' directions included.  One
+ * rule at a time down the row, adding up instead of branching: v * 0 is
+ * 0 for a finite v and NaN otherwise, v less its clamp to [0, 1] is 0
+ * inside the range, and a direction's squared lengths are kept as their
+ * least and greatest.  A branch or a flag a pixel and rule made
+ * reflect-project half as slow again; this costs it some 15%.
+ */
+int
+rf__check_row(const struct rf__check *c, const float *px, size_t stride, size_t n)
+{
+	float finite = 0.0f, outside = 0.0f, shortest = FLT_MAX, longest = 0.0f;
+	int nan = 0;
+	size_t i, x;
+
+	for (i = 0; i < c->n; i++) {
+		const struct rf__check_item *it = &c->item[i];
+		const float *v = px + it->at[0];
+
+		switch (it->kind) {
+		case RF__CHECK_FINITE:
+			for (x = 0; x < n; x++)
+				finite += v[x * stride] * 0.0f;
+			break;
+		case RF__CHECK_DISTANCE:
+			for (x = 0; x < n; x++)
+				nan |= v[x * stride] != v[x * stride];
+			break;
+		case RF__CHECK_UNIT:
+			for (x = 0; x < n; x++) {
+				float a = v[x * stride], t = a > 0.0f ? a : 0.0f;
+
+				t = t < 1.0f ? t : 1.0f;
+				outside += fabsf(a - t);
+			}
+			break;
+		default: {
+			const float *vy = px + it->at[1], *vz = px + it->at[2];
+
+			for (x = 0; x < n; x++) {
+				float a = v[x * stride], b = vy[x * stride], d = vz[x * stride];
+				float l2 = a * a + b * b + d * d;
+
+				shortest = l2 < shortest ? l2 : shortest;
+				longest = l2 > longest ? l2 : longest;
+				finite += l2 * 0.0f;
+			}
+		}
+		}
+	}
+	return finite == 0.0f && outside == 0.0f && !nan && shortest >= FLT_MIN &&
+	       longest <= FLT_MAX;
+}
+
 static void
 describe(char *why, size_t len, const char *name, float v, const char *what)
 {

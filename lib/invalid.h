@@ -24,6 +24,9 @@ struct rf__check {
 /* The rules that apply to a pixel laid out as names[0..n-1]; names must
  * outlive the plan. */
 void rf__check_plan(struct rf__check *c, const char *const *names, size_t n);
+/* 1 when every one of n pixels (stride floats apart) keeps every rule,
+ * directions included: the fast test of a row, before rf__check_pixel. */
+int rf__check_row(const struct rf__check *c, const float *px, size_t stride, size_t n);
 /* 0: valid; 1: clamped in place (CLAMP); 2: to be written as 0; -1: the
  * first broken rule in why (ERROR).  A wall (mask 0: nothing reflects
  * there) needs no directions. */

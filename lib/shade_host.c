@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "internal.h"
+#include "invalid.h"
 #include "pixels.h"
 #include "pool.h"
 #include "pyramid.h"
@@ -72,6 +73,7 @@ struct rf_shade {
 	enum rf_invalid invalid;
 	size_t rows_done;
 	char error[320];
+	struct rf__check check; /* the fast test of a row, on those reads */
 };
 
 /* One row's environment reads: directions and lods as columns, their
@@ -214,6 +216,26 @@ require(rf_shade *s, const rf_header *h, int first, int last, const char *why,
 	return 0;
 }
 
+/* The fast test of the pass's own reads: D finite (where the mode does
+ * not give radiance), mask in [0, 1], P finite (where there is a mask). */
+static void
+plan_check(rf_shade *s)
+{
+	static const int finite[6] = { IN_DX, IN_DY, IN_DZ, IN_PX, IN_PY, IN_PZ };
+	int k;
+
+	s->check.n = 0;
+	for (k = 0; k < 6; k++)
+		if (s->in[finite[k]] >= 0 && (k < 3 ? !s->mode_radiance : s->in[IN_MASK] >= 0)) {
+			s->check.item[s->check.n].kind = RF__CHECK_FINITE;
+			s->check.item[s->check.n++].at[0] = s->in[finite[k]];
+		}
+	if (s->in[IN_MASK] >= 0) {
+		s->check.item[s->check.n].kind = RF__CHECK_UNIT;
+		s->check.item[s->check.n++].at[0] = s->in[IN_MASK];
+	}
+}
+
 int
 rf_shade_begin_frame(rf_shade *s, const rf_header *in, const float center[3],
                      rf_header **out, char *err, size_t errlen)
@@ -226,6 +248,7 @@ rf_shade_begin_frame(rf_shade *s, const rf_header *in, const float center[3],
 	s->error[0] = '\0';
 	for (i = 0; i < IN_COUNT; i++)
 		s->in[i] = rf_header_find_channel(in, in_names[i]);
+	plan_check(s);
 	if (s->mode_radiance) {
 		if ((rc = require(s, in, IN_SR, IN_SB, "the radiance the shade mode "
 		                  "writes", err, errlen)) < 0)
@@ -355,12 +378,13 @@ plan_reads(const rf_shade *s, const float *in, size_t in_ncomp, size_t y, struct
 	const float ox = s->center[0], oy = s->center[1], oz = s->center[2];
 	size_t x, n = 0;
 
+	if (s->invalid == RF_INVALID_ERROR && !rf__check_row(&s->check, in, in_ncomp, s->ncols))
+		for (x = 0; x < s->ncols; x++)
+			check_pixel(s, in + x * in_ncomp, y, x, r);
 	for (x = 0; x < s->ncols; x++, in += in_ncomp) {
 		float m = cm >= 0 ? sat(in[cm]) : 1.0f;
 		int32_t a = -1, b = -1;
 
-		if (s->invalid == RF_INVALID_ERROR)
-			check_pixel(s, in, y, x, r);
 		if (m > 0.0f && mirror)
 			a = add_read(r, &n, in[cdx], in[cdy], in[cdz],
 			             rf_roughness_to_lod(s->mapping, s->steps, in[cr]));

@@ -257,6 +257,8 @@ check_row(rf_stage *s, struct worker *w, const float *in, size_t y)
 	size_t x;
 	int any = 0, r;
 
+	if (rf__check_row(&s->check, w->gather, s->nin, s->ncols))
+		return 0;
 	for (x = 0; x < s->ncols; x++) {
 		int wall = s->mask_col >= 0 && in[x * s->in_ncomp + (size_t)s->mask_col] == 0.0f;
 		char why[200];
