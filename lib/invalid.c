@@ -7,11 +7,46 @@
  */
 #include <float.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "internal.h"
 #include "invalid.h"
+
+void
+rf__first_invalid_keep(struct rf__first_invalid *f, size_t at, const char *fmt, ...)
+{
+	va_list ap;
+
+	if (at >= f->at)
+		return;
+	f->at = at;
+	va_start(ap, fmt);
+	vsnprintf(f->why, sizeof(f->why), fmt, ap);
+	va_end(ap);
+}
+
+int
+rf__first_invalid_report(const struct rf__first_invalid *first, size_t n, size_t stride,
+                         size_t ncols, char *msg, size_t len)
+{
+	const struct rf__first_invalid *best = NULL;
+	size_t i;
+
+	for (i = 0; i < n; i++) {
+		const struct rf__first_invalid *f =
+			(const struct rf__first_invalid *)((const char *)first + i * stride);
+
+		if (f->at != SIZE_MAX && (!best || f->at < best->at))
+			best = f;
+	}
+	if (!best)
+		return 0;
+	rf__format(msg, len, "row %zu, pixel %zu: %s", best->at / ncols + 1,
+	           best->at % ncols + 1, best->why);
+	return RF_EINVAL;
+}
 
 int
 rf_invalid_parse(const char *name, enum rf_invalid *policy)

@@ -83,8 +83,7 @@ struct reads {
 	float *x, *y, *z, *lod;
 	rf__v4 *rgb;
 	int32_t *mirror, *wall;
-	size_t bad_at; /* the first invalid pixel this thread met (row-major) */
-	char bad[200];
+	struct rf__first_invalid first; /* under RF_INVALID_ERROR */
 };
 
 int
@@ -328,24 +327,6 @@ add_read(struct reads *r, size_t *n, float x, float y, float z, float lod)
 	return (int32_t)(*n)++;
 }
 
-/* The reads of a row's pixels: the mirror direction at the lod of its
- * effective roughness, and where the mask is partial or 0, the wall it
- * shows (the environment at lod 0 from the capture point toward P).
- * The channel numbers are held in locals: stores to the int tables
- * would otherwise make the compiler read them again for every pixel. */
-/* Under RF_INVALID_ERROR: pixel x of row y breaks a rule (why). */
-static void
-note_invalid(const rf_shade *s, struct reads *r, size_t y, size_t x, const char *name,
-             float v, const char *what)
-{
-	size_t at = y * s->ncols + x;
-
-	if (at < r->bad_at) {
-		r->bad_at = at;
-		snprintf(r->bad, sizeof(r->bad), "channel '%s' is %g%s", name, (double)v, what);
-	}
-}
-
 /* The pass's own reads of pixel x (row y) checked, only under ERROR. */
 static void
 check_pixel(const rf_shade *s, const float *p, size_t y, size_t x, struct reads *r)
@@ -357,17 +338,24 @@ check_pixel(const rf_shade *s, const float *p, size_t y, size_t x, struct reads 
 	int k;
 
 	if (!(m >= 0.0f && m <= 1.0f)) {
-		note_invalid(s, r, y, x, "mask", m, ", outside [0, 1]");
+		rf__first_invalid_keep(&r->first, y * s->ncols + x,
+		                       "channel 'mask' is %g, outside [0, 1]", (double)m);
 		return;
 	}
 	for (k = 0; k < 6; k++)
 		if (at[k] >= 0 && ((k < 3 && m > 0.0f && !s->mode_radiance) || (k >= 3 && m < 1.0f)) &&
 		    !isfinite(p[at[k]])) {
-			note_invalid(s, r, y, x, names[k], p[at[k]], "");
+			rf__first_invalid_keep(&r->first, y * s->ncols + x, "channel '%s' is %g",
+			                       names[k], (double)p[at[k]]);
 			return;
 		}
 }
 
+/* The reads of a row's pixels: the mirror direction at the lod of its
+ * effective roughness, and where the mask is partial or 0, the wall it
+ * shows (the environment at lod 0 from the capture point toward P).
+ * The channel numbers are held in locals: stores to the int tables
+ * would otherwise make the compiler read them again for every pixel. */
 static size_t
 plan_reads(const rf_shade *s, const float *in, size_t in_ncomp, size_t y, struct reads *r)
 {
@@ -484,26 +472,16 @@ block_begin(rf_shade *s)
 	int t;
 
 	for (t = 0; t < s->nthreads; t++)
-		s->reads[t].bad_at = SIZE_MAX;
+		rf__first_invalid_clear(&s->reads[t].first);
 }
 
 /* RF_EINVAL with s->error for the block's first invalid pixel. */
 static int
 block_end(rf_shade *s)
 {
-	size_t first = SIZE_MAX;
-	int t, at = -1;
-
-	for (t = 0; t < s->nthreads; t++)
-		if (s->reads[t].bad_at < first) {
-			first = s->reads[t].bad_at;
-			at = t;
-		}
-	if (at < 0)
-		return 0;
-	rf__format(s->error, sizeof(s->error), "row %zu, pixel %zu: %s", first / s->ncols + 1,
-	           first % s->ncols + 1, s->reads[at].bad);
-	return RF_EINVAL;
+	return rf__first_invalid_report(&s->reads[0].first, (size_t)s->nthreads,
+	                                sizeof(struct reads), s->ncols, s->error,
+	                                sizeof(s->error));
 }
 
 void

@@ -16,9 +16,9 @@ struct worker {
 	float *scatter; /* one row of the plugin's outputs */
 	unsigned char *zero; /* pixels of the row written as 0 */
 	/* Invalid input the worker met in the block: how many pixels were
-	 * fixed, and the first (in row order) under RF_INVALID_ERROR. */
-	size_t fixed, bad_at;
-	char bad[256];
+	 * fixed, and the first under RF_INVALID_ERROR. */
+	size_t fixed;
+	struct rf__first_invalid first;
 };
 
 struct rf_stage {
@@ -269,10 +269,8 @@ check_row(rf_stage *s, struct worker *w, const float *in, size_t y)
 		any |= r == 2;
 		if (r > 0)
 			w->fixed++;
-		if (r < 0 && y * s->ncols + x < w->bad_at) {
-			w->bad_at = y * s->ncols + x;
-			rf__format(w->bad, sizeof(w->bad), "%s", why);
-		}
+		if (r < 0)
+			rf__first_invalid_keep(&w->first, y * s->ncols + x, "%s", why);
 	}
 	return any;
 }
@@ -284,28 +282,20 @@ rf__stage_block_begin(rf_stage *s)
 
 	for (t = 0; t < s->nthreads; t++) {
 		s->workers[t].fixed = 0;
-		s->workers[t].bad_at = SIZE_MAX;
+		rf__first_invalid_clear(&s->workers[t].first);
 	}
 }
 
 int
 rf__stage_block_end(rf_stage *s)
 {
-	size_t first = SIZE_MAX;
-	int t, at = -1;
+	int t;
 
-	for (t = 0; t < s->nthreads; t++) {
+	for (t = 0; t < s->nthreads; t++)
 		s->fixed += s->workers[t].fixed;
-		if (s->workers[t].bad_at < first) {
-			first = s->workers[t].bad_at;
-			at = t;
-		}
-	}
-	if (at < 0)
-		return 0;
-	rf__format(s->error, sizeof(s->error), "row %zu, pixel %zu: %s", first / s->ncols + 1,
-	           first % s->ncols + 1, s->workers[at].bad);
-	return RF_EINVAL;
+	return rf__first_invalid_report(&s->workers[0].first, (size_t)s->nthreads,
+	                                sizeof(struct worker), s->ncols, s->error,
+	                                sizeof(s->error));
 }
 
 void
