@@ -280,9 +280,10 @@ load_stream(const struct envmap_opts *o, FILE *fp, const char *name,
 	cli_guard_mapped(name);
 	if ((rc = rf_reader_open(&r, fp, name, NULL)) < 0)
 		die_status(rc, NULL);
-	if ((rc = rf_chain_read_stream(&c, info, r, err, sizeof(err))) < 0)
-		die_status(rc, err);
+	rc = rf_chain_read_stream(&c, info, r, err, sizeof(err));
 	rf_reader_close(r);
+	if (rc < 0)
+		die_status(rc, err);
 	if (o->prefiltered)
 		info->prefiltered = 1;
 	return c;

@@ -189,11 +189,13 @@ load_environment(const struct shade_opts *o, const char *name, struct environmen
 		 * describe a chain another tool made. */
 		if (!o->env.prefiltered &&
 		    ((o->mapping_set && o->mapping != info.mapping) ||
-		     (o->steps > 0.0f && o->steps != steps)))
+		     (o->steps > 0.0f && o->steps != steps))) {
+			rf_cubemap_free(c);
 			die("'%s' was prefiltered with mapping %s and steps %g; "
 			    "--mapping and --steps must agree (or give --prefiltered to "
 			    "override them)", name, rf_mapping_name(info.mapping),
 			    (double)steps);
+		}
 		e->mapping = o->env.prefiltered && o->mapping_set ? o->mapping
 		                                                  : info.mapping;
 		e->steps = o->env.prefiltered && o->steps > 0.0f ? o->steps : steps;
