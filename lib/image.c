@@ -77,10 +77,15 @@ load(void)
 	}
 	if (dladdr((void *)load, &info) && info.dli_fname && strrchr(info.dli_fname, '/')) {
 		const char *slash = strrchr(info.dli_fname, '/');
+		struct stat st;
 
 		rf__format(path, sizeof(path), "%.*s/%s", (int)(slash - info.dli_fname),
 		           info.dli_fname, RF_IMAGE_MODULE_NAME);
 		if ((api = try_module(path)))
+			return;
+		/* One that is there but will not load says why; the installed
+		 * one is the fallback only for a module that is not there. */
+		if (stat(path, &st) == 0)
 			return;
 	}
 	rf__format(path, sizeof(path), "%s/%s", REFLECT_MODULEDIR, RF_IMAGE_MODULE_NAME);
