@@ -3,6 +3,7 @@
 #include <math.h>
 #include <signal.h>
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -45,11 +46,18 @@ cli_init(int argc, char **argv)
  */
 static char mapped_message[2048];
 static size_t mapped_len, mapped_count;
+/* Several threads may fault on the lost pages at once: the first tells
+ * and exits, the others wait for it (an exit of theirs could cut the
+ * message short). */
+static atomic_flag mapped_told = ATOMIC_FLAG_INIT;
 
 static void
 on_sigbus(int sig)
 {
 	(void)sig;
+	if (atomic_flag_test_and_set(&mapped_told))
+		for (;;)
+			pause();
 	if (write(STDERR_FILENO, mapped_message, mapped_len) < 0) {
 		/* nothing left to tell it with */
 	}
