@@ -307,7 +307,7 @@ test_expect_success 'a mapped input that shrinks ends the tool with a message' '
 	do
 		cp big.rfl shrinks.rfl &&
 		{ timeout 60 $tool shrinks.rfl 2>err; echo $? >status; } |
-		{ sleep 1 && truncate -s 1000 shrinks.rfl && cat >/dev/null; } &&
+		{ sleep 2 && truncate -s 1000 shrinks.rfl && cat >/dev/null; } &&
 		echo 1 >expect && cmp expect status &&
 		test_one_line_message "${tool%% *}" err &&
 		test_grep "${SQ}shrinks.rfl${SQ}.*: the file shrank while it was read" err || return 1
