@@ -86,9 +86,9 @@ test_skip () {
 	echo "ok $test_count - $1 # SKIP $2"
 }
 
-# test_must_fail STATUS command...: the command fails with that status
-# (and is not killed by a signal).
-test_must_fail () {
+# test_expect_code STATUS command...: the command exits with that status
+# (git's name; a status of 128 or more is a signal's).
+test_expect_code () {
 	want=$1
 	shift
 	"$@"

@@ -10,7 +10,7 @@ SQ="'"
 expect_bad () {
 	file=$1 pattern=$2
 	shift 2
-	test_must_fail 1 "$@" "$file" >out 2>err &&
+	test_expect_code 1 "$@" "$file" >out 2>err &&
 	test_one_line_message "$1" err &&
 	test_grep "^$1: $SQ$file$SQ: $pattern\$" err
 }
@@ -183,7 +183,7 @@ test_expect_success 'a header line over 2048 bytes' '
 
 test_expect_success 'empty input' '
 	expect_bad empty "empty input: no stream header" reflect-info &&
-	test_must_fail 1 reflect-info <empty 2>err &&
+	test_expect_code 1 reflect-info <empty 2>err &&
 	test_one_line_message reflect-info err &&
 	test_grep "^reflect-info: $SQ<stdin>$SQ: empty input: no stream header$" err
 '
@@ -253,7 +253,7 @@ test_expect_success 'bad input through reflect-project' '
 		unclosed-header format-double
 	do
 		reflect-info $f >/dev/null 2>info.err
-		test_must_fail 1 reflect-project $f >out 2>err &&
+		test_expect_code 1 reflect-project $f >out 2>err &&
 		test_one_line_message reflect-project err &&
 		sed "s/^reflect-info:/reflect-project:/" info.err >expect &&
 		cmp expect err &&
@@ -284,13 +284,13 @@ test_expect_success 'truncated piped input ends every stream tool' '
 	head -c 6000000 projected >projected-cut &&
 	for i in 1 2 3 4 5 6 7 8 9 10
 	do
-		test_must_fail 1 timeout 20 sh -c "cat gbuffer-cut | reflect-project" \
+		test_expect_code 1 timeout 20 sh -c "cat gbuffer-cut | reflect-project" \
 			>/dev/null 2>err &&
 		test_grep "^reflect-project: ${SQ}<stdin>${SQ}: data ends" err &&
-		test_must_fail 1 timeout 20 sh -c "cat projected-cut | reflect-shade --size=8" \
+		test_expect_code 1 timeout 20 sh -c "cat projected-cut | reflect-shade --size=8" \
 			>/dev/null 2>err &&
 		test_grep "^reflect-shade: ${SQ}<stdin>${SQ}: data ends" err &&
-		test_must_fail 1 timeout 20 sh -c "cat projected-cut | reflect-export -c D -o out.png" \
+		test_expect_code 1 timeout 20 sh -c "cat projected-cut | reflect-export -c D -o out.png" \
 			>/dev/null 2>err &&
 		test_grep "^reflect-export: ${SQ}<stdin>${SQ}: data ends" err || return 1
 	done

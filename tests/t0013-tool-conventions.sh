@@ -30,11 +30,11 @@ do
 	'
 
 	test_expect_success "$tool: an unknown option gives the usage on stderr, exit 1" '
-		test_must_fail 1 '$tool' --no-such-option >out 2>err &&
+		test_expect_code 1 '$tool' --no-such-option >out 2>err &&
 		test ! -s out &&
 		test_grep "^usage: '$tool' " err &&
 		test_grep "^'$tool': unrecognized option .--no-such-option.$" err &&
-		test_must_fail 1 '$tool' -Z >out 2>err &&
+		test_expect_code 1 '$tool' -Z >out 2>err &&
 		test ! -s out &&
 		test_grep "^'$tool': invalid option -- .Z.$" err &&
 		test_grep "^usage: '$tool' " err
@@ -51,27 +51,27 @@ do
 done
 
 test_expect_success 'a missing file: cannot open, exit 1' '
-	test_must_fail 1 reflect-project nope >out 2>err &&
+	test_expect_code 1 reflect-project nope >out 2>err &&
 	echo "reflect-project: cannot open ${SQ}nope${SQ}: No such file or directory" >expect &&
 	diff -u expect err &&
 	test ! -s out &&
-	test_must_fail 1 reflect-info nope 2>err &&
+	test_expect_code 1 reflect-info nope 2>err &&
 	echo "reflect-info: cannot open ${SQ}nope${SQ}: No such file or directory" >expect &&
 	diff -u expect err &&
-	test_must_fail 1 reflect-export -o out.exr nope 2>err &&
+	test_expect_code 1 reflect-export -o out.exr nope 2>err &&
 	echo "reflect-export: cannot open ${SQ}nope${SQ}: No such file or directory" >expect &&
 	diff -u expect err
 '
 
 test_expect_success 'a directory as input: a system error, exit 2' '
 	mkdir dir &&
-	test_must_fail 2 reflect-info dir 2>err &&
+	test_expect_code 2 reflect-info dir 2>err &&
 	echo "reflect-info: cannot read ${SQ}dir${SQ}: Is a directory" >expect &&
 	diff -u expect err
 '
 
 test_expect_success 'two files: usage, exit 1' '
-	test_must_fail 1 reflect-project in.txt in.txt >out 2>err &&
+	test_expect_code 1 reflect-project in.txt in.txt >out 2>err &&
 	test ! -s out &&
 	test_grep "^usage: reflect-project " err
 '
@@ -79,13 +79,13 @@ test_expect_success 'two files: usage, exit 1' '
 if test -w /dev/full
 then
 	test_expect_success 'stdout on a full disk: exit 2, a message naming the error' '
-		test_must_fail 2 reflect-project in.txt >/dev/full 2>err &&
+		test_expect_code 2 reflect-project in.txt >/dev/full 2>err &&
 		test_one_line_message reflect-project err &&
 		test_grep "No space left on device" err &&
-		test_must_fail 2 reflect-project -fa in.txt >/dev/full 2>err &&
+		test_expect_code 2 reflect-project -fa in.txt >/dev/full 2>err &&
 		test_one_line_message reflect-project err &&
 		test_grep "No space left on device" err &&
-		test_must_fail 2 reflect-info -s in.txt >/dev/full 2>err &&
+		test_expect_code 2 reflect-info -s in.txt >/dev/full 2>err &&
 		test_one_line_message reflect-info err &&
 		test_grep "^reflect-info: cannot write .<stdout>.: No space left on device$" err
 	'
@@ -93,16 +93,16 @@ then
 	test_expect_success 'a full disk also fails --help and -V' '
 		for tool in $tools
 		do
-			test_must_fail 2 $tool --help >/dev/full 2>err &&
+			test_expect_code 2 $tool --help >/dev/full 2>err &&
 			test_grep "^$tool: .*No space left on device$" err &&
-			test_must_fail 2 $tool -V >/dev/full 2>err &&
+			test_expect_code 2 $tool -V >/dev/full 2>err &&
 			test_grep "^$tool: .*No space left on device$" err || return 1
 		done
 	'
 
 	test_expect_success 'a big stream on a full disk fails while writing' '
 		head -c 720000 /dev/zero >big.raw &&
-		test_must_fail 2 reflect-project --invalid=zero -H -x 200 -y 100 \
+		test_expect_code 2 reflect-project --invalid=zero -H -x 200 -y 100 \
 			-c "P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z" \
 			--box=-3,0,-2,3,3,2 --center=0,1.5,0 big.raw >/dev/full 2>err &&
 		test_one_line_message reflect-project err &&
@@ -159,7 +159,7 @@ test_expect_success 'reading - or no file means stdin' '
 '
 
 test_expect_success 'bad input in stdin is named <stdin>' '
-	printf "#?REFLECT1\nNCOLS=x\n" | test_must_fail 1 reflect-info - 2>err &&
+	printf "#?REFLECT1\nNCOLS=x\n" | test_expect_code 1 reflect-info - 2>err &&
 	echo "reflect-info: ${SQ}<stdin>${SQ}: header line 2: NCOLS is not a number (${SQ}x${SQ})" >expect &&
 	diff -u expect err
 '
@@ -176,17 +176,17 @@ test_expect_success 'only stream data on stdout' '
 # may reach it; each is written as "?".
 test_expect_success 'messages carry no control bytes' '
 	esc=$(printf "\033") &&
-	test_must_fail 1 reflect-shade -m "x${esc}[31mred" </dev/null 2>err &&
+	test_expect_code 1 reflect-shade -m "x${esc}[31mred" </dev/null 2>err &&
 	! grep "$esc" err && test_grep "x?\[31mred" err &&
-	test_must_fail 1 reflect-project -m "box:a${esc}=1" </dev/null 2>err &&
+	test_expect_code 1 reflect-project -m "box:a${esc}=1" </dev/null 2>err &&
 	! grep "$esc" err &&
 	printf "probe box -1 -1 -1 1 1 1\n${esc}[2Jfoo\n" >esc.scene &&
-	test_must_fail 1 reflect-gbuffer esc.scene >/dev/null 2>err &&
+	test_expect_code 1 reflect-gbuffer esc.scene >/dev/null 2>err &&
 	! grep "$esc" err && test_grep "unknown keyword .?\[2Jfoo." err &&
-	test_must_fail 1 reflect-info "no${esc}]0;title" 2>err &&
+	test_expect_code 1 reflect-info "no${esc}]0;title" 2>err &&
 	! grep "$esc" err && test_one_line_message reflect-info err &&
 	tab=$(printf "\t") &&
-	test_must_fail 1 reflect-export -o "a${tab}b.nosuch" </dev/null 2>err &&
+	test_expect_code 1 reflect-export -o "a${tab}b.nosuch" </dev/null 2>err &&
 	! grep "$tab" err
 '
 

@@ -9,7 +9,7 @@ SQ="'"
 # writes to, that it is empty).  OpenImageIO's probes read /dev/zero for
 # ever, and opening a FIFO waits for a writer: each ran until killed.
 refused () {
-	test_must_fail 1 timeout 20 "$@" >out 2>err </dev/null &&
+	test_expect_code 1 timeout 20 "$@" >out 2>err </dev/null &&
 	test_one_line_message "$1" err &&
 	test ! -s out
 }

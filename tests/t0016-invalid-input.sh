@@ -31,7 +31,7 @@ test_expect_success 'G-buffers with one bad pixel each' '
 test_expect_success 'reflect-project refuses each, naming frame, row, pixel and channel' '
 	for n in 1 2 3 4 5
 	do
-		test_must_fail 1 reflect-project bad$n.txt >/dev/null 2>err$n &&
+		test_expect_code 1 reflect-project bad$n.txt >/dev/null 2>err$n &&
 		test_one_line_message reflect-project err$n &&
 		test_grep "^reflect-project: ${SQ}bad$n.txt${SQ}: frame 1, row 2, pixel 2: " err$n &&
 		test_grep "(--invalid=clamp or --invalid=zero goes on)$" err$n || return 1
@@ -45,7 +45,7 @@ test_expect_success 'reflect-project refuses each, naming frame, row, pixel and 
 
 test_expect_success 'a bad pixel in a later frame names that frame' '
 	cat good.txt bad1.txt >two.txt &&
-	test_must_fail 1 reflect-project two.txt >/dev/null 2>err &&
+	test_expect_code 1 reflect-project two.txt >/dev/null 2>err &&
 	test_grep "${SQ}two.txt${SQ}: frame 2, row 2, pixel 2: channel ${SQ}P.X${SQ} is nan" err
 '
 
@@ -58,7 +58,7 @@ test_expect_success 'the first bad pixel is named at any thread count' '
 	stream late.txt 3 3 "$GB" "$PROBE" "$CENTER" &&
 	for j in 1 2
 	do
-		test_must_fail 1 reflect-project -j $j late.txt >/dev/null 2>err &&
+		test_expect_code 1 reflect-project -j $j late.txt >/dev/null 2>err &&
 		test_grep "frame 1, row 2, pixel 3: V is (0, 0, 0), not a direction" err || return 1
 	done
 '
@@ -102,11 +102,11 @@ test_expect_success 'reflect-shade refuses roughness and mask outside [0, 1]' '
 	level_chain chain.rfl 8 4 linear &&
 	printf "%s\n" "0 1 0 0.5" "0 1 0 1.5" |
 	stream r.txt 2 1 "D.X D.Y D.Z roughness" &&
-	test_must_fail 1 reflect-shade -m none --env=chain.rfl r.txt >/dev/null 2>err &&
+	test_expect_code 1 reflect-shade -m none --env=chain.rfl r.txt >/dev/null 2>err &&
 	test_grep "${SQ}r.txt${SQ}: frame 1, row 1, pixel 2: channel ${SQ}roughness${SQ} is 1.5, outside \\[0, 1\\]" err &&
 	printf "%s\n" "0 1 0 0.5 1 0 0 0" "0 1 0 0.5 2 0 0 0" |
 	stream m.txt 2 1 "D.X D.Y D.Z roughness mask P.X P.Y P.Z" "$PROBE" "$CENTER" &&
-	test_must_fail 1 reflect-shade -m none --env=chain.rfl m.txt >/dev/null 2>err &&
+	test_expect_code 1 reflect-shade -m none --env=chain.rfl m.txt >/dev/null 2>err &&
 	test_grep "row 1, pixel 2: channel ${SQ}mask${SQ} is 2, outside \\[0, 1\\]" err
 '
 
@@ -119,9 +119,9 @@ test_expect_success 'reflect-shade --invalid=clamp: roughness 1.5 reads as 1' '
 '
 
 test_expect_success 'a bad --invalid is a usage error' '
-	test_must_fail 1 reflect-project --invalid=maybe good.txt 2>err &&
+	test_expect_code 1 reflect-project --invalid=maybe good.txt 2>err &&
 	test_grep "^reflect-project: --invalid: ${SQ}maybe${SQ} is not error, clamp or zero$" err &&
-	test_must_fail 1 reflect-shade --invalid=maybe 2>err </dev/null &&
+	test_expect_code 1 reflect-shade --invalid=maybe 2>err </dev/null &&
 	test_grep "is not error, clamp or zero$" err
 '
 

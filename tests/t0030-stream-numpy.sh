@@ -177,7 +177,7 @@ test_expect_success 'numpy writer: frames of any header length feed reflect-proj
 	grep "^[0-9]" out.txt >data &&
 	for k in 1 2 3 4
 	do
-		cat <<-\EOF
+		cat <<-\EOF || return 1
 		0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 2 2
 		1 1 0 1 0 0 1 0 0 1 0 0 1 0 0 2 3
 		5 1 0 0 1 0 0 1 0 0 1 0 0 1 0 inf inf

@@ -26,9 +26,8 @@ do
 		missing= &&
 		while read -r opt
 		do
-			roff=$(printf "%s" "$opt" | sed "s/-/\\\\\\\\-/g") &&
-			grep -e "$roff" "$page" >/dev/null ||
-			missing="$missing $opt"
+			roff=$(printf "%s" "$opt" | sed "s/-/\\\\\\\\-/g") || return 1
+			grep -e "$roff" "$page" >/dev/null || missing="$missing $opt" || return 1
 		done <options &&
 		if test -n "$missing"
 		then

@@ -34,12 +34,12 @@ test_expect_success 'PNG and OpenEXR are written without the module' '
 '
 
 test_expect_success 'a missing module is one clear message when an image is needed' '
-	test_must_fail 1 env REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so \
+	test_expect_code 1 env REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so \
 		reflect-export -c all -o x.tif p.rfl 2>err &&
 	test_one_line_message reflect-export err &&
 	test_grep "cannot load the image module ./nonexistent/reflect-oiio.so." err &&
 	echo "an image file" >some.exr &&
-	test_must_fail 1 env REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so \
+	test_expect_code 1 env REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so \
 		reflect-prefilter some.exr 2>err &&
 	test_one_line_message reflect-prefilter err &&
 	test_grep "cannot load the image module" err
@@ -47,7 +47,7 @@ test_expect_success 'a missing module is one clear message when an image is need
 
 test_expect_success 'a library that is not the module is refused' '
 	lib=$(ls "$builddir"/plugins/.libs/box.so) &&
-	test_must_fail 1 env REFLECT_IMAGE_MODULE="$lib" reflect-export -c all -o x.tif p.rfl 2>err &&
+	test_expect_code 1 env REFLECT_IMAGE_MODULE="$lib" reflect-export -c all -o x.tif p.rfl 2>err &&
 	test_grep "is not reflect.s image module" err
 '
 

@@ -9,11 +9,11 @@ P=$REFLECT_TEST_PLUGINS
 # nothing on stdout, one line on stderr naming the file, whose rest
 # matches REGEX; both ways give the same message.
 refused () {
-	test_must_fail 1 reflect-project -m "$P/$1.so" <gbuf >out 2>err &&
+	test_expect_code 1 reflect-project -m "$P/$1.so" <gbuf >out 2>err &&
 	test_line_count 0 out &&
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: plugin '$P/$1\.so': $2$" err &&
-	test_must_fail 1 env REFLECT_PLUGIN_PATH="$P" \
+	test_expect_code 1 env REFLECT_PLUGIN_PATH="$P" \
 		reflect-project -m "$1" <gbuf >out 2>err.name &&
 	test_line_count 0 out &&
 	cmp err err.name
@@ -95,7 +95,7 @@ test_expect_success 'a shade plugin is not a projection mode: which tool takes i
 
 test_expect_success 'a real plugin under another file name is refused' '
 	cp "$builddir/plugins/.libs/box.so" mybox.so &&
-	test_must_fail 1 reflect-project -m ./mybox.so <gbuf >out 2>err &&
+	test_expect_code 1 reflect-project -m ./mybox.so <gbuf >out 2>err &&
 	test_line_count 0 out &&
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: plugin .\./mybox\.so.: its descriptor is named .box., but a plugin.s name must equal its file name; rename the file to .box\.so. or set the name to .mybox.$" err
@@ -104,22 +104,22 @@ test_expect_success 'a real plugin under another file name is refused' '
 test_expect_success 'a file that is not a shared object: the loader error and ldd' '
 	mkdir junk &&
 	echo "not an ELF file" >junk/garbage.so &&
-	test_must_fail 1 reflect-project -m junk/garbage.so <gbuf >out 2>err &&
+	test_expect_code 1 reflect-project -m junk/garbage.so <gbuf >out 2>err &&
 	test_line_count 0 out &&
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: plugin .junk/garbage\.so.: cannot load it: .*; if a library is missing, ldd(1) shows which$" err &&
-	test_must_fail 1 env REFLECT_PLUGIN_PATH="$PWD/junk" \
+	test_expect_code 1 env REFLECT_PLUGIN_PATH="$PWD/junk" \
 		reflect-project -m garbage <gbuf >out 2>err &&
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: plugin .$PWD/junk/garbage\.so.: cannot load it: " err
 '
 
 test_expect_success 'a missing file and a directory given as paths' '
-	test_must_fail 1 reflect-project -m ./nosuch.so <gbuf >out 2>err &&
+	test_expect_code 1 reflect-project -m ./nosuch.so <gbuf >out 2>err &&
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: cannot open plugin .\./nosuch\.so.: No such file or directory$" err &&
 	mkdir dir.so &&
-	test_must_fail 1 reflect-project -m ./dir.so <gbuf >out 2>err &&
+	test_expect_code 1 reflect-project -m ./dir.so <gbuf >out 2>err &&
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: plugin .\./dir\.so.: not a regular file; give the path of a \.so file$" err
 '
@@ -127,7 +127,7 @@ test_expect_success 'a missing file and a directory given as paths' '
 test_expect_success 'a refused plugin found first is not passed over for a later one' '
 	mkdir first &&
 	cp "$P/bad_major.so" first/box.so &&
-	test_must_fail 1 env REFLECT_PLUGIN_PATH="$PWD/first:$builddir/plugins/.libs" \
+	test_expect_code 1 env REFLECT_PLUGIN_PATH="$PWD/first:$builddir/plugins/.libs" \
 		reflect-project -m box <gbuf >out 2>err &&
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: plugin .$PWD/first/box\.so.: built for plugin ABI 2\.0" err

@@ -124,15 +124,15 @@ test_expect_success 'REFLECT_PLUGIN_SYSTEM_PATH comes after REFLECT_PLUGIN_PATH'
 '
 
 test_expect_success 'an empty REFLECT_PLUGIN_SYSTEM_PATH means no system directory' '
-	test_must_fail 1 env REFLECT_PLUGIN_PATH="$PWD/empty" REFLECT_PLUGIN_SYSTEM_PATH= \
+	test_expect_code 1 env REFLECT_PLUGIN_PATH="$PWD/empty" REFLECT_PLUGIN_SYSTEM_PATH= \
 		reflect-project -m box <gbuf >out 2>err &&
 	test_line_count 0 out &&
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: unknown projection mode .box.: no box\.so in .$PWD/empty. (-l lists the modes)$" err &&
-	test_must_fail 1 env REFLECT_PLUGIN_PATH= REFLECT_PLUGIN_SYSTEM_PATH= \
+	test_expect_code 1 env REFLECT_PLUGIN_PATH= REFLECT_PLUGIN_SYSTEM_PATH= \
 		reflect-project -m box <gbuf >out 2>err &&
 	test_grep "^reflect-project: unknown projection mode .box.: no box\.so in an empty search path (-l lists the modes)$" err &&
-	test_must_fail 1 env REFLECT_PLUGIN_PATH= REFLECT_PLUGIN_SYSTEM_PATH= \
+	test_expect_code 1 env REFLECT_PLUGIN_PATH= REFLECT_PLUGIN_SYSTEM_PATH= \
 		reflect-project -l >out 2>err &&
 	test_line_count 0 out &&
 	test_one_line_message reflect-project err &&
@@ -144,7 +144,7 @@ test_expect_success 'an unset REFLECT_PLUGIN_SYSTEM_PATH means the installed plu
 	test -n "$plugindir" &&
 	(
 		unset REFLECT_PLUGIN_SYSTEM_PATH &&
-		test_must_fail 1 env REFLECT_PLUGIN_PATH="$PWD/empty" \
+		test_expect_code 1 env REFLECT_PLUGIN_PATH="$PWD/empty" \
 			reflect-project -m nosuch <gbuf >out 2>err
 	) &&
 	test_one_line_message reflect-project err &&
@@ -156,7 +156,7 @@ test_expect_success 'a name with a slash is a path, not searched for' '
 	test_grep "^reflect-project: mode .box. from .a/box\.so.$" err &&
 	REFLECT_PLUGIN_PATH="$PWD/empty" reflect-project -v -m "$PWD/b/box.so" <gbuf >/dev/null 2>err &&
 	test_grep "^reflect-project: mode .box. from .$PWD/b/box\.so.$" err &&
-	test_must_fail 1 env REFLECT_PLUGIN_PATH="$PWD/a" \
+	test_expect_code 1 env REFLECT_PLUGIN_PATH="$PWD/a" \
 		reflect-project -m ./box.so <gbuf >/dev/null 2>err &&
 	test_grep "^reflect-project: cannot open plugin .\./box\.so.: No such file or directory$" err
 '
@@ -167,17 +167,17 @@ test_expect_success 'a path may hold a colon before its last slash' '
 '
 
 test_expect_success 'NAME.so without a slash: not found, with a hint' '
-	test_must_fail 1 reflect-project -m box.so <gbuf >out 2>err &&
+	test_expect_code 1 reflect-project -m box.so <gbuf >out 2>err &&
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: unknown projection mode .box\.so.: no box\.so\.so in .$B.; a path to a file needs a ./., as in \./box\.so (-l lists the modes)$" err
 '
 
 test_expect_success 'an unknown mode: a clear message, exit 1' '
-	test_must_fail 1 reflect-project -m nosuch <gbuf >out 2>err &&
+	test_expect_code 1 reflect-project -m nosuch <gbuf >out 2>err &&
 	test_line_count 0 out &&
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: unknown projection mode .nosuch.: no nosuch\.so in .$B. (-l lists the modes)$" err &&
-	test_must_fail 1 reflect-project -m "no such" <gbuf >out 2>err &&
+	test_expect_code 1 reflect-project -m "no such" <gbuf >out 2>err &&
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: .no such. is not a valid mode name" err
 '

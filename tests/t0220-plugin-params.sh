@@ -16,7 +16,7 @@ data () {
 # refused SPEC REGEX: -m SPEC exits 1 with one line matching REGEX and
 # writes nothing on stdout.
 refused () {
-	test_must_fail 1 reflect-project -fa -m "$1" <gbuf >out 2>err &&
+	test_expect_code 1 reflect-project -fa -m "$1" <gbuf >out 2>err &&
 	test_line_count 0 out &&
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: $2$" err

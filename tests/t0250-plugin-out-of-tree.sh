@@ -164,10 +164,10 @@ test_expect_success 'the default radius; box projection off' '
 '
 
 test_expect_success 'its parameter is checked by the host; create() reports errors' '
-	test_must_fail 1 installed -m sphere:radius=0 --box=-1,-1,-1,1,1,1 gbuf >out 2>err &&
+	test_expect_code 1 installed -m sphere:radius=0 --box=-1,-1,-1,1,1,1 gbuf >out 2>err &&
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: mode .sphere.: parameter .radius. is 0, out of its range (in \[0\.001, 1e+06\])$" err &&
-	test_must_fail 1 installed -m sphere gbuf >out 2>err &&
+	test_expect_code 1 installed -m sphere gbuf >out 2>err &&
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: mode .sphere.: no probe: give --box and --center, or a stream with PROBE_BOX and PROBE_CENTER$" err
 '

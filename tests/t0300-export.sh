@@ -206,10 +206,10 @@ test_expect_success 'jpeg: writes 3 channels of the right size' '
 '
 
 test_expect_success 'a missing channel is named, exit 1' '
-	test_must_fail 1 reflect-export -c spec,foo -o x.exr in.txt 2>err &&
+	test_expect_code 1 reflect-export -c spec,foo -o x.exr in.txt 2>err &&
 	test_one_line_message reflect-export err &&
 	test_grep "input has no channel .foo." err &&
-	test_must_fail 1 reflect-export -c albedo -o x.exr in.txt 2>err &&
+	test_expect_code 1 reflect-export -c albedo -o x.exr in.txt 2>err &&
 	test_one_line_message reflect-export err &&
 	test_grep "no channel .albedo. (nor albedo.R albedo.G albedo.B or albedo.X albedo.Y albedo.Z)" err &&
 	! test -e x.exr
@@ -226,7 +226,7 @@ test_expect_success 'no R G B and no spec: asks for -c' '
 
 	1	2	3
 	EOF
-	test_must_fail 1 reflect-export -o x.exr p.txt 2>err &&
+	test_expect_code 1 reflect-export -o x.exr p.txt 2>err &&
 	test_one_line_message reflect-export err &&
 	test_grep "choose channels with -c" err &&
 	reflect-export -c P -o p.exr p.txt &&
@@ -235,19 +235,19 @@ test_expect_success 'no R G B and no spec: asks for -c' '
 '
 
 test_expect_success 'an unknown extension is refused before reading' '
-	test_must_fail 1 reflect-export -o a.xyz </dev/null 2>err &&
+	test_expect_code 1 reflect-export -o a.xyz </dev/null 2>err &&
 	test_one_line_message reflect-export err &&
 	test_grep "^reflect-export: cannot write .a.xyz.: unknown image type" err &&
-	test_must_fail 1 reflect-export -o noext in.txt 2>err &&
+	test_expect_code 1 reflect-export -o noext in.txt 2>err &&
 	test_grep "cannot write .noext.: unknown image type" err &&
 	! test -e a.xyz
 '
 
 test_expect_success 'an unwritable path gives the system reason, exit 2' '
-	test_must_fail 2 reflect-export -o no/such/dir/a.png in.txt 2>err &&
+	test_expect_code 2 reflect-export -o no/such/dir/a.png in.txt 2>err &&
 	test_one_line_message reflect-export err &&
 	test_grep "^reflect-export: cannot write .no/such/dir/a.png.: No such file or directory$" err &&
-	test_must_fail 2 reflect-export -o no/such/dir/a.exr in.txt 2>err &&
+	test_expect_code 2 reflect-export -o no/such/dir/a.exr in.txt 2>err &&
 	test_grep "cannot write .no/such/dir/a.exr.: No such file or directory$" err
 '
 
@@ -255,14 +255,14 @@ if test -c /dev/full
 then
 	test_expect_success 'a full disk is an error, exit 2' '
 		ln -s /dev/full full.png &&
-		test_must_fail 2 reflect-export -o full.png in.txt 2>err &&
+		test_expect_code 2 reflect-export -o full.png in.txt 2>err &&
 		test_one_line_message reflect-export err &&
 		test_grep "cannot write .full.png.: No space left on device$" err &&
 		ln -s /dev/full full.jpg &&
-		test_must_fail 2 reflect-export -o full.jpg in.txt 2>err &&
+		test_expect_code 2 reflect-export -o full.jpg in.txt 2>err &&
 		test_one_line_message reflect-export err &&
 		ln -s /dev/full full.exr &&
-		test_must_fail 2 reflect-export -o full.exr in.txt 2>err &&
+		test_expect_code 2 reflect-export -o full.exr in.txt 2>err &&
 		test_one_line_message reflect-export err
 	'
 else
@@ -270,16 +270,16 @@ else
 fi
 
 test_expect_success 'channel counts and depths a format cannot take' '
-	test_must_fail 1 reflect-export -c all -o x.png in.txt 2>err &&
+	test_expect_code 1 reflect-export -c all -o x.png in.txt 2>err &&
 	test_one_line_message reflect-export err &&
 	test_grep "cannot write 8 channels to .x.png.: 8-bit .png files take 1, 3 or 4 channels" err &&
-	test_must_fail 1 reflect-export -c R,G,B,A -o x.jpg in.txt 2>err &&
+	test_expect_code 1 reflect-export -c R,G,B,A -o x.jpg in.txt 2>err &&
 	test_grep "8-bit .jpg files take 1 or 3 channels" err &&
-	test_must_fail 1 reflect-export --depth=16 -o x.jpg in.txt 2>err &&
+	test_expect_code 1 reflect-export --depth=16 -o x.jpg in.txt 2>err &&
 	test_grep "a .jpg file does not store 16-bit pixels" err &&
-	test_must_fail 1 reflect-export --depth=8 -o x.exr in.txt 2>err &&
+	test_expect_code 1 reflect-export --depth=8 -o x.exr in.txt 2>err &&
 	test_grep "a .exr file does not store 8-bit pixels" err &&
-	test_must_fail 1 reflect-export -c R,G,B,A -o x.hdr in.txt 2>err &&
+	test_expect_code 1 reflect-export -c R,G,B,A -o x.hdr in.txt 2>err &&
 	test_grep ".hdr files take 3 channels" err &&
 	! test -e x.png && ! test -e x.jpg && ! test -e x.exr && ! test -e x.hdr
 '
@@ -290,7 +290,7 @@ test_expect_success 'one channel three times: grey in png, refused in exr' '
 	sed 1,2d dump >values &&
 	printf "255 255 255\n0 0 0\n255 255 255\n" >expect &&
 	test_cmp_numbers expect values 0 &&
-	test_must_fail 1 reflect-export -c mask,mask -o x.exr in.txt 2>err &&
+	test_expect_code 1 reflect-export -c mask,mask -o x.exr in.txt 2>err &&
 	test_grep "channel .mask. is chosen twice" err
 '
 
@@ -332,10 +332,10 @@ test_expect_success 'a single frame with %d is numbered 0' '
 '
 
 test_expect_success 'several frames without %d: error at the second, exit 1' '
-	test_must_fail 1 reflect-export -c mask -o same.exr two.txt 2>err &&
+	test_expect_code 1 reflect-export -c mask -o same.exr two.txt 2>err &&
 	test_one_line_message reflect-export err &&
 	test_grep "more than one frame: put %d in the output name" err &&
-	test_must_fail 1 reflect-export -o "a%d%d.exr" in.txt 2>err &&
+	test_expect_code 1 reflect-export -o "a%d%d.exr" in.txt 2>err &&
 	test_grep "may hold one %d or %0Nd" err
 '
 
@@ -358,15 +358,15 @@ test_expect_success 'headerless input: -c names the channels, all are written' '
 
 test_expect_success 'bad input and bad options: one line, exit 1' '
 	head -c 120 in.txt >short.txt &&
-	test_must_fail 1 reflect-export -o t.exr short.txt 2>err &&
+	test_expect_code 1 reflect-export -o t.exr short.txt 2>err &&
 	test_one_line_message reflect-export err &&
-	test_must_fail 1 reflect-export -e bright -o t.exr in.txt 2>err &&
+	test_expect_code 1 reflect-export -e bright -o t.exr in.txt 2>err &&
 	test_grep "^reflect-export: -e: .bright. is not an exposure" err &&
-	test_must_fail 1 reflect-export --tone=aces -o t.exr in.txt 2>err &&
+	test_expect_code 1 reflect-export --tone=aces -o t.exr in.txt 2>err &&
 	test_grep "tone: .aces. is not none or filmic" err &&
-	test_must_fail 1 reflect-export --depth=12 -o t.exr in.txt 2>err &&
+	test_expect_code 1 reflect-export --depth=12 -o t.exr in.txt 2>err &&
 	test_grep "depth: .12. is not 8, 16, half or float" err &&
-	test_must_fail 1 reflect-export in.txt 2>err &&
+	test_expect_code 1 reflect-export in.txt 2>err &&
 	test_grep "^usage: reflect-export -o FILE" err
 '
 
@@ -520,17 +520,17 @@ else
 fi
 
 test_expect_success 'png and exr: a path that cannot be written, one line, exit 2' '
-	test_must_fail 2 reflect-export -o /nonexistent/x.png in.txt 2>err &&
+	test_expect_code 2 reflect-export -o /nonexistent/x.png in.txt 2>err &&
 	test_one_line_message reflect-export err &&
 	test_grep "^reflect-export: cannot write ./nonexistent/x.png.: No such file or directory$" err &&
-	test_must_fail 2 reflect-export --half -o /nonexistent/x.exr in.txt 2>err &&
+	test_expect_code 2 reflect-export --half -o /nonexistent/x.exr in.txt 2>err &&
 	test_one_line_message reflect-export err &&
 	test_grep "^reflect-export: cannot write ./nonexistent/x.exr.: No such file or directory$" err &&
 	mkdir dir.png dir.exr &&
-	test_must_fail 2 reflect-export -o dir.png in.txt 2>err &&
+	test_expect_code 2 reflect-export -o dir.png in.txt 2>err &&
 	test_one_line_message reflect-export err &&
 	test_grep "^reflect-export: cannot write .dir.png.: Is a directory$" err &&
-	test_must_fail 2 reflect-export -o dir.exr in.txt 2>err &&
+	test_expect_code 2 reflect-export -o dir.exr in.txt 2>err &&
 	test_one_line_message reflect-export err &&
 	test_grep "^reflect-export: cannot write .dir.exr.: Is a directory$" err
 '
@@ -546,7 +546,7 @@ then
 		do
 			set -- $args &&
 			out=$1 && shift &&
-			test_must_fail 2 reflect-export -o $out "$@" 2>err &&
+			test_expect_code 2 reflect-export -o $out "$@" 2>err &&
 			test_one_line_message reflect-export err &&
 			test_grep "^reflect-export: cannot write .$out.: No space left on device$" err ||
 			return 1
@@ -565,7 +565,7 @@ test_expect_success 'a failed export leaves the existing file as it was' '
 	do
 		reflect-export -o keep.$ext -c e0,e1,e2 big.txt &&
 		cp keep.$ext before.$ext &&
-		test_must_fail 1 reflect-export -o keep.$ext -c e0,e1,e2 half.txt 2>err &&
+		test_expect_code 1 reflect-export -o keep.$ext -c e0,e1,e2 half.txt 2>err &&
 		test_grep "data ends" err &&
 		cmp before.$ext keep.$ext &&
 		test -z "$(ls -A | grep "^\.keep")" || return 1

@@ -80,7 +80,7 @@ do
 			clamp=*) clamp=${kv#clamp=} ;;
 			distance=*) dist=${kv#distance=} ;;
 			power=*) power=${kv#power=} ;;
-			esac
+			esac || return 1
 		done &&
 		expected $mode $clamp $dist $power >want &&
 		cmp_numbers want got 1e-6

@@ -145,7 +145,7 @@ test_expect_success '--final: walls are the environment itself, R G B = spec' '
 
 test_expect_success 'a stream with a mask but no probe centre is refused' '
 	sed "/^PROBE_/d" walls.txt >nocentre.txt &&
-	test_must_fail 1 reflect-shade -m none --env=faces.rfl nocentre.txt >/dev/null 2>err &&
+	test_expect_code 1 reflect-shade -m none --env=faces.rfl nocentre.txt >/dev/null 2>err &&
 	test_one_line_message reflect-shade err &&
 	test_grep "center" err &&
 	reflect-shade -m none --env=faces.rfl --center=0,1.5,0 nocentre.txt >/dev/null

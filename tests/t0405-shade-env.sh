@@ -135,7 +135,7 @@ test_expect_success 'a mode that samples through the host services equals none' 
 '
 
 test_expect_success 'a mode that writes neither roughness.eff nor spec is refused' '
-	test_must_fail 1 reflect-shade -m "$REFLECT_TEST_PLUGINS/shade_kind.so" \
+	test_expect_code 1 reflect-shade -m "$REFLECT_TEST_PLUGINS/shade_kind.so" \
 		scene.rfl 2>err &&
 	test_one_line_message reflect-shade err &&
 	test_grep "writes neither" err

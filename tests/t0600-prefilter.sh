@@ -120,7 +120,7 @@ test_expect_success 'a chain as one file per level (--prefiltered, %d numbers le
 	sed -n "/^$/,\$p" files16.txt | grep -v "^#\|=\|^$\|^reflect" >f &&
 	test_cmp_numbers d f 0.02 &&
 	cp levels/level0-hcross.exr bad0.exr && cp levels/level2-hcross.exr bad1.exr &&
-	test_must_fail 1 reflect-prefilter --prefiltered "bad%d.exr" 2>err &&
+	test_expect_code 1 reflect-prefilter --prefiltered "bad%d.exr" 2>err &&
 	test_grep "level 1 has faces of 4 texels, not half the 16 of level 0" err
 '
 
@@ -147,17 +147,17 @@ test_expect_success 'a sparse DDS is refused at the cube limit, before any alloc
 	printf "\000\020\000\000\000\020\000\000" |
 	dd of=sparse.dds bs=1 seek=12 conv=notrunc 2>/dev/null &&
 	truncate -s $((128 + 4096 * 4096 * 6 * 16)) sparse.dds &&
-	test_must_fail 1 timeout 20 reflect-prefilter --prefiltered sparse.dds >/dev/null 2>err &&
+	test_expect_code 1 timeout 20 reflect-prefilter --prefiltered sparse.dds >/dev/null 2>err &&
 	test_one_line_message reflect-prefilter err &&
 	test_grep "${SQ}sparse.dds${SQ}: a cube of 4096-texel faces takes 1153.1 MB, over the limit of 1024 MB (REFLECT_MAX_CUBE_MB raises it)" err &&
 	reflect-gbuffer -x 4 -y 4 | reflect-project >frame.rfl &&
-	test_must_fail 1 timeout 20 reflect-shade --env=sparse.dds --prefiltered frame.rfl >/dev/null 2>err &&
+	test_expect_code 1 timeout 20 reflect-shade --env=sparse.dds --prefiltered frame.rfl >/dev/null 2>err &&
 	test_grep "over the limit of 1024 MB" err
 '
 
 # The embedded room's raw cube at 256: 6 x 258^2 x 12 bytes = 4.6 MB.
 test_expect_success 'REFLECT_MAX_CUBE_MB sets the limit' '
-	REFLECT_MAX_CUBE_MB=1 test_must_fail 1 reflect-prefilter --size=256 >/dev/null 2>err &&
+	REFLECT_MAX_CUBE_MB=1 test_expect_code 1 reflect-prefilter --size=256 >/dev/null 2>err &&
 	test_grep "a cube of 256-texel faces takes 4.6 MB, over the limit of 1 MB" err &&
 	REFLECT_MAX_CUBE_MB=1 reflect-prefilter --size=64 >/dev/null
 '
@@ -171,39 +171,39 @@ test_expect_success 'NaN and Inf texels are counted and zeroed, or refused with 
 	reflect-prefilter --plain --levels=2 -fa nan.exr >out.txt 2>err &&
 	test_grep "replaced 2 NaN or infinite texel values with 0" err &&
 	level0 out.txt >data && test_line_count 24 data && ! grep -E "nan|inf" data &&
-	test_must_fail 1 reflect-prefilter -S --plain --levels=2 nan.exr >/dev/null 2>err &&
+	test_expect_code 1 reflect-prefilter -S --plain --levels=2 nan.exr >/dev/null 2>err &&
 	test_one_line_message reflect-prefilter err &&
 	test_grep "2 texel values are NaN or infinite" err
 '
 
 test_expect_success 'bad input: each a one-line message and exit 1' '
-	test_must_fail 1 reflect-prefilter nope.exr 2>err &&
+	test_expect_code 1 reflect-prefilter nope.exr 2>err &&
 	test_grep "^reflect-prefilter: cannot open .nope.exr.: No such file or directory$" err &&
-	test_must_fail 1 reflect-prefilter --layout=cube level0-latlong.exr 2>err &&
+	test_expect_code 1 reflect-prefilter --layout=cube level0-latlong.exr 2>err &&
 	test_one_line_message reflect-prefilter err &&
 	test_grep "a cube image of faces N is N x 6N, not 64x32" err &&
-	test_must_fail 1 reflect-prefilter --layout=strip x.exr 2>err &&
+	test_expect_code 1 reflect-prefilter --layout=strip x.exr 2>err &&
 	test_grep "is not auto, latlong, cube, vcross or hcross" err &&
 	constant_image odd.exr 3 18 1 1 1 &&
-	test_must_fail 1 reflect-prefilter odd.exr 2>err &&
+	test_expect_code 1 reflect-prefilter odd.exr 2>err &&
 	test_grep "odd size" err &&
 	constant_image skew.exr 100 37 1 1 1 &&
-	test_must_fail 1 reflect-prefilter skew.exr 2>err &&
+	test_expect_code 1 reflect-prefilter skew.exr 2>err &&
 	test_grep "cannot tell the layout of a 100x37 image" err &&
 	constant_image big5.exr 8 8 1 1 1 &&
 	cp face0.exr f-0.exr && cp face1.exr f-1.exr && cp face2.exr f-2.exr &&
 	cp face3.exr f-3.exr && cp face4.exr f-4.exr && cp big5.exr f-5.exr &&
-	test_must_fail 1 reflect-prefilter "f-%d.exr" 2>err &&
+	test_expect_code 1 reflect-prefilter "f-%d.exr" 2>err &&
 	test_grep "faces differ in size (8, not 4" err &&
-	test_must_fail 1 reflect-prefilter -s 0 2>err &&
+	test_expect_code 1 reflect-prefilter -s 0 2>err &&
 	test_grep "option -s: 0 is out of range" err &&
-	test_must_fail 1 reflect-prefilter --levels=1 2>err &&
-	test_must_fail 1 reflect-prefilter --steps=0 2>err &&
+	test_expect_code 1 reflect-prefilter --levels=1 2>err &&
+	test_expect_code 1 reflect-prefilter --steps=0 2>err &&
 	test_grep "steps" err &&
-	test_must_fail 1 reflect-prefilter --size=1 2>err &&
+	test_expect_code 1 reflect-prefilter --size=1 2>err &&
 	test_grep "a chain of one level has nothing to convolve" err &&
 	printf "not an image at all\n" >junk.exr &&
-	test_must_fail 1 reflect-prefilter junk.exr 2>err &&
+	test_expect_code 1 reflect-prefilter junk.exr 2>err &&
 	test_one_line_message reflect-prefilter err &&
 	test_grep "junk.exr" err
 '

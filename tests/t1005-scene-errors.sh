@@ -6,7 +6,7 @@ test_description='bad scene files: each error names file:line:column and what wa
 # status 1 and one line on stderr: "reflect-gbuffer: bad.scene:MESSAGE".
 bad_scene () {
 	cat >bad.scene &&
-	test_must_fail 1 reflect-gbuffer bad.scene >out 2>err &&
+	test_expect_code 1 reflect-gbuffer bad.scene >out 2>err &&
 	test_one_line_message reflect-gbuffer err &&
 	test_grep "^reflect-gbuffer: bad.scene:$1" err &&
 	test ! -s out
@@ -117,14 +117,14 @@ test_expect_success 'missing normal map image' '
 '
 
 test_expect_success 'a scene file that does not exist' '
-	test_must_fail 1 reflect-gbuffer nowhere.scene 2>err &&
+	test_expect_code 1 reflect-gbuffer nowhere.scene 2>err &&
 	test_one_line_message reflect-gbuffer err &&
 	test_grep "^reflect-gbuffer: cannot open .nowhere.scene.: No such file or directory$" err
 '
 
 test_expect_success 'the name in messages is the one given, from stdin too' '
 	printf "probe box 0 0 0 1 1 1\nball\n" >s &&
-	test_must_fail 1 reflect-gbuffer - <s 2>err &&
+	test_expect_code 1 reflect-gbuffer - <s 2>err &&
 	test_grep "^reflect-gbuffer: <stdin>:2:1: unknown keyword .ball." err
 '
 
@@ -163,7 +163,7 @@ test_expect_success 'a scene of many quoted words is parsed in its own size' '
 		awk "BEGIN { for (i = 0; i < 1400000; i++) printf \" \\\"\\\"\"; print \"\" }"
 	} >quotes.scene &&
 	test $(wc -c <quotes.scene) -gt 4000000 &&
-	test_must_fail 1 timeout 5 reflect-gbuffer -x 2 -y 2 quotes.scene >out 2>err &&
+	test_expect_code 1 timeout 5 reflect-gbuffer -x 2 -y 2 quotes.scene >out 2>err &&
 	test_one_line_message reflect-gbuffer err &&
 	test_grep "quotes.scene:2:26: expected the end of the line after the name" err
 '

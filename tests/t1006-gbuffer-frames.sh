@@ -78,11 +78,11 @@ test_expect_success '--path=line moves position and target to the end' '
 '
 
 test_expect_success 'bad paths are refused' '
-	test_must_fail 1 reflect-gbuffer --path=spiral:3 s.scene 2>err &&
+	test_expect_code 1 reflect-gbuffer --path=spiral:3 s.scene 2>err &&
 	test_grep "neither orbit:DEGREES nor line:X,Y,Z" err &&
-	test_must_fail 1 reflect-gbuffer --path=line:1,2 s.scene 2>err &&
+	test_expect_code 1 reflect-gbuffer --path=line:1,2 s.scene 2>err &&
 	test_grep "needs 3 comma-separated numbers" err &&
-	test_must_fail 1 reflect-gbuffer -n 0 s.scene 2>err &&
+	test_expect_code 1 reflect-gbuffer -n 0 s.scene 2>err &&
 	test_one_line_message reflect-gbuffer err
 '
 

@@ -62,7 +62,7 @@ test_expect_success 'the example of reflect-scene(5) is a valid scene' '
 test_expect_success '-c selects channels; layers stand for their components' '
 	reflect-gbuffer -x 2 -y 2 -c V,roughness,objid -fa >out.txt &&
 	test_grep "^CHANNELS=V.X V.Y V.Z roughness objid$" out.txt &&
-	test_must_fail 1 reflect-gbuffer -c P,spec 2>err &&
+	test_expect_code 1 reflect-gbuffer -c P,spec 2>err &&
 	test_one_line_message reflect-gbuffer err &&
 	test_grep "unknown G-buffer channel .spec." err
 '
@@ -84,11 +84,11 @@ test_expect_success '--help on stdout, -V, usage errors' '
 	test ! -s err &&
 	reflect-gbuffer -V >out &&
 	test_grep "^reflect-gbuffer (reflect) " out &&
-	test_must_fail 1 reflect-gbuffer -q 2>err &&
+	test_expect_code 1 reflect-gbuffer -q 2>err &&
 	test_grep "^usage: reflect-gbuffer" err &&
-	test_must_fail 1 reflect-gbuffer a.scene b.scene 2>err &&
+	test_expect_code 1 reflect-gbuffer a.scene b.scene 2>err &&
 	test_grep "^usage: reflect-gbuffer" err &&
-	test_must_fail 1 reflect-gbuffer -x 0 2>err &&
+	test_expect_code 1 reflect-gbuffer -x 0 2>err &&
 	test_one_line_message reflect-gbuffer err
 '
 

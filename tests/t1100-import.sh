@@ -55,33 +55,33 @@ test_expect_success 'probe keys from --box and --center' '
 '
 
 test_expect_success 'bad input: each a one-line message and exit 1' '
-	test_must_fail 1 reflect-import -c P.X=R pos.exr nrm.exr 2>err &&
+	test_expect_code 1 reflect-import -c P.X=R pos.exr nrm.exr 2>err &&
 	test_one_line_message reflect-import err &&
 	test_grep "channel .R. is in several inputs" err &&
-	test_must_fail 1 reflect-import -c P.X=nope pos.exr 2>err &&
+	test_expect_code 1 reflect-import -c P.X=nope pos.exr 2>err &&
 	test_grep "no input channel .nope. (the input has: R G B)" err &&
 	# A failed mapping after a good one used to return success with no
 	# importer (a crash).
-	test_must_fail 1 reflect-import -c a=R -c b=nosuch pos.exr >out 2>err &&
+	test_expect_code 1 reflect-import -c a=R -c b=nosuch pos.exr >out 2>err &&
 	test_one_line_message reflect-import err &&
 	test_grep "no input channel .nosuch. (the input has: R G B)" err &&
 	test ! -s out &&
-	test_must_fail 1 reflect-import -c a=R --roughness=nosuch pos.exr 2>err &&
+	test_expect_code 1 reflect-import -c a=R --roughness=nosuch pos.exr 2>err &&
 	test_grep "no input channel .nosuch." err &&
-	test_must_fail 1 reflect-import -c P.X=3:R pos.exr 2>err &&
+	test_expect_code 1 reflect-import -c P.X=3:R pos.exr 2>err &&
 	test_grep "no input file .3." err &&
 	ascii_image wide.exr "R" "1" "2" &&
-	test_must_fail 1 reflect-import pos.exr wide.exr 2>err &&
+	test_expect_code 1 reflect-import pos.exr wide.exr 2>err &&
 	test_grep "the passes must have one size" err &&
-	test_must_fail 1 reflect-import --roughness=2 pos.exr 2>err &&
+	test_expect_code 1 reflect-import --roughness=2 pos.exr 2>err &&
 	test_grep "roughness 2 is outside" err &&
-	test_must_fail 1 reflect-import --camera=0,0,0 pos.exr 2>err &&
+	test_expect_code 1 reflect-import --camera=0,0,0 pos.exr 2>err &&
 	test_grep "V from the camera needs P.X P.Y P.Z" err &&
-	test_must_fail 1 reflect-import -c P.X pos.exr 2>err &&
+	test_expect_code 1 reflect-import -c P.X pos.exr 2>err &&
 	test_grep "is not OUT=IN" err &&
-	test_must_fail 1 reflect-import missing.exr 2>err &&
+	test_expect_code 1 reflect-import missing.exr 2>err &&
 	test_grep "cannot open .missing.exr." err &&
-	test_must_fail 1 reflect-import 2>err &&
+	test_expect_code 1 reflect-import 2>err &&
 	test_grep "^usage: reflect-import" err
 '
 
