@@ -1,6 +1,6 @@
 /* Normal maps: procedural tiles, bumps and noise, and tangent-space
- * images unpacked as Unity's UnpackNormalWithScale (spec 1.2), applied in
- * each primitive's tangent frame. */
+ * images unpacked as Unity's UnpackNormalWithScale (reflect-scene(5)),
+ * applied in each primitive's tangent frame. */
 #include <math.h>
 #include <stdint.h>
 

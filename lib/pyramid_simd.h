@@ -1,6 +1,7 @@
-/* Internal: the prefilter's lobe sum, eight samples at a time. */
-#ifndef REFLECT_LOBE_SIMD_H
-#define REFLECT_LOBE_SIMD_H
+/* Internal: the pyramid's vector kernels, eight samples at a time (the
+ * prefilter's lobe sum and the shading pass's reads). */
+#ifndef REFLECT_PYRAMID_SIMD_H
+#define REFLECT_PYRAMID_SIMD_H
 
 #include <stddef.h>
 #include <stdint.h>

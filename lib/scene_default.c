@@ -10,7 +10,7 @@ static const char default_scene[] =
 	"\n"
 	"# The probe's box is also the room, drawn with its walls facing in.\n"
 	"# The capture point and the box are those of the worked test vectors\n"
-	"# (spec section 15).  The environment is reflect's embedded one: the\n"
+	"# (tests/t0402-shade-vectors.sh).  The environment is reflect's own: the\n"
 	"# same room seen from the capture point.\n"
 	"probe center 0 1.5 0 box -3 0 -2 3 3 2 env default blend 1 projection on\n"
 	"\n"

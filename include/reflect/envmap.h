@@ -2,7 +2,7 @@
  * libreflect: environments, cubemaps, the roughness-to-lod mapping and
  * GGX prefiltering.
  *
- * Conventions (OpenEXR's, see reflect-envmap(5)): world Y up, right
+ * Conventions (OpenEXR's, see reflect-prefilter(1)): world Y up, right
  * handed; faces +X -X +Y -Y +Z -Z; texel i of a face of N has its centre
  * at ((i + 1/2) / N) * 2 - 1.  Level k of a chain is N >> k texels wide.
  */
