@@ -184,18 +184,30 @@ rf__check_row(const struct rf__check *c, const float *px, size_t stride, size_t 
 	       longest <= FLT_MAX;
 }
 
-static void
-describe(char *why, size_t len, const char *name, float v, const char *what)
+/* What a broken rule does under the policy: -1 with why (ERROR), 2 (the
+ * pixel to be written as 0), or 0: the caller clamps. */
+static int RF__PRINTF(4, 5)
+broken(enum rf_invalid policy, char *why, size_t len, const char *fmt, ...)
 {
-	if (why)
-		snprintf(why, len, "channel '%s' is %g%s", name, (double)v, what);
+	va_list ap;
+
+	if (policy == RF_INVALID_ZERO)
+		return 2;
+	if (policy == RF_INVALID_CLAMP)
+		return 0;
+	if (why) {
+		va_start(ap, fmt);
+		vsnprintf(why, len, fmt, ap);
+		va_end(ap);
+	}
+	return -1;
 }
 
 int
 rf__check_pixel(const struct rf__check *c, float *px, int wall, enum rf_invalid policy,
                 char *why, size_t whylen)
 {
-	int result = 0;
+	int result = 0, r;
 	size_t i;
 
 	for (i = 0; i < c->n; i++) {
@@ -208,36 +220,24 @@ rf__check_pixel(const struct rf__check *c, float *px, int wall, enum rf_invalid 
 			/* Any sign (behind the point), +-inf (nothing hit). */
 			if (!isnan(*v))
 				continue;
-			if (policy == RF_INVALID_ERROR) {
-				describe(why, whylen, it->name, *v, ", not a distance");
-				return -1;
-			}
-			if (policy == RF_INVALID_ZERO)
-				return 2;
+			if ((r = broken(policy, why, whylen, "channel '%s' is %g, not a distance",
+			                it->name, (double)*v)))
+				return r;
 			*v = INFINITY;
-			result = 1;
 		} else if (it->kind == RF__CHECK_UNIT) {
 			if (*v >= 0.0f && *v <= 1.0f)
 				continue;
-			if (policy == RF_INVALID_ERROR) {
-				describe(why, whylen, it->name, *v, ", outside [0, 1]");
-				return -1;
-			}
-			if (policy == RF_INVALID_ZERO)
-				return 2;
+			if ((r = broken(policy, why, whylen, "channel '%s' is %g, outside [0, 1]",
+			                it->name, (double)*v)))
+				return r;
 			*v = *v > 0.0f ? (*v < 1.0f ? *v : 1.0f) : 0.0f;
-			result = 1;
 		} else if (it->kind == RF__CHECK_FINITE) {
 			if (isfinite(*v))
 				continue;
-			if (policy == RF_INVALID_ERROR) {
-				describe(why, whylen, it->name, *v, "");
-				return -1;
-			}
-			if (policy == RF_INVALID_ZERO)
-				return 2;
+			if ((r = broken(policy, why, whylen, "channel '%s' is %g", it->name,
+			                (double)*v)))
+				return r;
 			*v = isnan(*v) ? 0.0f : *v > 0.0f ? FLT_MAX : -FLT_MAX;
-			result = 1;
 		} else {
 			float *x = px + it->at[0], *y = px + it->at[1], *z = px + it->at[2];
 			float l2 = *x * *x + *y * *y + *z * *z;
@@ -245,28 +245,23 @@ rf__check_pixel(const struct rf__check *c, float *px, int wall, enum rf_invalid 
 
 			if (isfinite(l2) && l2 >= FLT_MIN)
 				continue;
-			if (policy == RF_INVALID_ERROR) {
-				if (why)
-					snprintf(why, whylen, "%s is (%g, %g, %g), %s", it->name,
-					         (double)*x, (double)*y, (double)*z,
-					         !isfinite(*x) || !isfinite(*y) || !isfinite(*z)
-					                 ? "not finite"
-					         : *x == 0.0f && *y == 0.0f && *z == 0.0f
-					                 ? "not a direction"
-					         : l2 < FLT_MIN ? "too short to normalise in float"
-					                        : "too long to normalise in float");
-				return -1;
-			}
+			if ((r = broken(policy, why, whylen, "%s is (%g, %g, %g), %s", it->name,
+			                (double)*x, (double)*y, (double)*z,
+			                !isfinite(*x) || !isfinite(*y) || !isfinite(*z) ? "not finite"
+			                : *x == 0.0f && *y == 0.0f && *z == 0.0f ? "not a direction"
+			                : l2 < FLT_MIN ? "too short to normalise in float"
+			                               : "too long to normalise in float")))
+				return r;
 			dl = isfinite(*x) && isfinite(*y) && isfinite(*z)
 			             ? sqrt((double)*x * *x + (double)*y * *y + (double)*z * *z)
 			             : 0.0;
-			if (policy == RF_INVALID_ZERO || !(dl > 0.0))
-				return 2;
+			if (!(dl > 0.0))
+				return 2; /* no direction to keep */
 			*x = (float)(*x / dl);
 			*y = (float)(*y / dl);
 			*z = (float)(*z / dl);
-			result = 1;
 		}
+		result = 1;
 	}
 	return result;
 }
