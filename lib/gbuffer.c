@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "pool.h"
 #include "scene_internal.h"
 
 enum {
@@ -30,7 +31,6 @@ static const struct {
 	{ "albedo", CH_ALBEDO_R },
 };
 
-#define THREADS_MAX 256
 
 /* Pixels (inclusive) outside of which a ray cannot meet an object. */
 struct bounds {
@@ -143,7 +143,7 @@ rf_gbuffer_create(rf_gbuffer **gp, const rf_scene *s, size_t width, size_t heigh
 	g->s = s;
 	g->width = width;
 	g->height = height;
-	g->nthreads = nthreads < 1 ? 1 : nthreads > THREADS_MAX ? THREADS_MAX : nthreads;
+	g->nthreads = nthreads < 1 ? 1 : nthreads > RF__THREADS_MAX ? RF__THREADS_MAX : nthreads;
 	if ((rc = select_channels(g, channels, err, errlen)) < 0) {
 		free(g);
 		return rc;
@@ -339,9 +339,9 @@ work(void *arg)
 int
 rf_gbuffer_render(rf_gbuffer *g, float *out, size_t y, size_t nrows)
 {
-	struct worker w[THREADS_MAX];
-	pthread_t tid[THREADS_MAX];
-	unsigned char running[THREADS_MAX] = { 0 };
+	struct worker w[RF__THREADS_MAX];
+	pthread_t tid[RF__THREADS_MAX];
+	unsigned char running[RF__THREADS_MAX] = { 0 };
 	int n = g->nthreads, t;
 
 	if (y > g->height || nrows > g->height - y)

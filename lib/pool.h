@@ -4,6 +4,10 @@
 
 #include <stddef.h>
 
+/* The most threads any stage, pass or renderer runs (-j and
+ * REFLECT_THREADS are held to it). */
+#define RF__THREADS_MAX 256
+
 struct rf__pool;
 
 /* Runs task `task` on thread `thread` (0 is the caller; below

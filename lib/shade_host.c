@@ -14,7 +14,6 @@
 #include "pyramid_simd.h"
 #include "reflect/shading.h"
 
-#define THREADS_MAX 256
 
 /* Input channels; -1 when absent (only the optional ones may be). */
 enum {
@@ -97,8 +96,8 @@ rf_shade_create(rf_shade **sp, const struct rf_shade_options *o)
 	s->final = o && o->final;
 	s->mode_radiance = o && o->mode_radiance;
 	s->nthreads = o && o->nthreads > 1 ? o->nthreads : 1;
-	if (s->nthreads > THREADS_MAX)
-		s->nthreads = THREADS_MAX;
+	if (s->nthreads > RF__THREADS_MAX)
+		s->nthreads = RF__THREADS_MAX;
 	s->nout = s->final ? OUT_COUNT : OUT_R;
 	if (rf__pool_new(&s->pool, s->nthreads) < 0) {
 		free(s);

@@ -79,8 +79,8 @@ rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
 	*sp = NULL;
 	if (nthreads < 1)
 		nthreads = 1;
-	if (nthreads > 256)
-		nthreads = 256;
+	if (nthreads > RF__THREADS_MAX)
+		nthreads = RF__THREADS_MAX;
 	if (!(s = calloc(1, sizeof(*s))))
 		return RF_ENOMEM;
 	s->p = p;
