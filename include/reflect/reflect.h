@@ -195,85 +195,6 @@ RF_EXTERN int rf_plugin_scan(rf_plugin_visit_fn fn, void *arg);
 RF_EXTERN int rf_plugin_parse_params(const struct rf_plugin *p, const char *spec,
                                      double *values, char *err, size_t errlen);
 
-/*
- * Images through OpenImageIO (EXR, HDR, PNG, JPEG, TIFF and the rest),
- * but for writing PNG (8 and 16 bits, 1 to 4 channels) and scanline
- * OpenEXR (half and float), which libreflect does itself, without loading
- * OpenImageIO.  Reading loads the whole first subimage as floats, rows
- * top first; 8- and 16-bit sRGB files are returned as stored (0..1), not
- * linearised.
- */
-typedef struct rf_image rf_image;
-
-/* Image I/O lives in a module loaded on first use; 0 when it loads, else
- * RF_EIMAGE and err saying why (the other functions report it too).
- * Writing PNG and OpenEXR does not need it. */
-RF_EXTERN int rf_image_module_check(char *err, size_t errlen);
-
-RF_EXTERN int rf_image_read(rf_image **img, const char *path, char *err,
-                            size_t errlen);
-RF_EXTERN void rf_image_free(rf_image *img);
-RF_EXTERN size_t rf_image_width(const rf_image *img);
-RF_EXTERN size_t rf_image_height(const rf_image *img);
-RF_EXTERN size_t rf_image_nchannels(const rf_image *img);
-RF_EXTERN const char *rf_image_channel(const rf_image *img, size_t i);
-RF_EXTERN const float *rf_image_pixels(const rf_image *img);
-/* A string attribute of the file (e.g. "envmap", "oiio:ColorSpace"), or
- * NULL. */
-RF_EXTERN const char *rf_image_attribute(const rf_image *img, const char *name);
-
-/* Writing in blocks of rows, so a frame never has to be held whole. */
-typedef struct rf_image_writer rf_image_writer;
-
-enum rf_pixel_type {
-	RF_PIXEL_FLOAT = 0,
-	RF_PIXEL_HALF = 1,
-	RF_PIXEL_UINT8 = 2,
-	RF_PIXEL_UINT16 = 3
-};
-
-RF_EXTERN int rf_image_writer_open(rf_image_writer **w, const char *path,
-                                   size_t width, size_t height, size_t nchannels,
-                                   const char *const *names, enum rf_pixel_type type,
-                                   char *err, size_t errlen);
-/* Rows y .. y+nrows-1 as floats, channels interleaved; rows in order. */
-RF_EXTERN int rf_image_writer_write_rows(rf_image_writer *w, size_t y, size_t nrows,
-                                         const float *pixels, char *err,
-                                         size_t errlen);
-/* Closes the file; returns its last error. */
-RF_EXTERN int rf_image_writer_close(rf_image_writer *w, char *err, size_t errlen);
-/* The pixel type a file name's extension stores best (8-bit for PNG and
- * JPEG, float for EXR and HDR), or -1 for an extension no plugin writes.
- * PNG and EXR are answered without loading the module. */
-RF_EXTERN int rf_image_type_for_path(const char *path);
-
-/* A MIP-mapped image (OpenEXR, tiled): levels 0..nlevels-1 of sizes
- * w[k] x h[k], all with the same channels; string attributes as
- * NULL-terminated key, value pairs. */
-RF_EXTERN int rf_image_write_levels(const char *path, size_t nlevels, const size_t *w,
-                                    const size_t *h, size_t nchannels,
-                                    const char *const *names,
-                                    const float *const *pixels,
-                                    const char *const *attributes,
-                                    enum rf_pixel_type type, char *err, size_t errlen);
-/* The number of MIP levels of a file's first image (1 when it has none). */
-RF_EXTERN int rf_image_count_levels(const char *path, size_t *nlevels, char *err,
-                                    size_t errlen);
-/* Reads one MIP level of a file's first image. */
-RF_EXTERN int rf_image_read_level(rf_image **img, const char *path, size_t level,
-                                  char *err, size_t errlen);
-
-/* Display encoding: exposure scale, an optional tone curve, sRGB. */
-enum rf_tone {
-	RF_TONE_NONE = 0,  /* clamp to [0, 1] only */
-	RF_TONE_FILMIC = 1 /* a fitted ACES-like filmic curve */
-};
-
-/* Encodes the first ncolour of every pixel's nchannels in place; other
- * channels (alpha) are only clamped.  NaN becomes 0. */
-RF_EXTERN void rf_display_encode(float *values, size_t npix, size_t nchannels,
-                                 size_t ncolour, float scale, enum rf_tone tone,
-                                 int srgb);
 RF_EXTERN float rf_srgb_encode(float linear);
 RF_EXTERN float rf_srgb_decode(float encoded);
 
@@ -336,5 +257,8 @@ RF_EXTERN size_t rf_stage_invalid_count(const rf_stage *s);
 #ifdef __cplusplus
 }
 #endif
+
+/* Images have their own header; it is part of this one. */
+#include "reflect/image.h"
 
 #endif
