@@ -70,7 +70,7 @@ main(int argc, char **argv)
 	};
 	struct import_opts o;
 	struct source src[MAX_FILES];
-	struct rf_import *im;
+	rf_import *im;
 	struct rf_writer_options wopt;
 	rf_writer *w;
 	rf_header *h;

@@ -113,7 +113,7 @@ find_input(struct input *in, size_t nin, const char *const *paths, size_t nfiles
 }
 
 static int
-add_output(struct rf_import *im, const char *name, struct source s, char *err,
+add_output(rf_import *im, const char *name, struct source s, char *err,
            size_t errlen)
 {
 	struct source *grown;
@@ -157,7 +157,7 @@ ends_with(const char *s, const char *suffix)
 
 /* Output `out` from input `spec` (NAME or FILE:NAME), marked as used. */
 static int
-map_input(struct rf_import *im, const rf_image *const *images, struct input *in, size_t nin,
+map_input(rf_import *im, const rf_image *const *images, struct input *in, size_t nin,
           const char *const *paths, size_t n, const char *spec, const char *out, char *err,
           size_t errlen)
 {
@@ -170,11 +170,11 @@ map_input(struct rf_import *im, const rf_image *const *images, struct input *in,
 }
 
 int
-rf_import_new(struct rf_import **imp, const rf_image *const *images,
+rf_import_new(rf_import **imp, const rf_image *const *images,
               const char *const *paths, size_t n, const struct rf_import_options *o,
               char *err, size_t errlen)
 {
-	struct rf_import *im;
+	rf_import *im;
 	struct input *in = NULL;
 	size_t nin = 0, i, j, f, c;
 	int rc = RF_EINVAL;
@@ -350,7 +350,7 @@ fail:
 }
 
 void
-rf_import_free(struct rf_import *im)
+rf_import_free(rf_import *im)
 {
 	if (!im)
 		return;
@@ -360,13 +360,13 @@ rf_import_free(struct rf_import *im)
 }
 
 const rf_header *
-rf_import_header(const struct rf_import *im)
+rf_import_header(const rf_import *im)
 {
 	return im->h;
 }
 
 void
-rf_import_rows(const struct rf_import *im, size_t y, size_t n, float *out)
+rf_import_rows(const rf_import *im, size_t y, size_t n, float *out)
 {
 	size_t npix = n * im->width, first = y * im->width, k, c, t;
 

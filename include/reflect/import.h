@@ -32,22 +32,22 @@ struct rf_import_options {
 	const char *roughness; /* a number (constant) or an input channel */
 };
 
-struct rf_import;
+typedef struct rf_import rf_import;
 
 /* Builds the mapping for n images of one size.  Output channels: the -c
  * maps in order, then the preset's channels found in the input, then
  * every other input channel under its own name (names found in several
  * images are left out unless mapped), then V from the camera when no V
  * is given, then a constant roughness when asked for. */
-RF_EXTERN int rf_import_new(struct rf_import **im, const rf_image *const *images,
+RF_EXTERN int rf_import_new(rf_import **im, const rf_image *const *images,
                             const char *const *paths, size_t n,
                             const struct rf_import_options *o, char *err,
                             size_t errlen);
-RF_EXTERN void rf_import_free(struct rf_import *im);
+RF_EXTERN void rf_import_free(rf_import *im);
 /* The output frame's header: size and channels. */
-RF_EXTERN const rf_header *rf_import_header(const struct rf_import *im);
+RF_EXTERN const rf_header *rf_import_header(const rf_import *im);
 /* Rows y .. y+n-1 of the output, channels interleaved. */
-RF_EXTERN void rf_import_rows(const struct rf_import *im, size_t y, size_t n,
+RF_EXTERN void rf_import_rows(const rf_import *im, size_t y, size_t n,
                               float *out);
 
 #ifdef __cplusplus
