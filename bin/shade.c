@@ -384,7 +384,7 @@ mode_radiance(const struct rf_plugin *p)
 {
 	if (writes(p, RF_SHADE_ROUGHNESS))
 		return 0;
-	if (writes(p, "spec.R") && writes(p, "spec.G") && writes(p, "spec.B"))
+	if (writes(p, RF_SHADE_SPEC_R) && writes(p, RF_SHADE_SPEC_G) && writes(p, RF_SHADE_SPEC_B))
 		return 1;
 	die("mode '%s' writes neither '%s' nor spec.R spec.G spec.B: it is not a "
 	    "mode reflect-shade can use", p->name, RF_SHADE_ROUGHNESS);

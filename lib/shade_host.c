@@ -30,13 +30,13 @@ static const char *const in_names[IN_COUNT] = {
 	"mask", "P.X", "P.Y", "P.Z",
 	"roughness", "N.X", "N.Y", "N.Z", "V.X", "V.Y", "V.Z",
 	"metallic", "albedo.R", "albedo.G", "albedo.B",
-	"spec.R", "spec.G", "spec.B"
+	RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHADE_SPEC_B
 };
 
 enum { OUT_SR, OUT_SG, OUT_SB, OUT_R, OUT_G, OUT_B, OUT_COUNT };
 
 static const char *const out_names[OUT_COUNT] = {
-	"spec.R", "spec.G", "spec.B", "R", "G", "B"
+	RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHADE_SPEC_B, "R", "G", "B"
 };
 
 struct rf_shade {

@@ -19,7 +19,7 @@ static const struct rf_param params[NPARAMS] = {
 };
 
 static const char *const inputs[] = { "roughness", "hit.dist", NULL };
-static const char *const outputs[] = { "roughness.eff", NULL };
+static const char *const outputs[] = { RF_SHADE_ROUGHNESS, NULL };
 
 static double
 approx(double pr, double d, int clamp, double distance)
@@ -53,13 +53,22 @@ run(void *state, const struct rf_span *span)
 }
 
 static const struct rf_plugin descriptor = {
-	RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR, sizeof(struct rf_plugin),
-	RF_KIND_SHADE, 0,
-	"approx",
-	"the write-up's contact hardening: roughness grows with the hit distance",
-	"1.0", "reflect developers", "MIT",
-	NPARAMS, params, inputs, outputs,
-	create, run, shade_mode_destroy,
+	.abi_major = RF_PLUGIN_ABI_MAJOR,
+	.abi_minor = RF_PLUGIN_ABI_MINOR,
+	.size = sizeof(struct rf_plugin),
+	.kind = RF_KIND_SHADE,
+	.name = "approx",
+	.summary = "the write-up's contact hardening: roughness grows with the hit distance",
+	.version = "1.0",
+	.author = "reflect developers",
+	.license = "MIT",
+	.nparams = NPARAMS,
+	.params = params,
+	.inputs = inputs,
+	.outputs = outputs,
+	.create = create,
+	.run = run,
+	.destroy = shade_mode_destroy,
 };
 
 RF_PLUGIN_DEFINE(descriptor)

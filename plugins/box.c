@@ -62,13 +62,20 @@ destroy(void *state)
 }
 
 static const struct rf_plugin descriptor = {
-	RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR, sizeof(struct rf_plugin),
-	RF_KIND_PROJECTION, 0,
-	"box",
-	"box projection: look up where the reflected ray leaves the probe box",
-	"1.0", "reflect developers", "MIT",
-	0, NULL, inputs, outputs,
-	create, run, destroy,
+	.abi_major = RF_PLUGIN_ABI_MAJOR,
+	.abi_minor = RF_PLUGIN_ABI_MINOR,
+	.size = sizeof(struct rf_plugin),
+	.kind = RF_KIND_PROJECTION,
+	.name = "box",
+	.summary = "box projection: look up where the reflected ray leaves the probe box",
+	.version = "1.0",
+	.author = "reflect developers",
+	.license = "MIT",
+	.inputs = inputs,
+	.outputs = outputs,
+	.create = create,
+	.run = run,
+	.destroy = destroy,
 };
 
 RF_PLUGIN_DEFINE(descriptor)

@@ -22,7 +22,7 @@ static const struct rf_param params[NPARAMS] = {
 static const char *const inputs[] = {
 	"roughness", "hit.dist", "N.X", "N.Y", "N.Z", "V.X", "V.Y", "V.Z", NULL
 };
-static const char *const outputs[] = { "roughness.eff", NULL };
+static const char *const outputs[] = { RF_SHADE_ROUGHNESS, NULL };
 
 /* x^n for a whole n by squaring: the default power 4 is two multiplies
  * where pow() costs more than the rest of the mode. */
@@ -75,13 +75,22 @@ run(void *state, const struct rf_span *span)
 }
 
 static const struct rf_plugin descriptor = {
-	RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR, sizeof(struct rf_plugin),
-	RF_KIND_SHADE, 0,
-	"godot",
-	"godot's fresnel-aware contact hardening, from pr^4 at contact to pr",
-	"1.0", "reflect developers", "MIT",
-	NPARAMS, params, inputs, outputs,
-	create, run, shade_mode_destroy,
+	.abi_major = RF_PLUGIN_ABI_MAJOR,
+	.abi_minor = RF_PLUGIN_ABI_MINOR,
+	.size = sizeof(struct rf_plugin),
+	.kind = RF_KIND_SHADE,
+	.name = "godot",
+	.summary = "godot's fresnel-aware contact hardening, from pr^4 at contact to pr",
+	.version = "1.0",
+	.author = "reflect developers",
+	.license = "MIT",
+	.nparams = NPARAMS,
+	.params = params,
+	.inputs = inputs,
+	.outputs = outputs,
+	.create = create,
+	.run = run,
+	.destroy = shade_mode_destroy,
 };
 
 RF_PLUGIN_DEFINE(descriptor)

@@ -13,7 +13,7 @@
 #include "shade_mode.h"
 
 static const char *const inputs[] = { "roughness", "hit.dist", "probe.dist", NULL };
-static const char *const outputs[] = { "roughness.eff", NULL };
+static const char *const outputs[] = { RF_SHADE_ROUGHNESS, NULL };
 
 static double
 hdrp(double pr, double t, double r_len)
@@ -57,13 +57,20 @@ run(void *state, const struct rf_span *span)
 }
 
 static const struct rf_plugin descriptor = {
-	RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR, sizeof(struct rf_plugin),
-	RF_KIND_SHADE, 0,
-	"hdrp",
-	"frostbite/hdrp distance-based roughness: pr t / |R'|, faded by roughness",
-	"1.0", "reflect developers", "MIT",
-	0, NULL, inputs, outputs,
-	create, run, shade_mode_destroy,
+	.abi_major = RF_PLUGIN_ABI_MAJOR,
+	.abi_minor = RF_PLUGIN_ABI_MINOR,
+	.size = sizeof(struct rf_plugin),
+	.kind = RF_KIND_SHADE,
+	.name = "hdrp",
+	.summary = "frostbite/hdrp distance-based roughness: pr t / |R'|, faded by roughness",
+	.version = "1.0",
+	.author = "reflect developers",
+	.license = "MIT",
+	.inputs = inputs,
+	.outputs = outputs,
+	.create = create,
+	.run = run,
+	.destroy = shade_mode_destroy,
 };
 
 RF_PLUGIN_DEFINE(descriptor)

@@ -2,7 +2,7 @@
 #include "shade_mode.h"
 
 static const char *const inputs[] = { "roughness", NULL };
-static const char *const outputs[] = { "roughness.eff", NULL };
+static const char *const outputs[] = { RF_SHADE_ROUGHNESS, NULL };
 
 static int
 create(const struct rf_host *host, const double *values, void **state,
@@ -22,13 +22,20 @@ run(void *state, const struct rf_span *span)
 }
 
 static const struct rf_plugin descriptor = {
-	RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR, sizeof(struct rf_plugin),
-	RF_KIND_SHADE, 0,
-	"none",
-	"classic box projection: the material's roughness, no contact hardening",
-	"1.0", "reflect developers", "MIT",
-	0, NULL, inputs, outputs,
-	create, run, shade_mode_destroy,
+	.abi_major = RF_PLUGIN_ABI_MAJOR,
+	.abi_minor = RF_PLUGIN_ABI_MINOR,
+	.size = sizeof(struct rf_plugin),
+	.kind = RF_KIND_SHADE,
+	.name = "none",
+	.summary = "classic box projection: the material's roughness, no contact hardening",
+	.version = "1.0",
+	.author = "reflect developers",
+	.license = "MIT",
+	.inputs = inputs,
+	.outputs = outputs,
+	.create = create,
+	.run = run,
+	.destroy = shade_mode_destroy,
 };
 
 RF_PLUGIN_DEFINE(descriptor)

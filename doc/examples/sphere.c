@@ -168,14 +168,23 @@ destroy(void *state)
 
 /* The descriptor: the ABI version and size first, as the header says. */
 static const struct rf_plugin descriptor = {
-	RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR, sizeof(struct rf_plugin),
-	RF_KIND_PROJECTION, 0,
-	"sphere", /* equal to the file name, sphere.so */
-	"sphere proxy: look up where the reflected ray leaves a sphere around the "
-	"capture point",
-	"1.0", "reflect developers", "public domain",
-	NPARAMS, params, inputs, outputs,
-	create, run, destroy,
+	.abi_major = RF_PLUGIN_ABI_MAJOR,
+	.abi_minor = RF_PLUGIN_ABI_MINOR,
+	.size = sizeof(struct rf_plugin),
+	.kind = RF_KIND_PROJECTION,
+	.name = "sphere", /* equal to the file name, sphere.so */
+	.summary = "sphere proxy: look up where the reflected ray leaves a sphere "
+	           "around the capture point",
+	.version = "1.0",
+	.author = "reflect developers",
+	.license = "public domain",
+	.nparams = NPARAMS,
+	.params = params,
+	.inputs = inputs,
+	.outputs = outputs,
+	.create = create,
+	.run = run,
+	.destroy = destroy,
 };
 
 RF_PLUGIN_DEFINE(descriptor)

@@ -50,6 +50,14 @@ enum rf_plugin_kind {
 	RF_KIND_ACCUMULATE = 4  /* reflect-accumulate: combines frames */
 };
 
+/* What a kind writes, named once for hosts and plugins alike.  A shade
+ * mode writes either the effective perceptual roughness, which the host
+ * turns into a lod and samples, or the radiance itself. */
+#define RF_SHADE_ROUGHNESS "roughness.eff"
+#define RF_SHADE_SPEC_R "spec.R"
+#define RF_SHADE_SPEC_G "spec.G"
+#define RF_SHADE_SPEC_B "spec.B"
+
 /* Parameter flags; a bit the host does not know makes it refuse the plugin. */
 #define RF_PARAM_INTEGER 0x1u /* only whole numbers are accepted */
 #define RF_PARAM_BOOL 0x2u    /* 0 or 1; min 0, max 1 */

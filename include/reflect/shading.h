@@ -11,6 +11,7 @@
 
 #include "reflect/reflect.h"
 #include "reflect/envmap.h"
+#include "reflect/plugin.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -46,8 +47,7 @@ RF_EXTERN void rf_dfg_integrate(double n_dot_v, double roughness, unsigned sampl
 
 /* ---- the sampling pass of reflect-shade -------------------------------- */
 
-/* The channel a shade mode writes: the effective perceptual roughness. */
-#define RF_SHADE_ROUGHNESS "roughness.eff"
+/* RF_SHADE_ROUGHNESS, the channel a shade mode writes, is in plugin.h. */
 
 /*
  * A pass over a stream that already has RF_SHADE_ROUGHNESS and the
