@@ -258,9 +258,9 @@ make_temp(rf_image_writer *w, char *err, size_t errlen)
 	size_t dirlen = (size_t)(base - w->path), suffix = dot ? strlen(dot) : 0;
 	struct stat st;
 	mode_t mask;
-	int fd;
+	int fd, exists = lstat(w->path, &st) == 0;
 
-	if (lstat(w->path, &st) == 0 && !S_ISREG(st.st_mode))
+	if (exists && !S_ISREG(st.st_mode))
 		return 0;
 	if (!(w->temp = malloc(strlen(w->path) + 10))) {
 		rf__format(err, errlen, "cannot write '%s': out of memory", w->path);
@@ -275,7 +275,7 @@ make_temp(rf_image_writer *w, char *err, size_t errlen)
 		return RF_EIO;
 	}
 	/* The mode a new file would get, or the one the old file has. */
-	if (lstat(w->path, &st) == 0) {
+	if (exists) {
 		(void)fchmod(fd, st.st_mode & 07777);
 	} else {
 		mask = umask(0);
