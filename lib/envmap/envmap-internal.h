@@ -1,0 +1,19 @@
+/* Internal to libreflect: a cube's levels as the other areas fill and
+ * read them. */
+#ifndef REFLECT_ENVMAP_INTERNAL_H
+#define REFLECT_ENVMAP_INTERNAL_H
+
+#include "util/util.h"
+#include "reflect/envmap.h"
+
+/* Fills level k of a cube from an N x 6N image of that level's size,
+ * texel for texel (first 3 channels; non-finite values become 0 and are
+ * counted). */
+int rf__cube_level_from_pixels(rf_cubemap *c, size_t level, const float *px,
+                               size_t w, size_t h, size_t nch, size_t *nonfinite,
+                               char *err, size_t errlen);
+/* A face of a cube level with its one-texel border: (n + 2)^2 RGB
+ * texels, rows top first, starting at border texel (-1, -1). */
+const float *rf__cubemap_padded_face(const rf_cubemap *c, size_t level, int face);
+
+#endif

@@ -1,0 +1,457 @@
+/*
+ * Image files, through a module that libreflect loads the first time an
+ * image is read or written.  OpenImageIO brings some 250 shared libraries
+ * with it; linking them into every tool would cost each one a quarter of a
+ * second and 130 MB before its first pixel, and most stages of a pipeline
+ * never touch an image file.
+ *
+ * PNG and scanline OpenEXR, the two types a pipeline writes, are written
+ * by libreflect itself (image_png.c, image_exr.c) and never load the
+ * module: loading it would cost the last stage of every pipeline those
+ * 130 MB.  Everything else, and all reading, goes through the module.
+ */
+#include <ctype.h>
+#include <dlfcn.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "image/module.h"
+#include "image/writers.h"
+#include "util/util.h"
+
+#ifndef REFLECT_MODULEDIR
+#define REFLECT_MODULEDIR "/usr/local/lib/reflect"
+#endif
+
+static pthread_once_t once = PTHREAD_ONCE_INIT;
+static const struct rf__image_api *api;
+static char load_error[1024];
+
+static const struct rf__image_api *
+try_module(const char *path)
+{
+	const struct rf__image_api *(*entry)(void);
+	const struct rf__image_api *a;
+	void *handle, *sym;
+
+	if (!(handle = dlopen(path, RTLD_NOW | RTLD_LOCAL))) {
+		rf__format(load_error, sizeof(load_error), "cannot load the image module "
+		           "'%s': %s", path, dlerror());
+		return NULL;
+	}
+	if (!(sym = dlsym(handle, RF_IMAGE_MODULE_ENTRY))) {
+		rf__format(load_error, sizeof(load_error), "'%s' is not reflect's image "
+		           "module", path);
+		dlclose(handle);
+		return NULL;
+	}
+	memcpy(&entry, &sym, sizeof(entry));
+	a = entry();
+	if (!a || a->size != sizeof(struct rf__image_api)) {
+		rf__format(load_error, sizeof(load_error), "'%s' is an image module of "
+		           "another build of reflect; reinstall reflect", path);
+		dlclose(handle);
+		return NULL;
+	}
+	return a; /* kept loaded for the life of the process */
+}
+
+/* REFLECT_IMAGE_MODULE, else next to libreflect itself (an uninstalled
+ * build keeps both in lib/.libs), else the installed module directory. */
+static void
+load(void)
+{
+	const char *env = getenv("REFLECT_IMAGE_MODULE");
+	char path[4096];
+	Dl_info info;
+
+	if (env && *env) {
+		api = try_module(env);
+		return;
+	}
+	if (dladdr((void *)load, &info) && info.dli_fname && strrchr(info.dli_fname, '/')) {
+		const char *slash = strrchr(info.dli_fname, '/');
+		struct stat st;
+
+		rf__format(path, sizeof(path), "%.*s/%s", (int)(slash - info.dli_fname),
+		           info.dli_fname, RF_IMAGE_MODULE_NAME);
+		if ((api = try_module(path)))
+			return;
+		/* One that is there but will not load says why; the installed
+		 * one is the fallback only for a module that is not there. */
+		if (stat(path, &st) == 0)
+			return;
+	}
+	rf__format(path, sizeof(path), "%s/%s", REFLECT_MODULEDIR, RF_IMAGE_MODULE_NAME);
+	api = try_module(path);
+}
+
+static const struct rf__image_api *
+module(char *err, size_t errlen)
+{
+	pthread_once(&once, load);
+	if (!api && err)
+		rf__format(err, errlen, "%s", load_error);
+	return api;
+}
+
+int
+rf_image_module_check(char *err, size_t errlen)
+{
+	return module(err, errlen) ? 0 : RF_EIMAGE;
+}
+
+int
+rf_image_read(rf_image **img, const char *path, char *err, size_t errlen)
+{
+	return rf_image_read_level(img, path, 0, err, errlen);
+}
+
+int
+rf_image_read_level(rf_image **img, const char *path, size_t level, char *err,
+                    size_t errlen)
+{
+	int rc;
+
+	*img = NULL;
+	if ((rc = rf__regular_file(path, err, errlen)) < 0)
+		return rc;
+	return module(err, errlen) ? api->read_level(img, path, level, err, errlen)
+	                           : RF_EIMAGE;
+}
+
+int
+rf_image_count_levels(const char *path, size_t *nlevels, char *err, size_t errlen)
+{
+	int rc;
+
+	if ((rc = rf__regular_file(path, err, errlen)) < 0)
+		return rc;
+	return module(err, errlen) ? api->count_levels(path, nlevels, err, errlen)
+	                           : RF_EIMAGE;
+}
+
+/* An image exists only if the module made it, so it is loaded here. */
+void
+rf_image_free(rf_image *img)
+{
+	if (img)
+		api->free_image(img);
+}
+
+size_t rf_image_width(const rf_image *img) { return api->width(img); }
+size_t rf_image_height(const rf_image *img) { return api->height(img); }
+size_t rf_image_nchannels(const rf_image *img) { return api->nchannels(img); }
+const char *rf_image_channel(const rf_image *img, size_t i) { return api->channel(img, i); }
+const float *rf_image_pixels(const rf_image *img) { return api->pixels(img); }
+
+const char *
+rf_image_attribute(const rf_image *img, const char *name)
+{
+	return api->attribute(img, name);
+}
+
+/* The extension of a file name in lowercase, "" when it has none (or one
+ * too long to be one). */
+static void
+extension(const char *path, char ext[8])
+{
+	const char *dot = strrchr(path, '.');
+	size_t i;
+
+	ext[0] = '\0';
+	if (!dot || strchr(dot, '/') || strlen(dot + 1) >= 8)
+		return;
+	for (i = 0; dot[1 + i]; i++)
+		ext[i] = (char)tolower((unsigned char)dot[1 + i]);
+	ext[i] = '\0';
+}
+
+int
+rf_image_type_for_path(const char *path)
+{
+	char ext[8];
+
+	extension(path, ext);
+	if (!strcmp(ext, "png"))
+		return RF_PIXEL_UINT8;
+	if (!strcmp(ext, "exr"))
+		return RF_PIXEL_FLOAT;
+	return module(NULL, 0) ? api->type_for_path(path) : -1;
+}
+
+/* Who writes a file: libreflect (PNG at 8 and 16 bits, 1 to 4 channels;
+ * OpenEXR in half and float), else the module (PNG of floats, say, which
+ * OpenImageIO converts its own way). */
+enum writer_kind { WRITER_MODULE, WRITER_PNG, WRITER_EXR };
+
+struct rf_image_writer {
+	enum writer_kind kind;
+	union {
+		struct rf__module_writer *module;
+		struct rf__png_writer *png;
+		struct rf__exr_writer *exr;
+	} u;
+	size_t height, next_row;
+	char *temp;               /* written here, renamed to path at close */
+	struct rf_image_writer *next_temp;
+	char path[];
+};
+
+/*
+ * An image is written to a temporary file beside its path and renamed
+ * over it once whole, as git and sqlite write theirs: a write that fails
+ * (a full disk, input that ends early) leaves an existing file as it
+ * was, and a reader never sees half an image.  The temporary file keeps
+ * the path's extension, since the module picks the format by it.  One
+ * that is still open when the process exits (a tool dying on bad input)
+ * is removed then.  Devices, FIFOs and symbolic links are written in
+ * place: a rename would replace them.
+ */
+static pthread_mutex_t temps_lock = PTHREAD_MUTEX_INITIALIZER;
+static struct rf_image_writer *temps;
+
+static void
+remove_temps(void)
+{
+	struct rf_image_writer *w;
+
+	pthread_mutex_lock(&temps_lock);
+	for (w = temps; w; w = w->next_temp)
+		unlink(w->temp);
+	temps = NULL;
+	pthread_mutex_unlock(&temps_lock);
+}
+
+static void
+register_removal(void)
+{
+	atexit(remove_temps);
+}
+
+static void
+forget_temp(rf_image_writer *w)
+{
+	struct rf_image_writer **p;
+
+	pthread_mutex_lock(&temps_lock);
+	for (p = &temps; *p && *p != w; p = &(*p)->next_temp)
+		;
+	if (*p)
+		*p = w->next_temp;
+	pthread_mutex_unlock(&temps_lock);
+}
+
+/* w->temp made and registered; 0, or RF_EIO with a message. */
+static int
+make_temp(rf_image_writer *w, char *err, size_t errlen)
+{
+	static pthread_once_t registered = PTHREAD_ONCE_INIT;
+	const char *slash = strrchr(w->path, '/'), *base = slash ? slash + 1 : w->path;
+	const char *dot = strrchr(base, '.');
+	size_t dirlen = (size_t)(base - w->path), suffix = dot ? strlen(dot) : 0;
+	struct stat st;
+	mode_t mask;
+	int fd, exists = lstat(w->path, &st) == 0;
+
+	if (exists && !S_ISREG(st.st_mode))
+		return 0;
+	if (!(w->temp = malloc(strlen(w->path) + 10))) {
+		rf__format(err, errlen, "cannot write '%s': out of memory", w->path);
+		return RF_ENOMEM;
+	}
+	sprintf(w->temp, "%.*s.%.*s.XXXXXX%s", (int)dirlen, w->path,
+	        (int)(strlen(base) - suffix), base, dot ? dot : "");
+	if ((fd = mkostemps(w->temp, (int)suffix, O_CLOEXEC)) < 0) {
+		rf__format(err, errlen, "cannot write '%s': %s", w->path, strerror(errno));
+		free(w->temp);
+		w->temp = NULL;
+		return RF_EIO;
+	}
+	/* The mode a new file would get, or the one the old file has. */
+	if (exists) {
+		(void)fchmod(fd, st.st_mode & 07777);
+	} else {
+		mask = umask(0);
+		umask(mask);
+		(void)fchmod(fd, 0666 & ~mask);
+	}
+	close(fd);
+	pthread_once(&registered, register_removal);
+	pthread_mutex_lock(&temps_lock);
+	w->next_temp = temps;
+	temps = w;
+	pthread_mutex_unlock(&temps_lock);
+	return 0;
+}
+
+/* Frees a writer whose file is not to be kept: its temporary file goes. */
+static void
+discard(rf_image_writer *w)
+{
+	if (w->temp) {
+		forget_temp(w);
+		unlink(w->temp);
+		free(w->temp);
+	}
+	free(w);
+}
+
+/* A sub-writer's message names the file it was handed: name the path. */
+static void
+name_path(const rf_image_writer *w, char *err, size_t errlen)
+{
+	char *at, out[1024];
+	size_t tl;
+
+	if (!w->temp || !err || !(at = strstr(err, w->temp)))
+		return;
+	tl = strlen(w->temp);
+	rf__format(out, sizeof(out), "%.*s%s%s", (int)(at - err), err, w->path, at + tl);
+	rf__format(err, errlen, "%s", out);
+}
+
+static enum writer_kind
+writer_kind(const char *path, size_t nchannels, enum rf_pixel_type type)
+{
+	char ext[8];
+
+	extension(path, ext);
+	if (!strcmp(ext, "png") && (type == RF_PIXEL_UINT8 || type == RF_PIXEL_UINT16) &&
+	    nchannels >= 1 && nchannels <= 4)
+		return WRITER_PNG;
+	if (!strcmp(ext, "exr") && (type == RF_PIXEL_HALF || type == RF_PIXEL_FLOAT))
+		return WRITER_EXR;
+	return WRITER_MODULE;
+}
+
+int
+rf_image_writer_open(rf_image_writer **wp, const char *path, size_t width,
+                     size_t height, size_t nchannels, const char *const *names,
+                     enum rf_pixel_type type, char *err, size_t errlen)
+{
+	size_t len = strlen(path);
+	const char *file;
+	rf_image_writer *w;
+	int rc;
+
+	*wp = NULL;
+	if (!(w = calloc(1, sizeof(*w) + len + 1))) {
+		rf__format(err, errlen, "cannot write '%s': out of memory", path);
+		return RF_ENOMEM;
+	}
+	memcpy(w->path, path, len + 1);
+	w->kind = writer_kind(path, nchannels, type);
+	w->height = height;
+	if (w->kind == WRITER_MODULE && !module(err, errlen)) {
+		free(w);
+		return RF_EIMAGE;
+	}
+	if ((rc = make_temp(w, err, errlen)) < 0) {
+		free(w);
+		return rc;
+	}
+	file = w->temp ? w->temp : path;
+	switch (w->kind) {
+	case WRITER_PNG:
+		rc = rf__png_writer_open(&w->u.png, file, width, height, nchannels, type,
+		                         err, errlen);
+		break;
+	case WRITER_EXR:
+		rc = rf__exr_writer_open(&w->u.exr, file, width, height, nchannels, names,
+		                         type, err, errlen);
+		break;
+	default:
+		rc = api->writer_open(&w->u.module, file, width, height, nchannels, names, type,
+		                      err, errlen);
+	}
+	if (rc < 0) {
+		name_path(w, err, errlen);
+		discard(w);
+		return rc;
+	}
+	*wp = w;
+	return 0;
+}
+
+int
+rf_image_writer_write_rows(rf_image_writer *w, size_t y, size_t nrows,
+                           const float *pixels, char *err, size_t errlen)
+{
+	int rc;
+
+	if (y != w->next_row || nrows > w->height - y) {
+		rf__format(err, errlen, "cannot write '%s': rows out of order", w->path);
+		return RF_EINVAL;
+	}
+	switch (w->kind) {
+	case WRITER_PNG:
+		rc = rf__png_writer_write_rows(w->u.png, nrows, pixels, err, errlen);
+		break;
+	case WRITER_EXR:
+		rc = rf__exr_writer_write_rows(w->u.exr, nrows, pixels, err, errlen);
+		break;
+	default:
+		rc = api->writer_write_rows(w->u.module, y, nrows, pixels, err, errlen);
+	}
+	if (rc == 0)
+		w->next_row += nrows;
+	else
+		name_path(w, err, errlen);
+	return rc;
+}
+
+int
+rf_image_writer_close(rf_image_writer *w, char *err, size_t errlen)
+{
+	int rc;
+
+	if (!w)
+		return 0;
+	switch (w->kind) {
+	case WRITER_PNG:
+		rc = rf__png_writer_close(w->u.png, err, errlen);
+		break;
+	case WRITER_EXR:
+		rc = rf__exr_writer_close(w->u.exr, err, errlen);
+		break;
+	default:
+		rc = api->writer_close(w->u.module, err, errlen);
+	}
+	name_path(w, err, errlen);
+	/* The module says so itself; an incomplete image is the first error. */
+	if (w->next_row != w->height && w->kind != WRITER_MODULE) {
+		rf__format(err, errlen, "cannot write '%s': image is incomplete", w->path);
+		rc = RF_EINVAL;
+	}
+	if (rc == 0 && w->temp && rename(w->temp, w->path) < 0) {
+		rf__format(err, errlen, "cannot write '%s': %s", w->path, strerror(errno));
+		rc = RF_EIO;
+	}
+	if (rc == 0 && w->temp) {
+		forget_temp(w);
+		free(w->temp);
+		free(w);
+	} else {
+		discard(w);
+	}
+	return rc;
+}
+
+int
+rf_image_write_levels(const char *path, size_t nlevels, const size_t *w, const size_t *h,
+                      size_t nchannels, const char *const *names,
+                      const float *const *pixels, const char *const *attributes,
+                      enum rf_pixel_type type, char *err, size_t errlen)
+{
+	return module(err, errlen) ? api->write_levels(path, nlevels, w, h, nchannels,
+	                                               names, pixels, attributes, type,
+	                                               err, errlen)
+	                           : RF_EIMAGE;
+}

@@ -1,0 +1,523 @@
+/* Finding, loading and checking plugins. */
+#include <ctype.h>
+#include <dirent.h>
+#include <dlfcn.h>
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "util/util.h"
+#include "reflect/plugin.h"
+
+#ifndef REFLECT_PLUGINDIR
+#define REFLECT_PLUGINDIR "/usr/local/lib/reflect-1"
+#endif
+
+/* A sanity bound on a descriptor's parameter count (a garbage nparams
+ * would otherwise walk far past the table). */
+#define RF_PARAMS_MAX 256
+
+struct rf_module {
+	void *handle;
+	char *path;
+	const struct rf_plugin *plugin;
+};
+
+/* The end of a member: what a descriptor of some minor version must hold. */
+#define END_OF(type, member) (offsetof(type, member) + sizeof(((type *)0)->member))
+
+/* Size of the descriptor at each minor version of the current major: a
+ * plugin must be at least as large as its own minor version says.  Each
+ * entry is the end of the last field of that version, never sizeof, so
+ * that appending fields for 1.1 leaves the 1.0 entry as it was. */
+static const size_t descriptor_size[RF_PLUGIN_ABI_MINOR + 1] = {
+	END_OF(struct rf_plugin, destroy), /* 1.0 */
+};
+
+/* The tool that loads each kind, for the advice in messages. */
+static const char *
+kind_tool(unsigned kind)
+{
+	switch (kind) {
+	case RF_KIND_PROJECTION:
+		return "reflect-project";
+	case RF_KIND_SHADE:
+		return "reflect-shade";
+	case RF_KIND_OCCLUSION:
+		return "reflect-occlude";
+	case RF_KIND_ACCUMULATE:
+		return "reflect-accumulate";
+	}
+	return "another tool";
+}
+
+const char *
+rf_plugin_kind_name(unsigned kind)
+{
+	switch (kind) {
+	case RF_KIND_PROJECTION:
+		return "projection";
+	case RF_KIND_SHADE:
+		return "shade";
+	case RF_KIND_OCCLUSION:
+		return "occlusion";
+	case RF_KIND_ACCUMULATE:
+		return "accumulate";
+	}
+	return NULL;
+}
+
+static int
+param_name_valid(const char *s)
+{
+	if (!s || !islower((unsigned char)*s))
+		return 0;
+	for (s++; *s; s++)
+		if (!islower((unsigned char)*s) && !isdigit((unsigned char)*s) && *s != '_')
+			return 0;
+	return 1;
+}
+
+static int
+count_choices(const char *choices)
+{
+	int n = 1;
+
+	if (!choices || !*choices)
+		return 0;
+	for (; *choices; choices++)
+		if (*choices == '|')
+			n++;
+	return n;
+}
+
+static int
+channel_list_valid(const char *const *list)
+{
+	size_t i, j;
+
+	if (!list)
+		return 0;
+	for (i = 0; list[i]; i++) {
+		if (i >= RF_CHANNELS_MAX || !rf_channel_name_valid(list[i]))
+			return 0;
+		for (j = 0; j < i; j++)
+			if (!strcmp(list[i], list[j]))
+				return 0; /* two columns of one name */
+	}
+	return 1;
+}
+
+/* The file name without directory and ".so". */
+static void
+file_stem(const char *path, char *out, size_t size)
+{
+	const char *base = strrchr(path, '/');
+	size_t n;
+
+	base = base ? base + 1 : path;
+	n = strlen(base);
+	if (n > 3 && !strcmp(base + n - 3, ".so"))
+		n -= 3;
+	if (n >= size)
+		n = size - 1;
+	memcpy(out, base, n);
+	out[n] = '\0';
+}
+
+/* Every message below reads "plugin 'PATH': what is wrong; the fix", so
+ * that a tool can print it as it is (-m) or after "ignoring " (-l). */
+
+static int
+check_params(const struct rf_plugin *p, const char *path, char *err, size_t errlen)
+{
+	uint32_t i, j;
+
+	if (p->nparams && !p->params) {
+		rf__format(err, errlen, "plugin '%s': its descriptor declares %u "
+		           "parameters but no table; fix the plugin and rebuild it",
+		           path, p->nparams);
+		return RF_EPLUGIN;
+	}
+	if (p->nparams > RF_PARAMS_MAX) {
+		rf__format(err, errlen, "plugin '%s': it declares %u parameters, more "
+		           "than the %d a mode may have; fix the plugin and rebuild it",
+		           path, p->nparams, RF_PARAMS_MAX);
+		return RF_EPLUGIN;
+	}
+	for (i = 0; i < p->nparams; i++) {
+		const struct rf_param *q = &p->params[i];
+		int n = count_choices(q->choices);
+
+		if (!param_name_valid(q->name) || !q->help || !*q->help) {
+			rf__format(err, errlen, "plugin '%s': parameter %u has no valid "
+			           "name ([a-z][a-z0-9_]*) or no help text; fix the "
+			           "plugin and rebuild it", path, i + 1);
+			return RF_EPLUGIN;
+		}
+		if (q->flags & ~RF_PARAM_KNOWN_FLAGS) {
+			rf__format(err, errlen, "plugin '%s': built for plugin ABI "
+			           "%u.%u, its parameter '%s' sets flag bits 0x%x that "
+			           "this ABI does not define (this reflect (%s) supports "
+			           "ABI %d.%d); use only RF_PARAM_INTEGER, RF_PARAM_BOOL "
+			           "and RF_PARAM_CHOICE and rebuild it", path, p->abi_major,
+			           p->abi_minor, q->name, q->flags & ~RF_PARAM_KNOWN_FLAGS,
+			           RF_VERSION_STRING, RF_PLUGIN_ABI_MAJOR,
+			           RF_PLUGIN_ABI_MINOR);
+			return RF_EPLUGIN;
+		}
+		if (isnan(q->min) || isnan(q->max) || isnan(q->def) || q->min > q->max ||
+		    q->def < q->min || q->def > q->max || !isfinite(q->def) ||
+		    ((q->flags & (RF_PARAM_INTEGER | RF_PARAM_CHOICE)) &&
+		     q->def != floor(q->def)) ||
+		    ((q->flags & RF_PARAM_BOOL) && (q->flags & RF_PARAM_CHOICE)) ||
+		    ((q->flags & RF_PARAM_CHOICE) &&
+		     (n == 0 || q->min != 0 || q->max != n - 1)) ||
+		    ((q->flags & RF_PARAM_BOOL) && (q->min != 0 || q->max != 1))) {
+			rf__format(err, errlen, "plugin '%s': parameter '%s' has an "
+			           "inconsistent range, default or flags; fix the plugin "
+			           "and rebuild it", path, q->name);
+			return RF_EPLUGIN;
+		}
+		for (j = 0; j < i; j++)
+			if (!strcmp(p->params[j].name, q->name)) {
+				rf__format(err, errlen, "plugin '%s': parameter '%s' is "
+				           "declared twice; fix the plugin and rebuild it",
+				           path, q->name);
+				return RF_EPLUGIN;
+			}
+	}
+	return 0;
+}
+
+static int
+check_descriptor(const struct rf_plugin *p, const char *path, unsigned kind,
+                 char *err, size_t errlen)
+{
+	char stem[256];
+	const char *missing = NULL;
+
+	/* Only the first three fields may be read before these checks. */
+	if (p->abi_major != RF_PLUGIN_ABI_MAJOR) {
+		rf__format(err, errlen, "plugin '%s': built for plugin ABI %u.%u, but "
+		           "this reflect (%s) supports ABI %d.%d; rebuild it against "
+		           "this reflect's <reflect/plugin.h>, or remove it", path,
+		           p->abi_major, p->abi_minor, RF_VERSION_STRING,
+		           RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR);
+		return RF_EPLUGIN;
+	}
+	if (p->abi_minor > RF_PLUGIN_ABI_MINOR) {
+		rf__format(err, errlen, "plugin '%s': built for plugin ABI %u.%u, newer "
+		           "than the ABI %d.%d of this reflect (%s); upgrade reflect, or "
+		           "rebuild the plugin against this reflect's <reflect/plugin.h>",
+		           path, p->abi_major, p->abi_minor, RF_PLUGIN_ABI_MAJOR,
+		           RF_PLUGIN_ABI_MINOR, RF_VERSION_STRING);
+		return RF_EPLUGIN;
+	}
+	if (p->size < descriptor_size[p->abi_minor]) {
+		rf__format(err, errlen, "plugin '%s': built for plugin ABI %u.%u, its "
+		           "descriptor is %u bytes, less than the %zu bytes of that ABI "
+		           "(this reflect (%s) supports ABI %d.%d); it was built with a "
+		           "wrong header: set size to sizeof(struct rf_plugin) from "
+		           "this reflect's <reflect/plugin.h> and rebuild it, or remove "
+		           "it", path, p->abi_major, p->abi_minor, p->size,
+		           descriptor_size[p->abi_minor], RF_VERSION_STRING,
+		           RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR);
+		return RF_EPLUGIN;
+	}
+	if (!p->name || !*p->name)
+		missing = "name";
+	else if (!p->summary || !*p->summary)
+		missing = "summary";
+	else if (!p->version || !*p->version)
+		missing = "version";
+	else if (!p->author || !*p->author)
+		missing = "author";
+	else if (!p->license || !*p->license)
+		missing = "license";
+	else if (!p->create || !p->run || !p->destroy)
+		missing = "create, run or destroy function";
+	else if (!channel_list_valid(p->inputs))
+		missing = "valid input channel list (NULL-terminated, names unique)";
+	else if (!channel_list_valid(p->outputs) || !p->outputs[0])
+		missing = "valid output channel list (NULL-terminated, names unique, "
+		          "at least one)";
+	if (missing) {
+		rf__format(err, errlen, "plugin '%s': its descriptor has no %s; fill "
+		           "it in and rebuild the plugin", path, missing);
+		return RF_EPLUGIN;
+	}
+	file_stem(path, stem, sizeof(stem));
+	if (strcmp(stem, p->name)) {
+		rf__format(err, errlen, "plugin '%s': its descriptor is named '%.60s', "
+		           "but a plugin's name must equal its file name; rename the "
+		           "file to '%.60s.so' or set the name to '%.60s'", path,
+		           p->name, p->name, stem);
+		return RF_EPLUGIN;
+	}
+	if (p->flags) {
+		rf__format(err, errlen, "plugin '%s': built for plugin ABI %u.%u, its "
+		           "descriptor sets flags 0x%x that this ABI does not define "
+		           "(this reflect (%s) supports ABI %d.%d); set flags to 0 and "
+		           "rebuild it", path, p->abi_major, p->abi_minor, p->flags,
+		           RF_VERSION_STRING, RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR);
+		return RF_EPLUGIN;
+	}
+	if (!rf_plugin_kind_name(p->kind)) {
+		rf__format(err, errlen, "plugin '%s': built for plugin ABI %u.%u, its "
+		           "descriptor has kind %u, which this ABI does not define "
+		           "(this reflect (%s) supports ABI %d.%d); set an RF_KIND_* "
+		           "value and rebuild it", path, p->abi_major, p->abi_minor,
+		           p->kind, RF_VERSION_STRING, RF_PLUGIN_ABI_MAJOR,
+		           RF_PLUGIN_ABI_MINOR);
+		return RF_EPLUGIN;
+	}
+	if (kind && p->kind != kind) {
+		rf__format(err, errlen, "plugin '%s': it is a %s mode, not a %s mode; "
+		           "use it with %s", path, rf_plugin_kind_name(p->kind),
+		           rf_plugin_kind_name(kind), kind_tool(p->kind));
+		return RF_EPLUGIN;
+	}
+	return check_params(p, path, err, errlen);
+}
+
+int
+rf_module_load_file(rf_module **mp, const char *path, unsigned kind, char *err,
+                    size_t errlen)
+{
+	rf_plugin_entry_fn entry;
+	rf_module *m;
+	struct stat st;
+	void *sym;
+	int rc;
+
+	*mp = NULL;
+	if (stat(path, &st) < 0) {
+		rf__format(err, errlen, "cannot open plugin '%s': %s", path,
+		           strerror(errno));
+		return RF_ENOTFOUND;
+	}
+	if (!S_ISREG(st.st_mode)) {
+		rf__format(err, errlen, "plugin '%s': not a regular file; give the "
+		           "path of a .so file", path);
+		return RF_EPLUGIN;
+	}
+	if (!(m = calloc(1, sizeof(*m))) || !(m->path = strdup(path))) {
+		free(m);
+		rf__format(err, errlen, "plugin '%s': %s", path, rf_strerror(RF_ENOMEM));
+		return RF_ENOMEM;
+	}
+	if (!(m->handle = dlopen(path, RTLD_NOW | RTLD_LOCAL))) {
+		const char *why = dlerror();
+
+		rf__format(err, errlen, "plugin '%s': cannot load it: %s; if a "
+		           "library is missing, ldd(1) shows which", path,
+		           why ? why : "unknown error");
+		rc = RF_EPLUGIN;
+		goto fail;
+	}
+	dlerror();
+	sym = dlsym(m->handle, RF_PLUGIN_ENTRY);
+	if (!sym) {
+		rf__format(err, errlen, "plugin '%s': not a reflect plugin, it exports "
+		           "no %s(); define it with RF_PLUGIN_DEFINE(descriptor) from "
+		           "<reflect/plugin.h>, or remove the file from the plugin path",
+		           path, RF_PLUGIN_ENTRY);
+		rc = RF_EPLUGIN;
+		goto fail;
+	}
+	/* dlsym gives an object pointer; POSIX makes it callable. */
+	memcpy(&entry, &sym, sizeof(entry));
+	if (!(m->plugin = entry())) {
+		rf__format(err, errlen, "plugin '%s': %s() returned no descriptor; "
+		           "fix the plugin and rebuild it", path, RF_PLUGIN_ENTRY);
+		rc = RF_EPLUGIN;
+		goto fail;
+	}
+	if ((rc = check_descriptor(m->plugin, path, kind, err, errlen)) < 0)
+		goto fail;
+	*mp = m;
+	return 0;
+fail:
+	rf_module_unload(m);
+	return rc;
+}
+
+void
+rf_module_unload(rf_module *m)
+{
+	if (!m)
+		return;
+	if (m->handle)
+		dlclose(m->handle);
+	free(m->path);
+	free(m);
+}
+
+const struct rf_plugin *
+rf_module_plugin(const rf_module *m)
+{
+	return m->plugin;
+}
+
+const char *
+rf_module_path(const rf_module *m)
+{
+	return m->path;
+}
+
+const char *
+rf_plugin_search_path(void)
+{
+	static __thread char buf[8192];
+	const char *user = getenv("REFLECT_PLUGIN_PATH");
+	const char *sys = getenv("REFLECT_PLUGIN_SYSTEM_PATH");
+
+	if (!sys)
+		sys = REFLECT_PLUGINDIR;
+	rf__format(buf, sizeof(buf), "%s%s%s", user && *user ? user : "",
+	           user && *user && *sys ? ":" : "", sys);
+	return buf;
+}
+
+static int
+mode_name_valid(const char *s)
+{
+	if (!*s || *s == '.' || strlen(s) > 200)
+		return 0;
+	for (; *s; s++)
+		if (!isalnum((unsigned char)*s) && *s != '_' && *s != '-' && *s != '.')
+			return 0;
+	return 1;
+}
+
+int
+rf_module_load(rf_module **mp, const char *name, unsigned kind, char *err,
+               size_t errlen)
+{
+	char path[4096];
+	const char *dirs, *p;
+	struct stat st;
+	size_t n;
+
+	*mp = NULL;
+	if (strchr(name, '/'))
+		return rf_module_load_file(mp, name, kind, err, errlen);
+	if (!mode_name_valid(name)) {
+		rf__format(err, errlen, "'%.80s' is not a valid mode name (letters, "
+		           "digits, '_', '-' and '.'; a path needs a '/')", name);
+		return RF_EINVAL;
+	}
+	dirs = rf_plugin_search_path();
+	for (p = dirs; *p; p += n + (p[n] == ':')) {
+		n = strcspn(p, ":");
+		if (!n)
+			continue;
+		rf__format(path, sizeof(path), "%.*s/%s.so", (int)n, p, name);
+		if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
+			return rf_module_load_file(mp, path, kind, err, errlen);
+	}
+	n = strlen(name);
+	rf__format(err, errlen, "unknown %s mode '%s': no %s.so in %s%s%s%s%s (-l "
+	           "lists the modes)", kind ? rf_plugin_kind_name(kind) : "plugin",
+	           name, name, *dirs ? "'" : "", *dirs ? dirs : "an empty search path",
+	           *dirs ? "'" : "",
+	           n > 3 && !strcmp(name + n - 3, ".so")
+	           ? "; a path to a file needs a '/', as in ./" : "",
+	           n > 3 && !strcmp(name + n - 3, ".so") ? name : "");
+	return RF_ENOTFOUND;
+}
+
+static int
+cmp_str(const void *a, const void *b)
+{
+	return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+int
+rf_plugin_scan(rf_plugin_visit_fn fn, void *arg)
+{
+	char *dirs, *dir, *save = NULL, **seen = NULL, **files = NULL;
+	size_t nseen = 0, nfiles = 0, ndirs = 0, i, j;
+	struct stat dirst[64];
+	int rc = 0;
+
+	if (!(dirs = strdup(rf_plugin_search_path())))
+		return RF_ENOMEM;
+	for (dir = strtok_r(dirs, ":", &save); dir; dir = strtok_r(NULL, ":", &save)) {
+		struct dirent *e;
+		struct stat ds;
+		DIR *d;
+
+		/* A directory named twice (or through a link) is scanned once:
+		 * its files would otherwise shadow themselves. */
+		if (stat(dir, &ds) < 0 || !S_ISDIR(ds.st_mode))
+			continue;
+		for (i = 0; i < ndirs; i++)
+			if (dirst[i].st_dev == ds.st_dev && dirst[i].st_ino == ds.st_ino)
+				break;
+		if (i < ndirs)
+			continue;
+		if (ndirs < sizeof(dirst) / sizeof(dirst[0]))
+			dirst[ndirs++] = ds;
+		if (!(d = opendir(dir)))
+			continue;
+		nfiles = 0;
+		while ((e = readdir(d))) {
+			size_t len = strlen(e->d_name);
+			char **grown;
+
+			if (len <= 3 || strcmp(e->d_name + len - 3, ".so"))
+				continue;
+			if (!(grown = realloc(files, (nfiles + 1) * sizeof(*files))) ||
+			    !(grown[nfiles] = strdup(e->d_name))) {
+				files = grown ? grown : files;
+				closedir(d);
+				rc = RF_ENOMEM;
+				goto out;
+			}
+			files = grown;
+			nfiles++;
+		}
+		closedir(d);
+		qsort(files, nfiles, sizeof(*files), cmp_str);
+		for (i = 0; i < nfiles; i++) {
+			char path[4096];
+			struct stat st;
+			int shadowed = 0;
+			char **grown;
+
+			rf__format(path, sizeof(path), "%s/%s", dir, files[i]);
+			if (stat(path, &st) < 0 || !S_ISREG(st.st_mode))
+				continue;
+			for (j = 0; j < nseen; j++)
+				if (!strcmp(seen[j], files[i]))
+					shadowed = 1;
+			if (!shadowed) {
+				if (!(grown = realloc(seen, (nseen + 1) * sizeof(*seen))) ||
+				    !(grown[nseen] = strdup(files[i]))) {
+					seen = grown ? grown : seen;
+					rc = RF_ENOMEM;
+					goto out;
+				}
+				seen = grown;
+				nseen++;
+			}
+			fn(arg, path, shadowed);
+		}
+		for (i = 0; i < nfiles; i++)
+			free(files[i]);
+		nfiles = 0;
+	}
+out:
+	for (i = 0; i < nfiles; i++)
+		free(files[i]);
+	for (i = 0; i < nseen; i++)
+		free(seen[i]);
+	free(seen);
+	free(files);
+	free(dirs);
+	return rc;
+}

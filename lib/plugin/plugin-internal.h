@@ -1,0 +1,19 @@
+/* Internal to libreflect: a stage as the shading pass drives it. */
+#ifndef REFLECT_PLUGIN_INTERNAL_H
+#define REFLECT_PLUGIN_INTERNAL_H
+
+#include "util/util.h"
+
+/* A stage's parts for a pass that runs it row by row on its own threads
+ * (the shading pass): the frame's row layout once rf_stage_run could run
+ * rows y..y+nrows, its thread count, and one row on thread `thread`. */
+int rf__stage_ready(const rf_stage *s, size_t y, size_t nrows, size_t *in_ncomp,
+                    size_t *out_ncomp);
+int rf__stage_threads(const rf_stage *s);
+void rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int thread);
+/* Around a block of rf__stage_row calls: the invalid input they met
+ * counted, and RF_EINVAL (rf_stage_error) for the first under ERROR. */
+void rf__stage_block_begin(rf_stage *s);
+int rf__stage_block_end(rf_stage *s);
+
+#endif

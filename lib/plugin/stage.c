@@ -1,0 +1,402 @@
+/* Running a per-pixel plugin over blocks of rows, on several threads. */
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "plugin/plugin-internal.h"
+#include "util/invalid.h"
+#include "util/pixels.h"
+#include "util/pool.h"
+#include "reflect/plugin.h"
+
+/* What each thread has of its own. */
+struct worker {
+	void *state;    /* the plugin's instance */
+	float *gather;  /* one row of the plugin's inputs */
+	float *scatter; /* one row of the plugin's outputs */
+	unsigned char *zero; /* pixels of the row written as 0 */
+	/* Invalid input the worker met in the block: how many pixels were
+	 * fixed, and the first under RF_INVALID_ERROR. */
+	size_t fixed;
+	struct rf__first_invalid first;
+};
+
+struct rf_stage {
+	const struct rf_plugin *p;
+	int nthreads;
+	struct worker *workers;
+	size_t nin, nout;
+	int *in_map, *out_map; /* plugin channel -> stream channel */
+	/* The same maps as runs of adjacent channels, copied as blocks. */
+	struct rf__run *in_runs, *out_runs;
+	size_t nin_runs, nout_runs;
+	rf_header *out_h;
+	size_t ncols, nrows, in_ncomp, out_ncomp, row_cap;
+	uint32_t frame;
+	size_t frames;
+	struct rf__pool *pool;
+	/* The block rf_stage_run is running. */
+	const float *block_in;
+	float *block_out;
+	size_t block_y;
+	enum rf_invalid invalid;
+	struct rf__check check; /* on the plugin's inputs, as gathered */
+	int mask_col;           /* the stream's mask, or -1 */
+	size_t fixed;           /* pixels of the frame clamped or zeroed */
+	char error[320];
+};
+
+static size_t
+list_length(const char *const *list)
+{
+	size_t n = 0;
+
+	while (list[n])
+		n++;
+	return n;
+}
+
+/* A plugin's message as one line: terminated even when the plugin filled
+ * the whole buffer, control characters (newlines) made spaces. */
+static void
+one_line(char *msg, size_t size)
+{
+	char *c;
+
+	msg[size - 1] = '\0';
+	for (c = msg; *c; c++)
+		if ((unsigned char)*c < 0x20 || *c == 0x7f)
+			*c = ' ';
+}
+
+int
+rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
+                const struct rf_host *host, int nthreads, char *err, size_t errlen)
+{
+	rf_stage *s;
+	int i;
+
+	*sp = NULL;
+	if (nthreads < 1)
+		nthreads = 1;
+	if (nthreads > RF__THREADS_MAX)
+		nthreads = RF__THREADS_MAX;
+	if (!(s = calloc(1, sizeof(*s))))
+		return RF_ENOMEM;
+	s->p = p;
+	s->nthreads = nthreads;
+	s->nin = list_length(p->inputs);
+	s->nout = list_length(p->outputs);
+	s->in_map = calloc(s->nin + 1, sizeof(int));
+	s->out_map = calloc(s->nout + 1, sizeof(int));
+	s->in_runs = calloc(s->nin + 1, sizeof(struct rf__run));
+	s->out_runs = calloc(s->nout + 1, sizeof(struct rf__run));
+	s->workers = calloc((size_t)nthreads, sizeof(struct worker));
+	if (!s->in_map || !s->out_map || !s->in_runs || !s->out_runs || !s->workers ||
+	    rf__pool_new(&s->pool, nthreads) < 0) {
+		rf_stage_destroy(s);
+		return RF_ENOMEM;
+	}
+	for (i = 0; i < nthreads; i++) {
+		char msg[400] = "";
+
+		if (p->create(host, values, &s->workers[i].state, msg, sizeof(msg))) {
+			one_line(msg, sizeof(msg));
+			rf__format(err, errlen, "mode '%s': %s", p->name,
+			           *msg ? msg : "cannot create an instance");
+			s->workers[i].state = NULL;
+			rf_stage_destroy(s);
+			return RF_EPLUGIN;
+		}
+	}
+	*sp = s;
+	return 0;
+}
+
+void
+rf_stage_destroy(rf_stage *s)
+{
+	int i;
+
+	if (!s)
+		return;
+	rf__pool_free(s->pool);
+	for (i = 0; s->workers && i < s->nthreads; i++) {
+		if (s->workers[i].state)
+			s->p->destroy(s->workers[i].state);
+		free(s->workers[i].gather);
+		free(s->workers[i].scatter);
+		free(s->workers[i].zero);
+	}
+	free(s->workers);
+	free(s->in_map);
+	free(s->out_map);
+	free(s->in_runs);
+	free(s->out_runs);
+	rf_header_free(s->out_h);
+	free(s);
+}
+
+static int
+frame_number(const rf_header *h, size_t fallback, uint32_t *out)
+{
+	const char *v = rf_header_get(h, "FRAME");
+	unsigned long n;
+	char *end;
+
+	if (!v) {
+		*out = (uint32_t)fallback;
+		return 0;
+	}
+	errno = 0;
+	n = strtoul(v, &end, 10);
+	if (end == v || *end || errno || n > UINT32_MAX)
+		return -1;
+	*out = (uint32_t)n;
+	return 0;
+}
+
+int
+rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
+                     char *err, size_t errlen)
+{
+	size_t i;
+	int c, t;
+
+	*out = NULL;
+	rf_header_free(s->out_h);
+	if (!(s->out_h = rf_header_dup(in)))
+		return RF_ENOMEM;
+	for (i = 0; i < s->nin; i++) {
+		if ((c = rf_header_find_channel(in, s->p->inputs[i])) < 0) {
+			char list[512] = "";
+			size_t k = 0, j;
+
+			for (j = 0; j < s->nin && k + 2 < sizeof(list); j++)
+				k += (size_t)snprintf(list + k, sizeof(list) - k, "%s%s",
+				                      j ? " " : "", s->p->inputs[j]);
+			rf__format(err, errlen, "input has no channel '%s' (mode '%s' "
+			           "reads %s)", s->p->inputs[i], s->p->name, list);
+			return RF_ECHANNEL;
+		}
+		s->in_map[i] = c;
+	}
+	for (i = 0; i < s->nout; i++) {
+		if ((c = rf_header_find_channel(s->out_h, s->p->outputs[i])) < 0 &&
+		    (c = rf_header_add_channel(s->out_h, s->p->outputs[i])) < 0) {
+			rf__format(err, errlen, "cannot add channel '%s': %s",
+			           s->p->outputs[i], rf_strerror(c));
+			return c;
+		}
+		s->out_map[i] = c;
+	}
+	rf__check_plan(&s->check, s->p->inputs, s->nin);
+	s->mask_col = rf_header_find_channel(in, "mask");
+	s->fixed = 0;
+	s->error[0] = '\0';
+	s->nin_runs = rf__channel_runs(s->in_map, s->nin, 0, s->in_runs);
+	s->nout_runs = rf__channel_runs(s->out_map, s->nout, 1, s->out_runs);
+	if (frame_number(in, s->frames, &s->frame) < 0) {
+		rf__format(err, errlen, "FRAME='%s' is not a frame number",
+		           rf_header_get(in, "FRAME"));
+		return RF_EFORMAT;
+	}
+	s->frames++;
+	s->ncols = rf_header_ncols(in);
+	s->nrows = rf_header_nrows(in);
+	s->in_ncomp = rf_header_nchannels(in);
+	s->out_ncomp = rf_header_nchannels(s->out_h);
+	if (s->ncols * s->out_ncomp * sizeof(float) > RF_ROW_BYTES_MAX) {
+		rf__format(err, errlen, "output rows of %zu channels are too large",
+		           s->out_ncomp);
+		return RF_ETOOBIG;
+	}
+	if (s->ncols > s->row_cap) {
+		for (t = 0; t < s->nthreads; t++) {
+			struct worker *w = &s->workers[t];
+
+			free(w->gather);
+			free(w->scatter);
+			free(w->zero);
+			w->gather = malloc(s->ncols * (s->nin + 1) * sizeof(float));
+			w->scatter = malloc(s->ncols * s->nout * sizeof(float));
+			w->zero = malloc(s->ncols);
+			if (!w->gather || !w->scatter || !w->zero) {
+				s->row_cap = 0;
+				return RF_ENOMEM;
+			}
+		}
+		s->row_cap = s->ncols;
+	}
+	*out = s->out_h;
+	return 0;
+}
+
+int
+rf_stage_reserve_channel(rf_stage *s, const char *name)
+{
+	int c;
+
+	if (!s->out_h)
+		return RF_EINVAL;
+	if ((c = rf_header_find_channel(s->out_h, name)) >= 0)
+		return c;
+	if ((c = rf_header_add_channel(s->out_h, name)) < 0)
+		return c;
+	s->out_ncomp = rf_header_nchannels(s->out_h);
+	if (s->ncols * s->out_ncomp * sizeof(float) > RF_ROW_BYTES_MAX)
+		return RF_ETOOBIG;
+	return c;
+}
+
+/* The gathered row's pixels checked, clamped, or marked in w->zero;
+ * whether any is to be written as 0. */
+static int
+check_row(rf_stage *s, struct worker *w, const float *in, size_t y)
+{
+	size_t x;
+	int any = 0, r;
+
+	if (rf__check_row(&s->check, w->gather, s->nin, s->ncols))
+		return 0;
+	for (x = 0; x < s->ncols; x++) {
+		int wall = s->mask_col >= 0 && in[x * s->in_ncomp + (size_t)s->mask_col] == 0.0f;
+		char why[200];
+
+		r = rf__check_pixel(&s->check, w->gather + x * s->nin, wall, s->invalid, why,
+		                    sizeof(why));
+		w->zero[x] = r == 2;
+		any |= r == 2;
+		if (r > 0)
+			w->fixed++;
+		if (r < 0)
+			rf__first_invalid_keep(&w->first, y * s->ncols + x, "%s", why);
+	}
+	return any;
+}
+
+void
+rf__stage_block_begin(rf_stage *s)
+{
+	int t;
+
+	for (t = 0; t < s->nthreads; t++) {
+		s->workers[t].fixed = 0;
+		rf__first_invalid_clear(&s->workers[t].first);
+	}
+}
+
+int
+rf__stage_block_end(rf_stage *s)
+{
+	int t;
+
+	for (t = 0; t < s->nthreads; t++)
+		s->fixed += s->workers[t].fixed;
+	return rf__first_invalid_report(&s->workers[0].first, (size_t)s->nthreads,
+	                                sizeof(struct worker), s->ncols, s->error,
+	                                sizeof(s->error));
+}
+
+void
+rf_stage_set_invalid(rf_stage *s, enum rf_invalid policy)
+{
+	s->invalid = policy;
+}
+
+const char *
+rf_stage_error(const rf_stage *s)
+{
+	return s->error;
+}
+
+size_t
+rf_stage_invalid_count(const rf_stage *s)
+{
+	return s->fixed;
+}
+
+/* One row (row y of the frame) on thread `thread`: its input passed
+ * through, the plugin's inputs gathered, run, its outputs scattered. */
+void
+rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int thread)
+{
+	struct worker *w = &s->workers[thread];
+	struct rf_span span;
+	size_t x, i;
+	int zeroed;
+
+	memset(&span, 0, sizeof(span));
+	span.size = sizeof(span);
+	span.width = (uint32_t)s->ncols;
+	span.height = (uint32_t)s->nrows;
+	span.frame = s->frame;
+	span.npix = (uint32_t)s->ncols;
+	span.in = w->gather;
+	span.out = w->scatter;
+	span.y = (uint32_t)y;
+	rf__widen_pixels(out, s->out_ncomp, in, s->in_ncomp, s->ncols);
+	for (x = 0; x < s->ncols; x++) {
+		const float *pi = in + x * s->in_ncomp;
+		float *g = w->gather + x * s->nin;
+
+		for (i = 0; i < s->nin_runs; i++)
+			rf__copy_run(g + s->in_runs[i].dst, pi + s->in_runs[i].src,
+			             s->in_runs[i].len);
+	}
+	zeroed = s->check.n ? check_row(s, w, in, y) : 0;
+	s->p->run(w->state, &span);
+	for (x = 0; x < s->ncols; x++) {
+		float *po = out + x * s->out_ncomp;
+		const float *q = w->scatter + x * s->nout;
+
+		if (zeroed && w->zero[x])
+			memset(w->scatter + x * s->nout, 0, s->nout * sizeof(float));
+		for (i = 0; i < s->nout_runs; i++)
+			rf__copy_run(po + s->out_runs[i].dst, q + s->out_runs[i].src,
+			             s->out_runs[i].len);
+	}
+}
+
+int
+rf__stage_threads(const rf_stage *s)
+{
+	return s->nthreads;
+}
+
+int
+rf__stage_ready(const rf_stage *s, size_t y, size_t nrows, size_t *in_ncomp,
+                size_t *out_ncomp)
+{
+	if (!s->out_h || y + nrows > s->nrows || y + nrows < y)
+		return RF_EINVAL;
+	*in_ncomp = s->in_ncomp;
+	*out_ncomp = s->out_ncomp;
+	return 0;
+}
+
+static void
+run_row(void *arg, size_t r, int thread)
+{
+	rf_stage *s = arg;
+
+	rf__stage_row(s, s->block_in + r * s->ncols * s->in_ncomp,
+	              s->block_out + r * s->ncols * s->out_ncomp, s->block_y + r, thread);
+}
+
+int
+rf_stage_run(rf_stage *s, const float *in, float *out, size_t y, size_t nrows)
+{
+	size_t in_ncomp, out_ncomp;
+	int rc;
+
+	if ((rc = rf__stage_ready(s, y, nrows, &in_ncomp, &out_ncomp)) < 0)
+		return rc;
+	s->block_in = in;
+	s->block_out = out;
+	s->block_y = y;
+	rf__stage_block_begin(s);
+	/* A row is a task: threads that start late or run slow take fewer. */
+	rf__pool_run(s->pool, nrows, run_row, s);
+	return rf__stage_block_end(s);
+}

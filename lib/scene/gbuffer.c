@@ -1,0 +1,372 @@
+/* Rendering the G-buffer a block of rows at a time, rows spread over
+ * threads; every pixel depends on its own ray only, so the bytes do not
+ * depend on the thread count. */
+#include <math.h>
+#include <pthread.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "util/pool.h"
+#include "scene/scene-internal.h"
+
+enum {
+	CH_PX, CH_PY, CH_PZ, CH_NX, CH_NY, CH_NZ, CH_NGX, CH_NGY, CH_NGZ,
+	CH_VX, CH_VY, CH_VZ, CH_ROUGHNESS, CH_METALLIC, CH_ALBEDO_R, CH_ALBEDO_G,
+	CH_ALBEDO_B, CH_MASK, CH_OBJID, CH_DEPTH, CH_COUNT
+};
+
+static const char *const channel_names[CH_COUNT] = {
+	"P.X", "P.Y", "P.Z", "N.X", "N.Y", "N.Z", "Ng.X", "Ng.Y", "Ng.Z",
+	"V.X", "V.Y", "V.Z", "roughness", "metallic", "albedo.R", "albedo.G",
+	"albedo.B", "mask", "objid", "depth"
+};
+
+/* Layer names that stand for three channels. */
+static const struct {
+	const char *name;
+	int first;
+} layers[] = {
+	{ "P", CH_PX }, { "N", CH_NX }, { "Ng", CH_NGX }, { "V", CH_VX },
+	{ "albedo", CH_ALBEDO_R },
+};
+
+
+/* Pixels (inclusive) outside of which a ray cannot meet an object. */
+struct bounds {
+	long x0, x1, y0, y1;
+};
+
+struct rf_gbuffer {
+	const rf_scene *s;
+	size_t width, height;
+	int nthreads;
+	size_t nch;
+	int map[CH_COUNT]; /* output channel -> value index */
+	int identity;      /* map[c] == c for all CH_COUNT channels */
+	struct rf_camera cam;
+	struct camera_basis cb;
+	double *k; /* per-object constants for rays from the camera */
+	struct bounds *bounds; /* per object, where it can be on the image */
+	uint32_t *scratch;     /* per thread: the objects of a row, of a pixel */
+	double *rays;          /* per thread: a row of directions, reciprocals */
+};
+
+struct worker {
+	const rf_gbuffer *g;
+	float *out;
+	size_t y, nrows, first, step;
+	uint32_t *row_list, *pixel_list;
+	double *rays;
+};
+
+static int
+add_channel(rf_gbuffer *g, int c, char *err, size_t errlen)
+{
+	size_t i;
+
+	for (i = 0; i < g->nch; i++)
+		if (g->map[i] == c) {
+			rf__format(err, errlen, "G-buffer channel '%s' is asked for twice",
+			           channel_names[c]);
+			return RF_ECHANNEL;
+		}
+	g->map[g->nch++] = c;
+	return 0;
+}
+
+static int
+select_channels(rf_gbuffer *g, const char *list, char *err, size_t errlen)
+{
+	const char *p = list;
+	size_t n, i;
+	int c, rc;
+
+	if (!list) {
+		for (c = 0; c < CH_COUNT; c++)
+			g->map[c] = c;
+		g->nch = CH_COUNT;
+		return 0;
+	}
+	while (*p) {
+		while (*p == ' ' || *p == ',' || *p == '\t')
+			p++;
+		if (!*p)
+			break;
+		n = strcspn(p, " ,\t");
+		for (c = 0; c < CH_COUNT; c++)
+			if (strlen(channel_names[c]) == n && !memcmp(channel_names[c], p, n))
+				break;
+		if (c < CH_COUNT) {
+			if ((rc = add_channel(g, c, err, errlen)) < 0)
+				return rc;
+		} else {
+			for (i = 0; i < sizeof(layers) / sizeof(layers[0]); i++)
+				if (strlen(layers[i].name) == n && !memcmp(layers[i].name, p, n))
+					break;
+			if (i == sizeof(layers) / sizeof(layers[0])) {
+				rf__format(err, errlen, "unknown G-buffer channel '%.*s' "
+				           "(expected P, N, Ng, V, roughness, metallic, albedo, "
+				           "mask, objid, depth or a component such as P.X)",
+				           (int)(n > 64 ? 64 : n), p);
+				return RF_ECHANNEL;
+			}
+			for (c = layers[i].first; c < layers[i].first + 3; c++)
+				if ((rc = add_channel(g, c, err, errlen)) < 0)
+					return rc;
+		}
+		p += n;
+	}
+	if (!g->nch) {
+		rf__format(err, errlen, "no G-buffer channel asked for");
+		return RF_ECHANNEL;
+	}
+	return 0;
+}
+
+int
+rf_gbuffer_create(rf_gbuffer **gp, const rf_scene *s, size_t width, size_t height,
+                  const char *channels, int nthreads, char *err, size_t errlen)
+{
+	rf_gbuffer *g;
+	size_t bytes, i;
+	int rc;
+
+	*gp = NULL;
+	if (!width || !height || rf__mul3(width, CH_COUNT, sizeof(float), &bytes) ||
+	    bytes > RF_ROW_BYTES_MAX) {
+		rf__format(err, errlen, "image size %zux%zu is out of range", width, height);
+		return RF_ETOOBIG;
+	}
+	if (!(g = calloc(1, sizeof(*g))))
+		return RF_ENOMEM;
+	g->s = s;
+	g->width = width;
+	g->height = height;
+	g->nthreads = nthreads < 1 ? 1 : nthreads > RF__THREADS_MAX ? RF__THREADS_MAX : nthreads;
+	if ((rc = select_channels(g, channels, err, errlen)) < 0) {
+		free(g);
+		return rc;
+	}
+	g->identity = g->nch == CH_COUNT;
+	for (i = 0; i < g->nch; i++)
+		g->identity &= g->map[i] == (int)i;
+	g->k = calloc(s->nobjects + 1, RF__ORIGIN_STRIDE * sizeof(double));
+	g->bounds = calloc(s->nobjects + 1, sizeof(*g->bounds));
+	g->scratch = calloc((size_t)g->nthreads * 2 * (s->nobjects + 1), sizeof(uint32_t));
+	g->rays = malloc((size_t)g->nthreads * width * 6 * sizeof(double));
+	if (!g->k || !g->bounds || !g->scratch || !g->rays) {
+		rf_gbuffer_destroy(g);
+		return RF_ENOMEM;
+	}
+	rf_gbuffer_set_camera(g, &s->camera, NULL, 0);
+	*gp = g;
+	return 0;
+}
+
+void
+rf_gbuffer_destroy(rf_gbuffer *g)
+{
+	if (!g)
+		return;
+	free(g->k);
+	free(g->bounds);
+	free(g->scratch);
+	free(g->rays);
+	free(g);
+}
+
+size_t
+rf_gbuffer_nchannels(const rf_gbuffer *g)
+{
+	return g->nch;
+}
+
+const char *
+rf_gbuffer_channel(const rf_gbuffer *g, size_t i)
+{
+	return i < g->nch ? channel_names[g->map[i]] : NULL;
+}
+
+static long
+clamp_pixel(double v, size_t n)
+{
+	return v < -2.0 ? -2 : v > (double)n + 2.0 ? (long)n + 2 : (long)v;
+}
+
+/* The image rectangle that holds the projection of an object's bounding
+ * box, a pixel wider on every side against rounding.  Rays through other
+ * pixel centres cannot meet the object, since a ray's points all project
+ * onto its pixel centre. */
+static void
+object_bounds(const rf_gbuffer *g, const struct object *ob, struct bounds *b)
+{
+	const struct camera_basis *cb = &g->cb;
+	double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+	int corner, behind = 0, i;
+
+	for (corner = 0; corner < 8; corner++) {
+		double rel[3], z, x, y;
+
+		for (i = 0; i < 3; i++)
+			rel[i] = ((corner >> i) & 1 ? ob->max[i] : ob->min[i]) - g->cam.position[i];
+		z = rf__dot(rel, cb->f);
+		if (!(z > 1e-9)) {
+			behind++;
+			continue;
+		}
+		x = rf__dot(rel, cb->r) / (z * cb->tx);
+		y = rf__dot(rel, cb->u) / (z * cb->ty);
+		xmin = x < xmin ? x : xmin;
+		xmax = x > xmax ? x : xmax;
+		ymin = y < ymin ? y : ymin;
+		ymax = y > ymax ? y : ymax;
+	}
+	if (behind == 8) {
+		/* Every ray leans forward: nothing behind the eye is seen. */
+		b->x0 = b->y0 = 1;
+		b->x1 = b->y1 = 0;
+		return;
+	}
+	if (behind) {
+		b->x0 = b->y0 = -2;
+		b->x1 = (long)g->width + 2;
+		b->y1 = (long)g->height + 2;
+		return;
+	}
+	/* Pixel i's centre is at x = 2 (i + 0.5) / W - 1. */
+	b->x0 = clamp_pixel(floor((xmin + 1.0) * 0.5 * (double)g->width - 0.5) - 1.0, g->width);
+	b->x1 = clamp_pixel(ceil((xmax + 1.0) * 0.5 * (double)g->width - 0.5) + 1.0, g->width);
+	b->y0 = clamp_pixel(floor((1.0 - ymax) * 0.5 * (double)g->height - 0.5) - 1.0,
+	                    g->height);
+	b->y1 = clamp_pixel(ceil((1.0 - ymin) * 0.5 * (double)g->height - 0.5) + 1.0,
+	                    g->height);
+}
+
+int
+rf_gbuffer_set_camera(rf_gbuffer *g, const struct rf_camera *cam, char *err,
+                      size_t errlen)
+{
+	size_t i;
+	int rc;
+
+	if ((rc = rf_camera_check(cam, err, errlen)) < 0)
+		return rc;
+	g->cam = *cam;
+	rf__camera_basis(cam, g->width, g->height, &g->cb);
+	rf__trace_prepare(g->s, cam->position, g->k);
+	for (i = 0; i < g->s->nobjects; i++)
+		object_bounds(g, &g->s->objects[i], &g->bounds[i]);
+	return 0;
+}
+
+static void
+render_row(const struct worker *w, size_t y, float *out)
+{
+	const rf_gbuffer *g = w->g;
+	const double *o = g->cam.position;
+	double sy = 1.0 - (2.0 * (double)y + 1.0) / (double)g->height;
+	float tmp[CH_COUNT], *v;
+	struct rf_hit hit;
+	size_t x, c, i, nrow = 0, npix;
+
+	for (i = 0; i < g->s->nobjects; i++)
+		if (g->bounds[i].y0 <= (long)y && (long)y <= g->bounds[i].y1)
+			w->row_list[nrow++] = (uint32_t)i;
+	/* The row's rays first: a loop of independent square roots and
+	 * divisions runs at their throughput, not at their latency. */
+	for (x = 0; x < g->width; x++) {
+		double *ray = w->rays + 6 * x;
+
+		rf__camera_dir(&g->cb, (2.0 * (double)x + 1.0) / (double)g->width - 1.0, sy,
+		               ray);
+		ray[3] = 1.0 / ray[0];
+		ray[4] = 1.0 / ray[1];
+		ray[5] = 1.0 / ray[2];
+	}
+	for (x = 0; x < g->width; x++, out += g->nch) {
+		const double *d = w->rays + 6 * x;
+
+		for (i = npix = 0; i < nrow; i++) {
+			const struct bounds *b = &g->bounds[w->row_list[i]];
+
+			if (b->x0 <= (long)x && (long)x <= b->x1)
+				w->pixel_list[npix++] = w->row_list[i];
+		}
+		rf__trace(g->s, o, g->k, d, d + 3, w->pixel_list, npix, &hit);
+		/* All channels in their order (the usual case) go straight out. */
+		v = g->identity ? out : tmp;
+		v[CH_PX] = (float)hit.P[0];
+		v[CH_PY] = (float)hit.P[1];
+		v[CH_PZ] = (float)hit.P[2];
+		v[CH_NX] = (float)hit.N[0];
+		v[CH_NY] = (float)hit.N[1];
+		v[CH_NZ] = (float)hit.N[2];
+		v[CH_NGX] = (float)hit.Ng[0];
+		v[CH_NGY] = (float)hit.Ng[1];
+		v[CH_NGZ] = (float)hit.Ng[2];
+		/* P lies on the ray, so the way back to the eye is -d exactly. */
+		v[CH_VX] = (float)-d[0];
+		v[CH_VY] = (float)-d[1];
+		v[CH_VZ] = (float)-d[2];
+		v[CH_ROUGHNESS] = hit.roughness;
+		v[CH_METALLIC] = hit.metallic;
+		v[CH_ALBEDO_R] = hit.albedo[0];
+		v[CH_ALBEDO_G] = hit.albedo[1];
+		v[CH_ALBEDO_B] = hit.albedo[2];
+		v[CH_MASK] = hit.mask;
+		v[CH_OBJID] = (float)hit.objid;
+		v[CH_DEPTH] = (float)hit.t;
+		if (!g->identity)
+			for (c = 0; c < g->nch; c++)
+				out[c] = v[g->map[c]];
+	}
+}
+
+static void *
+work(void *arg)
+{
+	struct worker *w = arg;
+	size_t row = w->g->width * w->g->nch, r;
+
+	/* Interleaved rows: neighbours cost alike, so the threads finish
+	 * together. */
+	for (r = w->first; r < w->nrows; r += w->step)
+		render_row(w, w->y + r, w->out + r * row);
+	return NULL;
+}
+
+int
+rf_gbuffer_render(rf_gbuffer *g, float *out, size_t y, size_t nrows)
+{
+	struct worker w[RF__THREADS_MAX];
+	pthread_t tid[RF__THREADS_MAX];
+	unsigned char running[RF__THREADS_MAX] = { 0 };
+	int n = g->nthreads, t;
+
+	if (y > g->height || nrows > g->height - y)
+		return RF_EINVAL;
+	if ((size_t)n > nrows)
+		n = nrows ? (int)nrows : 1;
+	for (t = 0; t < n; t++) {
+		w[t].g = g;
+		w[t].out = out;
+		w[t].y = y;
+		w[t].nrows = nrows;
+		w[t].first = (size_t)t;
+		w[t].step = (size_t)n;
+		w[t].row_list = g->scratch + (size_t)t * 2 * (g->s->nobjects + 1);
+		w[t].pixel_list = w[t].row_list + g->s->nobjects + 1;
+		w[t].rays = g->rays + (size_t)t * g->width * 6;
+	}
+	for (t = 1; t < n; t++)
+		running[t] = pthread_create(&tid[t], NULL, work, &w[t]) == 0;
+	work(&w[0]);
+	for (t = 1; t < n; t++) {
+		if (running[t])
+			pthread_join(tid[t], NULL);
+		else
+			work(&w[t]); /* no thread to be had: do its rows here */
+	}
+	return 0;
+}

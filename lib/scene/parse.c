@@ -1,0 +1,1094 @@
+/*
+ * The scene text format (reflect-scene(5)): one statement a line, a
+ * keyword then attributes as `name value...`, '#' comments, '\' at the
+ * end of a line to continue it, "double quotes" around words with spaces.
+ * Every error names file:line:column and what was expected there.
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene/scene-internal.h"
+
+#define SCENE_BYTES_MAX ((size_t)64 << 20)
+#define ATTRS_MAX 64
+
+struct token {
+	const char *text; /* not terminated; owned by `owned` when quoted */
+	size_t len;
+	size_t line, col;
+	char *owned;
+};
+
+struct lexer {
+	const char *src;
+	size_t len, pos, line, col;
+};
+
+struct parser {
+	struct lexer lx;
+	const char *name; /* for messages */
+	char *dir;        /* base of relative paths, or NULL */
+	char *err;
+	size_t errlen;
+	rf_scene *s;
+	/* the statement being parsed */
+	struct token *tok;
+	size_t ntok, cap, pos;
+	size_t end_line, end_col; /* just past its last token */
+	/* attribute names seen in it, for duplicates */
+	const struct token *attrs[ATTRS_MAX];
+	size_t nattrs;
+	size_t camera_line, name_line, room_line;
+};
+
+static int
+fail_at(struct parser *p, size_t line, size_t col, const char *fmt, ...)
+	RF__PRINTF(4, 5);
+
+static int
+fail_at(struct parser *p, size_t line, size_t col, const char *fmt, ...)
+{
+	char msg[512];
+	va_list ap;
+
+	va_start(ap, fmt);
+	vsnprintf(msg, sizeof(msg), fmt, ap);
+	va_end(ap);
+	rf__format(p->err, p->errlen, "%s:%zu:%zu: %s", p->name, line, col, msg);
+	return RF_EFORMAT;
+}
+
+#define FAIL_TOK(p, t, ...) fail_at((p), (t)->line, (t)->col, __VA_ARGS__)
+#define FAIL_END(p, ...) fail_at((p), (p)->end_line, (p)->end_col, __VA_ARGS__)
+
+/* ---- lexing ------------------------------------------------------------ */
+
+static int
+lx_peek(const struct lexer *lx, size_t ahead)
+{
+	return lx->pos + ahead < lx->len ? (unsigned char)lx->src[lx->pos + ahead] : -1;
+}
+
+static void
+lx_advance(struct lexer *lx)
+{
+	if (lx->src[lx->pos] == '\n') {
+		lx->line++;
+		lx->col = 1;
+	} else {
+		lx->col++;
+	}
+	lx->pos++;
+}
+
+static void
+free_tokens(struct parser *p)
+{
+	size_t i;
+
+	for (i = 0; i < p->ntok; i++)
+		free(p->tok[i].owned);
+	p->ntok = 0;
+	p->pos = 0;
+	p->nattrs = 0;
+}
+
+static int
+push_token(struct parser *p, const struct token *t)
+{
+	if (p->ntok == p->cap) {
+		size_t cap = p->cap ? 2 * p->cap : 32;
+		struct token *tok = realloc(p->tok, cap * sizeof(*tok));
+
+		if (!tok)
+			return RF_ENOMEM;
+		p->tok = tok;
+		p->cap = cap;
+	}
+	p->tok[p->ntok++] = *t;
+	return 0;
+}
+
+/* A "quoted word": \" and \\ stand for themselves. */
+static int
+lex_quoted(struct parser *p, struct token *t)
+{
+	struct lexer *lx = &p->lx;
+	size_t n = 0, end;
+	char *buf;
+	int c;
+
+	/* The word's own length, not the rest of the file: a scene of many
+	 * short quoted words would otherwise allocate the file again for
+	 * each.  Escapes only shorten it. */
+	for (end = lx->pos + 1; end < lx->len && lx->src[end] != '"' && lx->src[end] != '\n';
+	     end++)
+		if (lx->src[end] == '\\' && end + 1 < lx->len &&
+		    (lx->src[end + 1] == '"' || lx->src[end + 1] == '\\'))
+			end++;
+	if (!(buf = malloc(end - lx->pos + 1)))
+		return RF_ENOMEM;
+	lx_advance(lx);
+	while ((c = lx_peek(lx, 0)) != '"') {
+		if (c == -1 || c == '\n') {
+			free(buf);
+			return fail_at(p, lx->line, lx->col, "expected a closing '\"' for "
+			               "the word opened at column %zu", t->col);
+		}
+		if (c == '\\' && (lx_peek(lx, 1) == '"' || lx_peek(lx, 1) == '\\')) {
+			lx_advance(lx);
+			c = lx_peek(lx, 0);
+		}
+		buf[n++] = (char)c;
+		lx_advance(lx);
+	}
+	lx_advance(lx);
+	t->owned = buf;
+	t->text = buf;
+	t->len = n;
+	return 0;
+}
+
+/* Reads the next statement's tokens: 1, or 0 at the end of the text. */
+static int
+next_statement(struct parser *p)
+{
+	struct lexer *lx = &p->lx;
+	int c, rc;
+
+	free_tokens(p);
+	for (;;) {
+		struct token t = { 0 };
+
+		c = lx_peek(lx, 0);
+		if (c == -1 || (c == '\n' && p->ntok)) {
+			if (c == '\n')
+				lx_advance(lx);
+			return p->ntok ? 1 : 0;
+		}
+		if (c == ' ' || c == '\t' || c == '\r' || c == '\n') {
+			lx_advance(lx);
+			continue;
+		}
+		if (c == '#') {
+			while ((c = lx_peek(lx, 0)) != -1 && c != '\n')
+				lx_advance(lx);
+			continue;
+		}
+		if (c == '\\') {
+			size_t k = 1;
+
+			while (lx_peek(lx, k) == ' ' || lx_peek(lx, k) == '\t' ||
+			       lx_peek(lx, k) == '\r')
+				k++;
+			if (lx_peek(lx, k) == '\n' || lx_peek(lx, k) == -1) {
+				while (k-- > 0)
+					lx_advance(lx);
+				if (lx_peek(lx, 0) == '\n')
+					lx_advance(lx); /* the statement goes on */
+				continue;
+			}
+		}
+		if (c == 0)
+			return fail_at(p, lx->line, lx->col, "expected text, found a NUL "
+			               "byte");
+		t.line = lx->line;
+		t.col = lx->col;
+		if (c == '"') {
+			if ((rc = lex_quoted(p, &t)) < 0)
+				return rc;
+		} else {
+			t.text = lx->src + lx->pos;
+			while ((c = lx_peek(lx, 0)) != -1 && c != ' ' && c != '\t' &&
+			       c != '\r' && c != '\n' && c != '#' && c != 0 && c != '"')
+				lx_advance(lx);
+			t.len = (size_t)(lx->src + lx->pos - t.text);
+		}
+		if ((rc = push_token(p, &t)) < 0) {
+			free(t.owned);
+			return rc;
+		}
+		p->end_line = lx->line;
+		p->end_col = lx->col;
+	}
+}
+
+/* ---- values -------------------------------------------------------------- */
+
+static int
+tok_is(const struct token *t, const char *word)
+{
+	return !t->owned && t->len == strlen(word) && !memcmp(t->text, word, t->len);
+}
+
+static const struct token *
+take(struct parser *p)
+{
+	return p->pos < p->ntok ? &p->tok[p->pos++] : NULL;
+}
+
+/* The token shown in a message, cut to a sensible length. */
+#define TOKFMT "'%.*s%s'"
+#define TOKARG(t) (int)((t)->len > 40 ? 40 : (t)->len), (t)->text, (t)->len > 40 ? "..." : ""
+
+static int
+number(struct parser *p, const char *what, double *v)
+{
+	const struct token *t = take(p);
+	char buf[64];
+	char *end;
+	size_t i;
+
+	if (!t)
+		return FAIL_END(p, "expected a number for '%s', found the end of the "
+		                "line", what);
+	for (i = 0; i < t->len; i++)
+		if (!strchr("0123456789+-.eE", t->text[i]))
+			break;
+	if (t->owned || i < t->len || t->len >= sizeof(buf))
+		return FAIL_TOK(p, t, "expected a number for '%s', found " TOKFMT, what,
+		                TOKARG(t));
+	memcpy(buf, t->text, t->len);
+	buf[t->len] = '\0';
+	errno = 0;
+	*v = strtod(buf, &end);
+	if (end == buf || *end || errno == ERANGE || !isfinite(*v))
+		return FAIL_TOK(p, t, "expected a number for '%s', found " TOKFMT, what,
+		                TOKARG(t));
+	return 0;
+}
+
+static int
+numbers(struct parser *p, const char *what, double *v, int n)
+{
+	int i, rc;
+
+	for (i = 0; i < n; i++)
+		if ((rc = number(p, what, &v[i])) < 0)
+			return rc;
+	return 0;
+}
+
+/* A number in [lo, hi]. */
+static int
+number_in(struct parser *p, const char *what, double lo, double hi, double *v)
+{
+	int rc = number(p, what, v);
+
+	if (rc < 0)
+		return rc;
+	if (*v < lo || *v > hi)
+		return FAIL_TOK(p, &p->tok[p->pos - 1], "expected '%s' in [%g, %g], "
+		                "found %g", what, lo, hi, *v);
+	return 0;
+}
+
+static int
+positive(struct parser *p, const char *what, double *v)
+{
+	int rc = number(p, what, v);
+
+	if (rc < 0)
+		return rc;
+	if (!(*v > 0))
+		return FAIL_TOK(p, &p->tok[p->pos - 1], "expected a positive %s, found %g",
+		                what, *v);
+	return 0;
+}
+
+static int
+word(struct parser *p, const char *what, const struct token **t)
+{
+	if (!(*t = take(p)))
+		return FAIL_END(p, "expected %s, found the end of the line", what);
+	return 0;
+}
+
+static int
+on_off(struct parser *p, const char *what, int *v)
+{
+	const struct token *t;
+	int rc;
+
+	if ((rc = word(p, "on or off", &t)) < 0)
+		return rc;
+	if (tok_is(t, "on") || tok_is(t, "1") || tok_is(t, "yes"))
+		*v = 1;
+	else if (tok_is(t, "off") || tok_is(t, "0") || tok_is(t, "no"))
+		*v = 0;
+	else
+		return FAIL_TOK(p, t, "expected on or off for '%s', found " TOKFMT, what,
+		                TOKARG(t));
+	return 0;
+}
+
+/* A copy of a path, relative ones taken from the scene file's directory. */
+static int
+resolve_path(struct parser *p, const struct token *t, char **out)
+{
+	size_t dlen = p->dir && t->text[0] != '/' ? strlen(p->dir) : 0;
+	char *s;
+
+	if (!t->len)
+		return FAIL_TOK(p, t, "expected a file name, found an empty word");
+	if (memchr(t->text, '\0', t->len))
+		return FAIL_TOK(p, t, "expected a file name without NUL bytes");
+	if (!(s = malloc(dlen + 1 + t->len + 1)))
+		return RF_ENOMEM;
+	if (dlen) {
+		memcpy(s, p->dir, dlen);
+		s[dlen] = '/';
+		memcpy(s + dlen + 1, t->text, t->len);
+		s[dlen + 1 + t->len] = '\0';
+	} else {
+		memcpy(s, t->text, t->len);
+		s[t->len] = '\0';
+	}
+	*out = s;
+	return 0;
+}
+
+/* The next attribute name, refusing one given twice.  NULL at the end. */
+static int
+attribute(struct parser *p, const struct token **key)
+{
+	size_t i;
+
+	*key = take(p);
+	if (!*key)
+		return 0;
+	for (i = 0; i < p->nattrs; i++)
+		if (p->attrs[i]->len == (*key)->len &&
+		    !memcmp(p->attrs[i]->text, (*key)->text, (*key)->len))
+			return FAIL_TOK(p, *key, "expected each attribute once, " TOKFMT
+			                " was given at column %zu already", TOKARG(*key),
+			                p->attrs[i]->col);
+	if (p->nattrs < ATTRS_MAX)
+		p->attrs[p->nattrs++] = *key;
+	return 1;
+}
+
+static const struct token *
+seen(const struct parser *p, const char *name)
+{
+	size_t i;
+
+	for (i = 0; i < p->nattrs; i++)
+		if (tok_is(p->attrs[i], name))
+			return p->attrs[i];
+	return NULL;
+}
+
+/* ---- materials ------------------------------------------------------------ */
+
+#define MATERIAL_WORDS "roughness, smoothness, metallic, albedo, reflective, " \
+	"normalmap, strength, scale, tiling, offset"
+
+/* 1 when key was a material attribute (and its value is read), 0 when it
+ * is not one, < 0 on error. */
+static int
+material_attribute(struct parser *p, const struct token *key, struct material *m)
+{
+	double v, vv[3];
+	int rc, on, i;
+
+	if (tok_is(key, "roughness") || tok_is(key, "smoothness")) {
+		const struct token *other = seen(p, tok_is(key, "roughness") ? "smoothness"
+		                                                              : "roughness");
+
+		if (other)
+			return FAIL_TOK(p, key, "expected 'roughness' or 'smoothness', not "
+			                "both (the other is at column %zu)", other->col);
+		if ((rc = number_in(p, tok_is(key, "roughness") ? "roughness" : "smoothness",
+		                    0, 1, &v)) < 0)
+			return rc;
+		m->roughness = (float)(tok_is(key, "roughness") ? v : 1.0 - v);
+	} else if (tok_is(key, "metallic")) {
+		if ((rc = number_in(p, "metallic", 0, 1, &v)) < 0)
+			return rc;
+		m->metallic = (float)v;
+	} else if (tok_is(key, "albedo")) {
+		for (i = 0; i < 3; i++) {
+			if ((rc = number_in(p, "albedo", 0, 1, &vv[i])) < 0)
+				return rc;
+			m->albedo[i] = (float)vv[i];
+		}
+	} else if (tok_is(key, "reflective")) {
+		if ((rc = on_off(p, "reflective", &on)) < 0)
+			return rc;
+		m->mask = on ? 1.0f : 0.0f;
+	} else if (tok_is(key, "normalmap")) {
+		const struct token *t;
+
+		if ((rc = word(p, "tiles, bumps, noise, image FILE or none", &t)) < 0)
+			return rc;
+		if (tok_is(t, "tiles"))
+			m->nm.kind = NM_TILES;
+		else if (tok_is(t, "bumps"))
+			m->nm.kind = NM_BUMPS;
+		else if (tok_is(t, "noise"))
+			m->nm.kind = NM_NOISE;
+		else if (tok_is(t, "none"))
+			m->nm.kind = NM_NONE;
+		else if (tok_is(t, "image")) {
+			const rf_image *img;
+			char *path, msg[400];
+
+			if ((rc = word(p, "an image file after 'normalmap image'", &t)) < 0)
+				return rc;
+			if ((rc = resolve_path(p, t, &path)) < 0)
+				return rc;
+			rc = rf__scene_image(p->s, path, &img, msg, sizeof(msg));
+			free(path);
+			if (rc == RF_ENOMEM)
+				return rc;
+			if (rc < 0)
+				return FAIL_TOK(p, t, "%s", msg);
+			m->nm.kind = NM_IMAGE;
+			m->nm.pixels = rf_image_pixels(img);
+			m->nm.width = rf_image_width(img);
+			m->nm.height = rf_image_height(img);
+			m->nm.nchannels = rf_image_nchannels(img);
+		} else
+			return FAIL_TOK(p, t, "expected tiles, bumps, noise, image FILE or "
+			                "none for 'normalmap', found " TOKFMT, TOKARG(t));
+	} else if (tok_is(key, "strength")) {
+		if ((rc = number_in(p, "strength", 0, 1e6, &v)) < 0)
+			return rc;
+		m->nm.strength = v;
+	} else if (tok_is(key, "scale")) {
+		if ((rc = positive(p, "scale", &v)) < 0)
+			return rc;
+		m->nm.inv_scale = 1.0 / v;
+	} else if (tok_is(key, "tiling")) {
+		if ((rc = numbers(p, "tiling", vv, 2)) < 0)
+			return rc;
+		if (vv[0] == 0 || vv[1] == 0)
+			return FAIL_TOK(p, &p->tok[p->pos - 1], "expected non-zero tiling, "
+			                "found %g %g", vv[0], vv[1]);
+		m->nm.tiling[0] = vv[0];
+		m->nm.tiling[1] = vv[1];
+	} else if (tok_is(key, "offset")) {
+		if ((rc = numbers(p, "offset", vv, 2)) < 0)
+			return rc;
+		m->nm.offset[0] = vv[0];
+		m->nm.offset[1] = vv[1];
+	} else {
+		return 0;
+	}
+	return 1;
+}
+
+/* Normal map settings without a normal map are a slip worth naming. */
+static int
+material_check(struct parser *p)
+{
+	static const char *const nm_words[] = { "strength", "scale", "tiling", "offset",
+		                                NULL };
+	const struct token *t;
+	int i;
+
+	if (seen(p, "normalmap"))
+		return 0;
+	for (i = 0; nm_words[i]; i++)
+		if ((t = seen(p, nm_words[i])))
+			return FAIL_TOK(p, t, "expected a 'normalmap' for " TOKFMT,
+			                TOKARG(t));
+	return 0;
+}
+
+/* ---- statements ---------------------------------------------------------- */
+
+static int
+unknown_attribute(struct parser *p, const struct token *key, const char *what,
+                  const char *expected)
+{
+	return FAIL_TOK(p, key, "unknown %s attribute " TOKFMT " (expected %s)", what,
+	                TOKARG(key), expected);
+}
+
+static int
+missing(struct parser *p, const struct token *kw, const char *what)
+{
+	return FAIL_TOK(p, kw, "expected %s on this line", what);
+}
+
+/* The camera from a 4x4 camera-to-world matrix, rows as written:
+ * columns right, up, back (the camera looks along -Z, as in OpenGL and
+ * Blender), position. */
+static int
+camera_from_matrix(struct parser *p, const struct token *at, const double m[16],
+                   struct rf_camera *c)
+{
+	double back[3] = { m[2], m[6], m[10] };
+	int i;
+
+	if (fabs(m[12]) > 1e-9 || fabs(m[13]) > 1e-9 || fabs(m[14]) > 1e-9 ||
+	    fabs(m[15] - 1) > 1e-9)
+		return FAIL_TOK(p, at, "expected the matrix's last row to be 0 0 0 1, "
+		                "found %g %g %g %g", m[12], m[13], m[14], m[15]);
+	if (!(rf__normalize(back) > 0))
+		return FAIL_TOK(p, at, "expected a matrix whose third column (the "
+		                "camera's back) is not zero");
+	for (i = 0; i < 3; i++) {
+		c->position[i] = m[4 * i + 3];
+		c->target[i] = c->position[i] - back[i];
+		c->up[i] = m[4 * i + 1];
+	}
+	return 0;
+}
+
+static int
+parse_camera(struct parser *p, const struct token *kw)
+{
+	struct rf_camera c = { { 0, 0, 0 }, { 0, 0, -1 }, { 0, 1, 0 }, 60.0 };
+	const struct token *key;
+	double m[16];
+	char msg[256];
+	int rc;
+
+	if (p->camera_line)
+		return FAIL_TOK(p, kw, "expected one 'camera' line, the first is line %zu",
+		                p->camera_line);
+	p->camera_line = kw->line;
+	while ((rc = attribute(p, &key)) > 0) {
+		if (tok_is(key, "position"))
+			rc = numbers(p, "position", c.position, 3);
+		else if (tok_is(key, "target"))
+			rc = numbers(p, "target", c.target, 3);
+		else if (tok_is(key, "up"))
+			rc = numbers(p, "up", c.up, 3);
+		else if (tok_is(key, "fov"))
+			rc = number(p, "fov", &c.fov);
+		else if (tok_is(key, "matrix"))
+			rc = numbers(p, "matrix", m, 16);
+		else
+			return unknown_attribute(p, key, "camera",
+			                         "position, target, up, fov or matrix");
+		if (rc < 0)
+			return rc;
+	}
+	if (rc < 0)
+		return rc;
+	if ((key = seen(p, "matrix"))) {
+		const struct token *other = seen(p, "position");
+
+		if (!other)
+			other = seen(p, "target");
+		if (!other)
+			other = seen(p, "up");
+		if (other)
+			return FAIL_TOK(p, other, "expected either 'matrix' or 'position' "
+			                "and 'target', not both");
+		if ((rc = camera_from_matrix(p, key, m, &c)) < 0)
+			return rc;
+	} else if (!seen(p, "position") || !seen(p, "target")) {
+		return missing(p, kw, "'position X Y Z' and 'target X Y Z', or 'matrix' "
+		               "and 16 numbers");
+	}
+	if (rf_camera_check(&c, msg, sizeof(msg)) < 0)
+		return FAIL_TOK(p, kw, "%s", msg);
+	p->s->camera = c;
+	return 0;
+}
+
+static int
+box_check(struct parser *p, const struct token *at, const double *mn,
+          const double *mx, int dims, const char *axes)
+{
+	int i;
+
+	for (i = 0; i < dims; i++)
+		if (!(mn[i] < mx[i]))
+			return FAIL_TOK(p, at, "expected min < max on every axis, the box "
+			                "is empty on %c (min %g, max %g)", axes[i], mn[i],
+			                mx[i]);
+	return 0;
+}
+
+static int
+parse_probe(struct parser *p, const struct token *kw)
+{
+	struct rf_scene_probe pr, *probes;
+	const struct token *key, *t;
+	double box[6];
+	int rc, i;
+
+	memset(&pr, 0, sizeof(pr));
+	pr.blend = 1.0;
+	pr.box_projection = 1;
+	while ((rc = attribute(p, &key)) > 0) {
+		if (tok_is(key, "center") || tok_is(key, "centre"))
+			rc = numbers(p, "center", pr.center, 3);
+		else if (tok_is(key, "box"))
+			rc = numbers(p, "box", box, 6);
+		else if (tok_is(key, "blend")) {
+			rc = number_in(p, "blend", 0, 1e9, &pr.blend);
+		} else if (tok_is(key, "projection"))
+			rc = on_off(p, "projection", &pr.box_projection);
+		else if (tok_is(key, "env")) {
+			if ((rc = word(p, "an environment file or 'default'", &t)) < 0)
+				break;
+			free((char *)pr.env);
+			pr.env = NULL;
+			if (!tok_is(t, "default"))
+				rc = resolve_path(p, t, (char **)&pr.env);
+		} else {
+			rc = unknown_attribute(p, key, "probe",
+			                       "center, box, env, blend or projection");
+		}
+		if (rc < 0)
+			break;
+	}
+	if (rc >= 0 && !(key = seen(p, "box")))
+		rc = missing(p, kw, "'box XMIN YMIN ZMIN XMAX YMAX ZMAX'");
+	if (rc >= 0) {
+		for (i = 0; i < 3; i++) {
+			pr.box_min[i] = box[i];
+			pr.box_max[i] = box[i + 3];
+		}
+		rc = box_check(p, key, pr.box_min, pr.box_max, 3, "XYZ");
+	}
+	if (rc >= 0 && !seen(p, "center") && !seen(p, "centre"))
+		for (i = 0; i < 3; i++)
+			pr.center[i] = 0.5 * (pr.box_min[i] + pr.box_max[i]);
+	for (i = 0; rc >= 0 && i < 3; i++)
+		if (!(pr.center[i] >= pr.box_min[i] && pr.center[i] <= pr.box_max[i])) {
+			t = seen(p, "center") ? seen(p, "center") : seen(p, "centre");
+			rc = FAIL_TOK(p, t, "expected the probe's centre inside its box, "
+			              "(%g %g %g) is outside on %c [%g, %g]", pr.center[0],
+			              pr.center[1], pr.center[2], "XYZ"[i], pr.box_min[i],
+			              pr.box_max[i]);
+		}
+	if (rc >= 0) {
+		probes = realloc(p->s->probes, (p->s->nprobes + 1) * sizeof(*probes));
+		if (!probes)
+			rc = RF_ENOMEM;
+		else {
+			p->s->probes = probes;
+			probes[p->s->nprobes++] = pr;
+			return 0;
+		}
+	}
+	free((char *)pr.env);
+	return rc;
+}
+
+static int
+parse_room(struct parser *p, const struct token *kw)
+{
+	const struct token *key;
+	int rc;
+
+	if (p->room_line)
+		return FAIL_TOK(p, kw, "expected one 'room' line, the first is line %zu",
+		                p->room_line);
+	p->room_line = kw->line;
+	if (p->pos < p->ntok && (tok_is(&p->tok[p->pos], "on") ||
+	                         tok_is(&p->tok[p->pos], "off"))) {
+		p->s->room = tok_is(&p->tok[p->pos], "on");
+		p->pos++;
+	}
+	while ((rc = attribute(p, &key)) > 0) {
+		if ((rc = material_attribute(p, key, &p->s->room_mat)) < 0)
+			return rc;
+		if (!rc)
+			return unknown_attribute(p, key, "room",
+			                         "on, off or a material attribute ("
+			                         MATERIAL_WORDS ")");
+	}
+	return rc < 0 ? rc : material_check(p);
+}
+
+static int
+parse_name(struct parser *p, const struct token *kw)
+{
+	const struct token *t;
+	char *name;
+	size_t i;
+	int rc;
+
+	if (p->name_line)
+		return FAIL_TOK(p, kw, "expected one 'name' line, the first is line %zu",
+		                p->name_line);
+	p->name_line = kw->line;
+	if ((rc = word(p, "a scene name", &t)) < 0)
+		return rc;
+	for (i = 0; i < t->len; i++)
+		if ((unsigned char)t->text[i] < 0x20)
+			return FAIL_TOK(p, t, "expected a name of printable characters");
+	if (p->pos < p->ntok)
+		return FAIL_TOK(p, &p->tok[p->pos], "expected the end of the line after "
+		                "the name (quote a name with spaces)");
+	if (!(name = malloc(t->len + 1)))
+		return RF_ENOMEM;
+	memcpy(name, t->text, t->len);
+	name[t->len] = '\0';
+	free(p->s->name);
+	p->s->name = name;
+	return 0;
+}
+
+static int
+add_object(struct parser *p, const struct object *o)
+{
+	struct object *objs = realloc(p->s->objects, (p->s->nobjects + 1) * sizeof(*objs));
+
+	if (!objs)
+		return RF_ENOMEM;
+	p->s->objects = objs;
+	objs[p->s->nobjects] = *o;
+	rf__object_prepare(&objs[p->s->nobjects]);
+	p->s->nobjects++;
+	return 0;
+}
+
+static int
+parse_sphere(struct parser *p, const struct token *kw, struct object *o)
+{
+	const struct token *key;
+	int rc;
+
+	while ((rc = attribute(p, &key)) > 0) {
+		if (tok_is(key, "center") || tok_is(key, "centre"))
+			rc = numbers(p, "center", o->center, 3);
+		else if (tok_is(key, "radius"))
+			rc = positive(p, "radius", &o->radius);
+		else if (!(rc = material_attribute(p, key, &o->mat)))
+			return unknown_attribute(p, key, "sphere", "center, radius or a "
+			                         "material attribute (" MATERIAL_WORDS ")");
+		if (rc < 0)
+			return rc;
+	}
+	if (rc < 0)
+		return rc;
+	if (!seen(p, "center") && !seen(p, "centre"))
+		return missing(p, kw, "'center X Y Z'");
+	if (!seen(p, "radius"))
+		return missing(p, kw, "'radius R'");
+	return material_check(p);
+}
+
+static int
+parse_box(struct parser *p, const struct token *kw, struct object *o)
+{
+	const struct token *key;
+	int rc;
+
+	while ((rc = attribute(p, &key)) > 0) {
+		if (tok_is(key, "min"))
+			rc = numbers(p, "min", o->min, 3);
+		else if (tok_is(key, "max"))
+			rc = numbers(p, "max", o->max, 3);
+		else if (!(rc = material_attribute(p, key, &o->mat)))
+			return unknown_attribute(p, key, "box", "min, max or a material "
+			                         "attribute (" MATERIAL_WORDS ")");
+		if (rc < 0)
+			return rc;
+	}
+	if (rc < 0)
+		return rc;
+	if (!seen(p, "min") || !seen(p, "max"))
+		return missing(p, kw, "'min X Y Z' and 'max X Y Z'");
+	if ((rc = box_check(p, seen(p, "min"), o->min, o->max, 3, "XYZ")) < 0)
+		return rc;
+	return material_check(p);
+}
+
+/* rect plane x|y|z VALUE min A B max A B: A B are the other two axes in
+ * x, y, z order; the normal is +axis, the tangent the first other axis. */
+static int
+rect_from_plane(struct parser *p, const struct token *at, int axis, double value,
+                const double mn[2], const double mx[2], struct object *o)
+{
+	int a = axis == 0 ? 1 : 0, b = axis == 2 ? 1 : 2, rc;
+	const char axes[3] = { "XYZ"[a], "XYZ"[b], 0 };
+
+	if ((rc = box_check(p, at, mn, mx, 2, axes)) < 0)
+		return rc;
+	o->axis = axis;
+	memset(o->n, 0, sizeof(o->n));
+	memset(o->t, 0, sizeof(o->t));
+	o->n[axis] = 1.0;
+	/* The frame must be right-handed (t x b = n): for the Y plane the
+	 * plane-tangent rule gives t = +X; for X and Z, t lies along Z or X
+	 * so that b is up. */
+	rf__plane_tangent(o->n, o->t);
+	o->center[axis] = value;
+	o->center[a] = 0.5 * (mn[0] + mx[0]);
+	o->center[b] = 0.5 * (mn[1] + mx[1]);
+	{
+		double b3[3];
+		double ea[3] = { 0, 0, 0 };
+
+		ea[a] = 1.0;
+		rf__cross(o->n, o->t, b3);
+		/* half sizes along t and b, whichever of a, b they are */
+		o->half[0] = fabs(rf__dot(o->t, ea)) > 0.5 ? 0.5 * (mx[0] - mn[0])
+		                                          : 0.5 * (mx[1] - mn[1]);
+		o->half[1] = fabs(rf__dot(b3, ea)) > 0.5 ? 0.5 * (mx[0] - mn[0])
+		                                        : 0.5 * (mx[1] - mn[1]);
+	}
+	return 0;
+}
+
+static int
+parse_rect(struct parser *p, const struct token *kw, struct object *o)
+{
+	const struct token *key, *t, *plane = NULL;
+	double mn[2], mx[2], size[2], value = 0, tangent[3];
+	int rc, axis = -1;
+
+	while ((rc = attribute(p, &key)) > 0) {
+		if (tok_is(key, "plane")) {
+			plane = key;
+			if ((rc = word(p, "x, y or z after 'plane'", &t)) < 0)
+				return rc;
+			if (tok_is(t, "x") || tok_is(t, "y") || tok_is(t, "z"))
+				axis = t->text[0] - 'x';
+			else
+				return FAIL_TOK(p, t, "expected x, y or z after 'plane', found "
+				                TOKFMT, TOKARG(t));
+			rc = number(p, "plane", &value);
+		} else if (tok_is(key, "min"))
+			rc = numbers(p, "min", mn, 2);
+		else if (tok_is(key, "max"))
+			rc = numbers(p, "max", mx, 2);
+		else if (tok_is(key, "center") || tok_is(key, "centre"))
+			rc = numbers(p, "center", o->center, 3);
+		else if (tok_is(key, "normal"))
+			rc = numbers(p, "normal", o->n, 3);
+		else if (tok_is(key, "size")) {
+			if ((rc = numbers(p, "size", size, 2)) >= 0 &&
+			    !(size[0] > 0 && size[1] > 0))
+				rc = FAIL_TOK(p, key, "expected two positive sizes, found %g %g",
+				              size[0], size[1]);
+		} else if (tok_is(key, "tangent"))
+			rc = numbers(p, "tangent", tangent, 3);
+		else if (!(rc = material_attribute(p, key, &o->mat)))
+			return unknown_attribute(p, key, "rect", "plane, min, max, or center, "
+			                         "normal, size, tangent, or a material "
+			                         "attribute (" MATERIAL_WORDS ")");
+		if (rc < 0)
+			return rc;
+	}
+	if (rc < 0)
+		return rc;
+	if (plane) {
+		static const char *const general[] = { "center", "centre", "normal", "size",
+			                               "tangent", NULL };
+		int i;
+
+		for (i = 0; general[i]; i++)
+			if ((t = seen(p, general[i])))
+				return FAIL_TOK(p, t, "expected either 'plane' with 'min' and "
+				                "'max', or 'center', 'normal' and 'size', not both");
+		if (!seen(p, "min") || !seen(p, "max"))
+			return missing(p, kw, "'min A B' and 'max A B' with 'plane'");
+		rc = rect_from_plane(p, seen(p, "min"), axis, value, mn, mx, o);
+	} else if (seen(p, "min") || seen(p, "max")) {
+		t = seen(p, "min") ? seen(p, "min") : seen(p, "max");
+		return FAIL_TOK(p, t, "expected 'plane x|y|z VALUE' before 'min' and 'max'");
+	} else {
+		if ((!seen(p, "center") && !seen(p, "centre")) || !seen(p, "normal") ||
+		    !seen(p, "size"))
+			return missing(p, kw, "'plane x|y|z VALUE min A B max A B', or "
+			               "'center X Y Z normal X Y Z size W H'");
+		if (!(rf__normalize(o->n) > 0))
+			return FAIL_TOK(p, seen(p, "normal"), "expected a non-zero normal");
+		if ((t = seen(p, "tangent"))) {
+			double d = rf__dot(tangent, o->n);
+			int i;
+
+			for (i = 0; i < 3; i++)
+				tangent[i] -= d * o->n[i];
+			if (!(rf__normalize(tangent) > 1e-9))
+				return FAIL_TOK(p, t, "expected a tangent not parallel to the "
+				                "normal");
+			memcpy(o->t, tangent, sizeof(tangent));
+		} else {
+			rf__plane_tangent(o->n, o->t);
+		}
+		o->half[0] = 0.5 * size[0];
+		o->half[1] = 0.5 * size[1];
+		o->axis = -1;
+	}
+	if (rc < 0)
+		return rc;
+	return material_check(p);
+}
+
+static int
+parse_object(struct parser *p, const struct token *kw)
+{
+	struct object o;
+	int rc;
+
+	memset(&o, 0, sizeof(o));
+	o.line = kw->line;
+	o.axis = -1;
+	rf__material_default(&o.mat, 0);
+	if (tok_is(kw, "sphere")) {
+		o.kind = OBJ_SPHERE;
+		rc = parse_sphere(p, kw, &o);
+	} else if (tok_is(kw, "box")) {
+		o.kind = OBJ_BOX;
+		rc = parse_box(p, kw, &o);
+	} else {
+		o.kind = OBJ_RECT;
+		rc = parse_rect(p, kw, &o);
+	}
+	return rc < 0 ? rc : add_object(p, &o);
+}
+
+static int
+statement(struct parser *p)
+{
+	const struct token *kw = take(p);
+
+	if (tok_is(kw, "camera"))
+		return parse_camera(p, kw);
+	if (tok_is(kw, "probe"))
+		return parse_probe(p, kw);
+	if (tok_is(kw, "room"))
+		return parse_room(p, kw);
+	if (tok_is(kw, "name"))
+		return parse_name(p, kw);
+	if (tok_is(kw, "sphere") || tok_is(kw, "box") || tok_is(kw, "rect"))
+		return parse_object(p, kw);
+	return FAIL_TOK(p, kw, "unknown keyword " TOKFMT " (expected name, camera, "
+	                "probe, room, sphere, box or rect)", TOKARG(kw));
+}
+
+/* The scene's name from its file name: the base name without extension. */
+static int
+name_from_file(rf_scene *s, const char *file)
+{
+	const char *base = strrchr(file, '/') ? strrchr(file, '/') + 1 : file;
+	size_t n = strcspn(base, ".");
+
+	if (!n || !strcmp(file, "-") || base[0] == '<') {
+		base = "scene";
+		n = strlen(base);
+	}
+	if (!(s->name = malloc(n + 1)))
+		return RF_ENOMEM;
+	memcpy(s->name, base, n);
+	s->name[n] = '\0';
+	return 0;
+}
+
+int
+rf_scene_parse(rf_scene **sp, const char *text, size_t len, const char *name,
+               char *err, size_t errlen)
+{
+	struct parser p;
+	const char *slash;
+	size_t i;
+	int rc;
+
+	*sp = NULL;
+	memset(&p, 0, sizeof(p));
+	p.name = name ? name : "<scene>";
+	p.err = err;
+	p.errlen = errlen;
+	p.lx.src = text;
+	p.lx.len = len;
+	p.lx.line = 1;
+	p.lx.col = 1;
+	if (!(p.s = rf__scene_new()))
+		return RF_ENOMEM;
+	if (name && (slash = strrchr(name, '/'))) {
+		size_t n = (size_t)(slash - name);
+
+		if (!(p.dir = malloc(n + 2))) {
+			rf_scene_free(p.s);
+			return RF_ENOMEM;
+		}
+		/* "/x.scene" lives in "/": its files are "//file", still right. */
+		memcpy(p.dir, name, n);
+		p.dir[n] = '\0';
+	}
+	while ((rc = next_statement(&p)) > 0)
+		if ((rc = statement(&p)) < 0)
+			break;
+	free_tokens(&p);
+	free(p.tok);
+	free(p.dir);
+	if (rc == 0 && !p.s->nprobes)
+		rc = fail_at(&p, p.lx.line, 1, "expected a 'probe' line (the room's box and "
+		             "the capture point) before the end of the file");
+	if (rc == 0 && !p.camera_line) {
+		/* From the capture point, looking along -Z. */
+		for (i = 0; i < 3; i++) {
+			p.s->camera.position[i] = p.s->probes[0].center[i];
+			p.s->camera.target[i] = p.s->probes[0].center[i];
+			p.s->camera.up[i] = i == 1;
+		}
+		p.s->camera.target[2] -= 1.0;
+		p.s->camera.fov = 60.0;
+	}
+	if (rc == 0 && !p.s->name)
+		rc = name_from_file(p.s, p.name);
+	if (rc == RF_ENOMEM)
+		rf__format(err, errlen, "%s: %s", p.name, rf_strerror(rc));
+	if (rc < 0 && err) {
+		/* Messages quote the scene's words: none of its control bytes
+		 * may reach a terminal. */
+		char *c;
+
+		for (c = err; *c; c++)
+			if ((unsigned char)*c < 0x20 || *c == 0x7f)
+				*c = '?';
+	}
+	if (rc < 0) {
+		rf_scene_free(p.s);
+		return rc;
+	}
+	*sp = p.s;
+	return 0;
+}
+
+int
+rf_scene_read(rf_scene **sp, FILE *fp, const char *name, char *err, size_t errlen)
+{
+	size_t len = 0, cap = 0, n;
+	char *buf = NULL, *grown;
+	int rc;
+
+	*sp = NULL;
+	for (;;) {
+		if (len == cap) {
+			cap = cap ? 2 * cap : 8192;
+			if (cap > SCENE_BYTES_MAX + 1)
+				cap = SCENE_BYTES_MAX + 1;
+			if (len == cap) {
+				free(buf);
+				rf__format(err, errlen, "%s: expected a scene file of at most "
+				           "%zu bytes", name ? name : "<scene>", SCENE_BYTES_MAX);
+				return RF_ETOOBIG;
+			}
+			if (!(grown = realloc(buf, cap))) {
+				free(buf);
+				return RF_ENOMEM;
+			}
+			buf = grown;
+		}
+		n = fread(buf + len, 1, cap - len, fp);
+		len += n;
+		if (n == 0)
+			break;
+	}
+	if (ferror(fp)) {
+		rf__format(err, errlen, "cannot read '%s': %s", name ? name : "<scene>",
+		           strerror(errno));
+		free(buf);
+		return RF_EIO;
+	}
+	rc = rf_scene_parse(sp, buf ? buf : "", len, name, err, errlen);
+	free(buf);
+	return rc;
+}

@@ -1,0 +1,396 @@
+/* Exact ray casting: spheres, boxes, rectangles and the room seen from
+ * inside, nearest hit first. */
+#include <math.h>
+#include <stdint.h>
+
+#include "scene/scene-internal.h"
+
+/* Hits closer than this are the origin's own surface. */
+#define T_MIN 1e-9
+/* Direction components below this never cross a slab's planes. */
+#define D_MIN 1e-12
+/* How far a ray that hits nothing puts P: finite, so that no later
+ * difference of infinities makes a NaN, and outside any box. */
+#define MISS_DISTANCE 1e30
+
+/* What a hit needs to be shaded. */
+struct candidate {
+	double t;
+	int index; /* object index, or -1 for the room */
+	int axis;  /* box or wall: the face's axis */
+	int upper; /* box or wall: the face at max (1) or min (0) */
+};
+
+static void
+prepare(const struct object *ob, const double o[3], double *k)
+{
+	int i;
+
+	switch (ob->kind) {
+	case OBJ_SPHERE:
+		for (i = 0; i < 3; i++)
+			k[i] = o[i] - ob->center[i];
+		k[3] = rf__dot(k, k) - ob->radius2;
+		break;
+	case OBJ_BOX:
+		for (i = 0; i < 3; i++) {
+			k[i] = ob->min[i] - o[i];
+			k[i + 3] = ob->max[i] - o[i];
+		}
+		break;
+	case OBJ_RECT:
+		k[0] = (ob->center[0] - o[0]) * ob->n[0] + (ob->center[1] - o[1]) * ob->n[1] +
+		       (ob->center[2] - o[2]) * ob->n[2];
+		break;
+	}
+}
+
+static void
+prepare_room(const struct rf_scene_probe *room, const double o[3], double *k)
+{
+	int i;
+
+	for (i = 0; i < 3; i++) {
+		k[i] = room->box_min[i] - o[i];
+		k[i + 3] = room->box_max[i] - o[i];
+	}
+}
+
+void
+rf__trace_prepare(const rf_scene *s, const double o[3], double *k)
+{
+	size_t i;
+
+	for (i = 0; i < s->nobjects; i++)
+		prepare(&s->objects[i], o, k + i * RF__ORIGIN_STRIDE);
+	if (s->nprobes)
+		prepare_room(&s->probes[0], o, k + s->nobjects * RF__ORIGIN_STRIDE);
+}
+
+/* Robust quadratic (Haines et al., Ray Tracing Gems ch. 7): the
+ * discriminant from the closest approach, the near root without
+ * cancellation. */
+static int
+hit_sphere(const struct object *ob, const double *k, const double d[3], double tmax,
+           double *t)
+{
+	double b = -(k[0] * d[0] + k[1] * d[1] + k[2] * d[2]);
+	double l0 = k[0] + b * d[0], l1 = k[1] + b * d[1], l2 = k[2] + b * d[2];
+	double disc = ob->radius2 - (l0 * l0 + l1 * l1 + l2 * l2);
+	double q, t0, t1;
+
+	if (disc < 0)
+		return 0;
+	q = b + copysign(sqrt(disc), b);
+	if (q == 0)
+		return 0; /* grazes the sphere exactly at the origin */
+	t0 = k[3] / q;
+	t1 = q;
+	if (t0 > t1) {
+		double tmp = t0;
+
+		t0 = t1;
+		t1 = tmp;
+	}
+	if (t0 > T_MIN && t0 < tmax) {
+		*t = t0;
+		return 1;
+	}
+	if (t1 > T_MIN && t1 < tmax) {
+		*t = t1;
+		return 1;
+	}
+	return 0;
+}
+
+/* Slab test.  want_exit: only the far crossing counts (the room seen from
+ * inside, or from outside through its near walls). */
+static int
+hit_slabs(const double *k, const double d[3], const double inv[3], double tmax,
+          int want_exit, struct candidate *c)
+{
+	double tn = -INFINITY, tf = INFINITY;
+	int an = -1, af = -1, a;
+
+	for (a = 0; a < 3; a++) {
+		double t0, t1;
+
+		if (fabs(d[a]) < D_MIN) {
+			if (k[a] > 0 || k[a + 3] < 0)
+				return 0; /* parallel to the slab and outside it */
+			continue;
+		}
+		t0 = k[a] * inv[a];
+		t1 = k[a + 3] * inv[a];
+		if (t0 > t1) {
+			double tmp = t0;
+
+			t0 = t1;
+			t1 = tmp;
+		}
+		if (t0 > tn) {
+			tn = t0;
+			an = a;
+		}
+		if (t1 < tf) {
+			tf = t1;
+			af = a;
+		}
+	}
+	if (tn > tf || af < 0)
+		return 0;
+	if (!want_exit && tn > T_MIN) {
+		if (tn >= tmax)
+			return 0;
+		c->t = tn;
+		c->axis = an;
+		c->upper = d[an] < 0;
+		return 1;
+	}
+	if (tf > T_MIN && tf < tmax) {
+		c->t = tf;
+		c->axis = af;
+		c->upper = d[af] > 0;
+		return 1;
+	}
+	return 0;
+}
+
+static int
+hit_rect(const struct object *ob, const double *k, const double o[3],
+         const double d[3], double tmax, double *t)
+{
+	double denom = rf__dot(d, ob->n), tt, rel[3];
+	int i;
+
+	if (fabs(denom) < D_MIN)
+		return 0;
+	tt = k[0] / denom;
+	if (!(tt > T_MIN && tt < tmax))
+		return 0;
+	for (i = 0; i < 3; i++)
+		rel[i] = o[i] + tt * d[i] - ob->center[i];
+	if (fabs(rf__dot(rel, ob->t)) > ob->half[0] || fabs(rf__dot(rel, ob->b)) > ob->half[1])
+		return 0;
+	*t = tt;
+	return 1;
+}
+
+/* Tangent frame of an axis-aligned face whose normal is -sign * e_axis,
+ * from a table: the rule of rf__plane_tangent without its arithmetic. */
+static void
+face_frame(int axis, double sign, double ng[3], double t[3], double b[3])
+{
+	double n[3] = { 0, 0, 0 };
+
+	n[axis] = -sign;
+	ng[0] = n[0];
+	ng[1] = n[1];
+	ng[2] = n[2];
+	rf__plane_tangent(n, t);
+	rf__cross(n, t, b);
+}
+
+static void
+set_material(struct rf_hit *hit, const struct material *m)
+{
+	hit->roughness = m->roughness;
+	hit->metallic = m->metallic;
+	hit->albedo[0] = m->albedo[0];
+	hit->albedo[1] = m->albedo[1];
+	hit->albedo[2] = m->albedo[2];
+	hit->mask = m->mask;
+}
+
+static void
+shade_face(const struct material *m, const double d[3], int axis, double plane,
+           struct rf_hit *hit)
+{
+	double t[3], b[3], uv[2];
+
+	hit->P[axis] = plane; /* exactly on the face */
+	hit->Ng[0] = hit->Ng[1] = hit->Ng[2] = 0.0;
+	hit->Ng[axis] = d[axis] > 0 ? -1.0 : 1.0;
+	set_material(hit, m);
+	if (m->nm.kind == NM_NONE) {
+		hit->N[0] = hit->Ng[0];
+		hit->N[1] = hit->Ng[1];
+		hit->N[2] = hit->Ng[2];
+		return;
+	}
+	face_frame(axis, d[axis] > 0 ? 1.0 : -1.0, hit->Ng, t, b);
+	/* World-anchored coordinates: patterns line up across faces. */
+	uv[0] = rf__dot(hit->P, t);
+	uv[1] = rf__dot(hit->P, b);
+	rf__normalmap_apply(&m->nm, uv, t, b, hit->Ng, hit->N);
+}
+
+static void
+shade_sphere(const struct object *ob, const double d[3], struct rf_hit *hit)
+{
+	const struct material *m = &ob->mat;
+	double *ng = hit->Ng, t[3], b[3], uv[2], sin_theta;
+	int flip, i;
+
+	for (i = 0; i < 3; i++)
+		ng[i] = (hit->P[i] - ob->center[i]) * ob->inv_radius;
+	flip = rf__dot(ng, d) > 0;
+	set_material(hit, m);
+	if (m->nm.kind != NM_NONE) {
+		/* Longitude phi about +Y, colatitude theta from the bottom pole:
+		 * u runs along the equator, v up the meridians, in metres. */
+		sin_theta = sqrt(ng[0] * ng[0] + ng[2] * ng[2]);
+		if (sin_theta > 1e-9) {
+			t[0] = ng[2] / sin_theta;
+			t[1] = 0.0;
+			t[2] = -ng[0] / sin_theta;
+		} else {
+			t[0] = 1.0;
+			t[1] = t[2] = 0.0;
+		}
+		uv[0] = ob->radius * (atan2(-ng[2], ng[0]) + 3.14159265358979323846);
+		uv[1] = ob->radius * acos(ng[1] < -1 ? 1.0 : ng[1] > 1 ? -1.0 : -ng[1]);
+		if (flip)
+			for (i = 0; i < 3; i++)
+				ng[i] = -ng[i];
+		rf__cross(ng, t, b);
+		rf__normalmap_apply(&m->nm, uv, t, b, ng, hit->N);
+		return;
+	}
+	if (flip)
+		for (i = 0; i < 3; i++)
+			ng[i] = -ng[i];
+	for (i = 0; i < 3; i++)
+		hit->N[i] = ng[i];
+}
+
+static void
+shade_rect(const struct object *ob, const double d[3], struct rf_hit *hit)
+{
+	const struct material *m = &ob->mat;
+	double rel[3], b[3], uv[2], s;
+	int flip = rf__dot(ob->n, d) > 0, i;
+
+	if (ob->axis >= 0) {
+		hit->P[ob->axis] = ob->center[ob->axis];
+	} else {
+		for (i = 0; i < 3; i++)
+			rel[i] = hit->P[i] - ob->center[i];
+		s = rf__dot(rel, ob->n);
+		for (i = 0; i < 3; i++)
+			hit->P[i] -= s * ob->n[i];
+	}
+	for (i = 0; i < 3; i++)
+		hit->Ng[i] = flip ? -ob->n[i] : ob->n[i];
+	set_material(hit, m);
+	if (m->nm.kind == NM_NONE) {
+		for (i = 0; i < 3; i++)
+			hit->N[i] = hit->Ng[i];
+		return;
+	}
+	/* Coordinates from the corner, so that an image starts there. */
+	for (i = 0; i < 3; i++)
+		rel[i] = hit->P[i] - ob->center[i];
+	uv[0] = rf__dot(rel, ob->t) + ob->half[0];
+	uv[1] = rf__dot(rel, ob->b) + ob->half[1];
+	for (i = 0; i < 3; i++)
+		b[i] = flip ? -ob->b[i] : ob->b[i];
+	rf__normalmap_apply(&m->nm, uv, ob->t, b, hit->Ng, hit->N);
+}
+
+int
+rf__trace(const rf_scene *s, const double o[3], const double *k, const double d[3],
+          const double *inv_d, const uint32_t *list, size_t nlist, struct rf_hit *hit)
+{
+	double tmp[RF__ORIGIN_STRIDE], own_inv[3];
+	const double *inv = inv_d ? inv_d : own_inv;
+	struct candidate best = { INFINITY, -1, -1, 0 }, c;
+	const struct rf_scene_probe *room = s->nprobes && s->room ? &s->probes[0] : NULL;
+	size_t n = list ? nlist : s->nobjects, li;
+	int j;
+
+	if (!inv_d)
+		for (j = 0; j < 3; j++)
+			own_inv[j] = 1.0 / d[j];
+	for (li = 0; li < n; li++) {
+		size_t i = list ? list[li] : li;
+		const struct object *ob = &s->objects[i];
+		const double *ko = k ? k + i * RF__ORIGIN_STRIDE : tmp;
+		double t;
+
+		if (!k)
+			prepare(ob, o, tmp);
+		switch (ob->kind) {
+		case OBJ_SPHERE:
+			if (hit_sphere(ob, ko, d, best.t, &t)) {
+				best.t = t;
+				best.index = (int)i;
+			}
+			break;
+		case OBJ_BOX:
+			if (hit_slabs(ko, d, inv, best.t, 0, &c)) {
+				best = c;
+				best.index = (int)i;
+			}
+			break;
+		case OBJ_RECT:
+			if (hit_rect(ob, ko, o, d, best.t, &t)) {
+				best.t = t;
+				best.index = (int)i;
+			}
+			break;
+		}
+	}
+	if (room) {
+		const double *ko = k ? k + s->nobjects * RF__ORIGIN_STRIDE : tmp;
+
+		if (!k)
+			prepare_room(room, o, tmp);
+		if (hit_slabs(ko, d, inv, best.t, 1, &c)) {
+			best = c;
+			best.index = -1;
+		}
+	}
+	if (best.t == INFINITY) {
+		hit->t = INFINITY;
+		for (j = 0; j < 3; j++) {
+			hit->P[j] = o[j] + MISS_DISTANCE * d[j];
+			hit->N[j] = hit->Ng[j] = -d[j];
+			hit->albedo[j] = 0.0f;
+		}
+		hit->roughness = 1.0f;
+		hit->metallic = 0.0f;
+		hit->mask = 0.0f;
+		hit->objid = RF_OBJID_NONE;
+		return hit->objid;
+	}
+	hit->t = best.t;
+	for (j = 0; j < 3; j++)
+		hit->P[j] = o[j] + best.t * d[j];
+	if (best.index < 0) {
+		int a = best.axis;
+
+		shade_face(&s->room_mat, d, a, best.upper ? room->box_max[a] : room->box_min[a],
+		           hit);
+		hit->objid = -(2 * a + (best.upper ? 1 : 2));
+		return hit->objid;
+	}
+	hit->objid = best.index + 1;
+	{
+		const struct object *ob = &s->objects[best.index];
+
+		switch (ob->kind) {
+		case OBJ_SPHERE:
+			shade_sphere(ob, d, hit);
+			break;
+		case OBJ_BOX:
+			shade_face(&ob->mat, d, best.axis,
+			           best.upper ? ob->max[best.axis] : ob->min[best.axis], hit);
+			break;
+		case OBJ_RECT:
+			shade_rect(ob, d, hit);
+			break;
+		}
+	}
+	return hit->objid;
+}

@@ -1,0 +1,346 @@
+/* The scene model: accessors, cameras and camera paths, shared images. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene/scene-internal.h"
+
+static const double pi = 3.14159265358979323846;
+
+rf_scene *
+rf__scene_new(void)
+{
+	rf_scene *s = calloc(1, sizeof(*s));
+
+	if (!s)
+		return NULL;
+	s->room = 1;
+	rf__material_default(&s->room_mat, 1);
+	return s;
+}
+
+void
+rf__material_default(struct material *m, int room)
+{
+	memset(m, 0, sizeof(*m));
+	/* Objects default to the write-up's preview material, a white metal;
+	 * the room is a rough, non-reflective emitter. */
+	m->roughness = room ? 1.0f : 0.5f;
+	m->metallic = room ? 0.0f : 1.0f;
+	m->albedo[0] = m->albedo[1] = m->albedo[2] = 1.0f;
+	m->mask = room ? 0.0f : 1.0f;
+	m->nm.kind = NM_NONE;
+	m->nm.strength = 1.0;
+	m->nm.inv_scale = 1.0;
+	m->nm.tiling[0] = m->nm.tiling[1] = 1.0;
+}
+
+void
+rf_scene_free(rf_scene *s)
+{
+	size_t i;
+
+	if (!s)
+		return;
+	for (i = 0; i < s->nprobes; i++)
+		free((char *)s->probes[i].env);
+	for (i = 0; i < s->nimages; i++) {
+		rf_image_free(s->images[i]);
+		free(s->image_paths[i]);
+	}
+	free(s->images);
+	free(s->image_paths);
+	free(s->probes);
+	free(s->objects);
+	free(s->name);
+	free(s);
+}
+
+int
+rf__scene_image(rf_scene *s, const char *path, const rf_image **imgp, char *err,
+                size_t errlen)
+{
+	rf_image **images, *img;
+	char **paths, *copy;
+	size_t i;
+	int rc;
+
+	for (i = 0; i < s->nimages; i++)
+		if (!strcmp(s->image_paths[i], path)) {
+			*imgp = s->images[i];
+			return 0;
+		}
+	if ((rc = rf_image_read(&img, path, err, errlen)) < 0)
+		return rc;
+	if (rf_image_nchannels(img) < 2) {
+		rf__format(err, errlen, "normal map '%s' has 1 channel, expected at "
+		           "least 2 (R G)", path);
+		rf_image_free(img);
+		return RF_EIMAGE;
+	}
+	images = realloc(s->images, (s->nimages + 1) * sizeof(*images));
+	if (images)
+		s->images = images;
+	paths = realloc(s->image_paths, (s->nimages + 1) * sizeof(*paths));
+	if (paths)
+		s->image_paths = paths;
+	if (!images || !paths || !(copy = strdup(path))) {
+		rf_image_free(img);
+		return RF_ENOMEM;
+	}
+	s->images[s->nimages] = img;
+	s->image_paths[s->nimages++] = copy;
+	*imgp = img;
+	return 0;
+}
+
+void
+rf__plane_tangent(const double n[3], double t[3])
+{
+	static const double y[3] = { 0, 1, 0 };
+
+	if (fabs(n[1]) < 0.999) {
+		rf__cross(y, n, t);
+		rf__normalize(t);
+	} else {
+		/* +X made perpendicular to n */
+		t[0] = 1.0 - n[0] * n[0];
+		t[1] = -n[0] * n[1];
+		t[2] = -n[0] * n[2];
+		rf__normalize(t);
+	}
+}
+
+void
+rf__object_prepare(struct object *o)
+{
+	int i;
+
+	switch (o->kind) {
+	case OBJ_SPHERE:
+		o->radius2 = o->radius * o->radius;
+		o->inv_radius = 1.0 / o->radius;
+		for (i = 0; i < 3; i++) {
+			o->min[i] = o->center[i] - o->radius;
+			o->max[i] = o->center[i] + o->radius;
+		}
+		break;
+	case OBJ_BOX:
+		for (i = 0; i < 3; i++)
+			o->center[i] = 0.5 * (o->min[i] + o->max[i]);
+		break;
+	case OBJ_RECT:
+		rf__cross(o->n, o->t, o->b);
+		for (i = 0; i < 3; i++) {
+			double e = fabs(o->t[i]) * o->half[0] + fabs(o->b[i]) * o->half[1];
+
+			o->min[i] = o->center[i] - e;
+			o->max[i] = o->center[i] + e;
+		}
+		break;
+	}
+}
+
+const char *
+rf_scene_name(const rf_scene *s)
+{
+	return s->name ? s->name : "scene";
+}
+
+void
+rf_scene_camera(const rf_scene *s, struct rf_camera *cam)
+{
+	*cam = s->camera;
+}
+
+size_t
+rf_scene_nprobes(const rf_scene *s)
+{
+	return s->nprobes;
+}
+
+const struct rf_scene_probe *
+rf_scene_probe(const rf_scene *s, size_t i)
+{
+	return i < s->nprobes ? &s->probes[i] : NULL;
+}
+
+size_t
+rf_scene_nobjects(const rf_scene *s)
+{
+	return s->nobjects;
+}
+
+const char *
+rf_scene_object_kind(const rf_scene *s, int objid)
+{
+	static const char *const kinds[] = { "sphere", "box", "rect" };
+
+	if (objid > 0 && (size_t)objid <= s->nobjects)
+		return kinds[s->objects[objid - 1].kind];
+	if (objid < 0 && objid >= RF_WALL_ZMIN && s->room && s->nprobes)
+		return "wall";
+	return NULL;
+}
+
+size_t
+rf_scene_object_line(const rf_scene *s, int objid)
+{
+	return objid > 0 && (size_t)objid <= s->nobjects ? s->objects[objid - 1].line : 0;
+}
+
+int
+rf_scene_inside(const rf_scene *s, const double p[3])
+{
+	size_t i;
+	int k;
+
+	for (i = 0; i < s->nobjects; i++) {
+		const struct object *o = &s->objects[i];
+		double d[3];
+
+		switch (o->kind) {
+		case OBJ_SPHERE:
+			for (k = 0; k < 3; k++)
+				d[k] = p[k] - o->center[k];
+			if (rf__dot(d, d) < o->radius2)
+				return (int)i + 1;
+			break;
+		case OBJ_BOX:
+			for (k = 0; k < 3; k++)
+				if (!(p[k] > o->min[k] && p[k] < o->max[k]))
+					break;
+			if (k == 3)
+				return (int)i + 1;
+			break;
+		case OBJ_RECT:
+			break; /* no volume */
+		}
+	}
+	return 0;
+}
+
+int
+rf_scene_in_room(const rf_scene *s, const double p[3])
+{
+	const struct rf_scene_probe *r = s->nprobes ? &s->probes[0] : NULL;
+	int k;
+
+	if (!r)
+		return 0;
+	for (k = 0; k < 3; k++)
+		if (!(p[k] >= r->box_min[k] && p[k] <= r->box_max[k]))
+			return 0;
+	return 1;
+}
+
+int
+rf_scene_trace(const rf_scene *s, const double origin[3], const double dir[3],
+               struct rf_hit *hit)
+{
+	return rf__trace(s, origin, NULL, dir, NULL, NULL, 0, hit);
+}
+
+/* The camera's frame: forward, right and true up, all unit. */
+static int
+camera_frame(const struct rf_camera *c, double f[3], double r[3], double u[3])
+{
+	int i;
+
+	for (i = 0; i < 3; i++)
+		f[i] = c->target[i] - c->position[i];
+	if (!(rf__normalize(f) > 0))
+		return -1;
+	rf__cross(f, c->up, r);
+	if (!(rf__normalize(r) > 1e-9))
+		return -2;
+	rf__cross(r, f, u);
+	return 0;
+}
+
+int
+rf_camera_check(const struct rf_camera *c, char *err, size_t errlen)
+{
+	double f[3], r[3], u[3];
+	int i, rc;
+
+	for (i = 0; i < 3; i++)
+		if (!isfinite(c->position[i]) || !isfinite(c->target[i]) ||
+		    !isfinite(c->up[i])) {
+			rf__format(err, errlen, "camera: expected finite numbers");
+			return RF_EINVAL;
+		}
+	if (!(c->fov > 0 && c->fov < 180)) {
+		rf__format(err, errlen, "camera: expected a field of view in (0, 180) "
+		           "degrees, found %g", c->fov);
+		return RF_EINVAL;
+	}
+	if ((rc = camera_frame(c, f, r, u)) == -1) {
+		rf__format(err, errlen, "camera: expected a target apart from the "
+		           "position");
+		return RF_EINVAL;
+	}
+	if (rc == -2) {
+		rf__format(err, errlen, "camera: expected an up vector not parallel to "
+		           "the view direction");
+		return RF_EINVAL;
+	}
+	return 0;
+}
+
+void
+rf__camera_basis(const struct rf_camera *c, size_t width, size_t height,
+                 struct camera_basis *cb)
+{
+	camera_frame(c, cb->f, cb->r, cb->u);
+	cb->ty = tan(c->fov * (pi / 360.0));
+	cb->tx = cb->ty * ((double)width / (double)height);
+}
+
+void
+rf_camera_ray(const struct rf_camera *c, size_t width, size_t height, double px,
+              double py, double dir[3])
+{
+	struct camera_basis cb;
+
+	rf__camera_basis(c, width, height, &cb);
+	rf__camera_dir(&cb, 2.0 * px / (double)width - 1.0,
+	               1.0 - 2.0 * py / (double)height, dir);
+}
+
+void
+rf_camera_at_frame(const struct rf_camera *start, const struct rf_camera_path *path,
+                   size_t frame, size_t nframes, struct rf_camera *out)
+{
+	double a, ca, sa, dx, dz, s;
+	int i;
+
+	*out = *start;
+	if (!path || nframes == 0)
+		return;
+	switch (path->kind) {
+	case RF_PATH_NONE:
+		break;
+	case RF_PATH_ORBIT:
+		/* Counter-clockwise seen from above (right-handed about +Y). */
+		a = path->degrees * (pi / 180.0) * (double)frame / (double)nframes;
+		if (a == 0)
+			break; /* frame 0 is the scene's camera, to the bit */
+		ca = cos(a);
+		sa = sin(a);
+		dx = start->position[0] - start->target[0];
+		dz = start->position[2] - start->target[2];
+		out->position[0] = start->target[0] + ca * dx + sa * dz;
+		out->position[2] = start->target[2] - sa * dx + ca * dz;
+		break;
+	case RF_PATH_LINE:
+		s = nframes > 1 ? (double)frame / (double)(nframes - 1) : 0.0;
+		for (i = 0; i < 3; i++) {
+			double step = s * (path->end[i] - start->position[i]);
+
+			out->position[i] = start->position[i] + step;
+			out->target[i] = start->target[i] + step;
+		}
+		break;
+	}
+}

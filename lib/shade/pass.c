@@ -1,0 +1,538 @@
+/* The sampling pass of reflect-shade: effective roughness -> lod -> the
+ * environment, per row, on several threads. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "envmap/rgba_levels.h"
+#include "envmap/rgba_levels_simd.h"
+#include "plugin/plugin-internal.h"
+#include "util/invalid.h"
+#include "util/pixels.h"
+#include "util/pool.h"
+#include "reflect/shading.h"
+
+
+/* Input channels; -1 when absent (only the optional ones may be). */
+enum {
+	IN_REFF, IN_DX, IN_DY, IN_DZ, /* always */
+	IN_MASK, IN_PX, IN_PY, IN_PZ, /* walls */
+	IN_ROUGH, IN_NX, IN_NY, IN_NZ, IN_VX, IN_VY, IN_VZ, /* --final */
+	IN_METAL, IN_AR, IN_AG, IN_AB, /* --final, optional */
+	IN_SR, IN_SG, IN_SB, /* radiance a mode wrote itself */
+	IN_COUNT
+};
+
+static const char *const in_names[IN_COUNT] = {
+	RF_SHADE_ROUGHNESS, "D.X", "D.Y", "D.Z",
+	"mask", "P.X", "P.Y", "P.Z",
+	"roughness", "N.X", "N.Y", "N.Z", "V.X", "V.Y", "V.Z",
+	"metallic", "albedo.R", "albedo.G", "albedo.B",
+	RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHADE_SPEC_B
+};
+
+enum { OUT_SR, OUT_SG, OUT_SB, OUT_R, OUT_G, OUT_B, OUT_COUNT };
+
+static const char *const out_names[OUT_COUNT] = {
+	RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHADE_SPEC_B, "R", "G", "B"
+};
+
+struct rf_shade {
+	int final, nthreads, mode_radiance;
+	int in[IN_COUNT];
+	int out[OUT_COUNT];
+	size_t nout;
+	float center[3];
+	rf_header *out_h;
+	size_t ncols, in_ncomp, out_ncomp;
+	const rf_cubemap *env;
+	/* The same levels as RGBA vectors: one aligned load a texel, the
+	 * prefilter's fast sampler; the pass spends most of its time here. */
+	struct rf__rgba_levels levels;
+	enum rf_mapping mapping;
+	float steps;
+	struct rf__pool *pool;
+	/* The block rf_shade_run is running, and the stage before the pass
+	 * when rf_shade_run_stage runs both. */
+	const float *block_in;
+	float *block_out;
+	rf_stage *stage;
+	size_t block_y, stage_in_ncomp;
+	/* Each thread's reads of a row, gathered and made in one go; vector:
+	 * made eight at a time. */
+	struct reads *reads;
+	size_t reads_cols;
+	int vector;
+	/* Invalid input (reflect.h's rules for the pass's own reads: D, mask,
+	 * and P where the wall shows): under RF_INVALID_ERROR the first is
+	 * an error; otherwise a mask is clamped and a direction that is not
+	 * finite reads black, as they always were. */
+	enum rf_invalid invalid;
+	size_t rows_done;
+	char error[320];
+	struct rf__check check; /* the fast test of a row, on those reads */
+};
+
+/* One row's environment reads: directions and lods as columns, their
+ * results, and for each pixel which reads are its own (-1: none). */
+struct reads {
+	float *mask; /* each pixel's mask, clamped (1 without a mask channel) */
+	float *x, *y, *z, *lod;
+	rf__v4 *rgb;
+	int32_t *mirror, *wall;
+	struct rf__first_invalid first; /* under RF_INVALID_ERROR */
+};
+
+int
+rf_shade_create(rf_shade **sp, const struct rf_shade_options *o)
+{
+	rf_shade *s;
+
+	*sp = NULL;
+	if (!(s = calloc(1, sizeof(*s))))
+		return RF_ENOMEM;
+	s->final = o && o->final;
+	s->mode_radiance = o && o->mode_radiance;
+	s->nthreads = o && o->nthreads > 1 ? o->nthreads : 1;
+	if (s->nthreads > RF__THREADS_MAX)
+		s->nthreads = RF__THREADS_MAX;
+	s->nout = s->final ? OUT_COUNT : OUT_R;
+	if (rf__pool_new(&s->pool, s->nthreads) < 0) {
+		free(s);
+		return RF_ENOMEM;
+	}
+	*sp = s;
+	return 0;
+}
+
+static void
+free_reads(rf_shade *s)
+{
+	int t;
+
+	for (t = 0; s->reads && t < s->nthreads; t++) {
+		struct reads *r = &s->reads[t];
+
+		free(r->mask);
+		free(r->x);
+		free(r->y);
+		free(r->z);
+		free(r->lod);
+		free(r->rgb);
+		free(r->mirror);
+		free(r->wall);
+	}
+	free(s->reads);
+	s->reads = NULL;
+	s->reads_cols = 0;
+}
+
+/* Room for two reads a pixel (the mirror and the wall behind a partial
+ * mask) on every thread. */
+static int
+alloc_reads(rf_shade *s, size_t ncols)
+{
+	size_t n = 2 * ncols;
+	int t;
+
+	if (ncols <= s->reads_cols)
+		return 0;
+	free_reads(s);
+	if (!(s->reads = calloc((size_t)s->nthreads, sizeof(*s->reads))))
+		return RF_ENOMEM;
+	for (t = 0; t < s->nthreads; t++) {
+		struct reads *r = &s->reads[t];
+
+		r->mask = malloc(ncols * sizeof(float));
+		r->x = malloc(n * sizeof(float));
+		r->y = malloc(n * sizeof(float));
+		r->z = malloc(n * sizeof(float));
+		r->lod = malloc(n * sizeof(float));
+		r->rgb = aligned_alloc(16, n * sizeof(rf__v4));
+		r->mirror = malloc(ncols * sizeof(int32_t));
+		r->wall = malloc(ncols * sizeof(int32_t));
+		if (!r->mask || !r->x || !r->y || !r->z || !r->lod || !r->rgb || !r->mirror ||
+		    !r->wall) {
+			free_reads(s);
+			return RF_ENOMEM;
+		}
+	}
+	s->reads_cols = ncols;
+	return 0;
+}
+
+void
+rf_shade_destroy(rf_shade *s)
+{
+	if (!s)
+		return;
+	rf__pool_free(s->pool);
+	free_reads(s);
+	rf_header_free(s->out_h);
+	rf__rgba_levels_free(&s->levels);
+	free(s);
+}
+
+const char *
+rf_shade_channel(const rf_shade *s, size_t i)
+{
+	return i < s->nout ? out_names[i] : NULL;
+}
+
+int
+rf_shade_set_environment(rf_shade *s, const rf_cubemap *env, enum rf_mapping mapping,
+                         float steps)
+{
+	int rc;
+
+	rf__rgba_levels_free(&s->levels);
+	s->env = NULL;
+	if ((rc = rf__rgba_levels_from_cube(&s->levels, env)) < 0)
+		return rc;
+	s->env = env;
+	s->vector = rf__rgba_levels_simd_usable(&s->levels);
+	s->mapping = mapping;
+	s->steps = steps;
+	return 0;
+}
+
+/* Finds channels first..last; why names what needs them. */
+static int
+require(rf_shade *s, const rf_header *h, int first, int last, const char *why,
+        char *err, size_t errlen)
+{
+	int i;
+
+	for (i = first; i <= last; i++)
+		if ((s->in[i] = rf_header_find_channel(h, in_names[i])) < 0) {
+			rf__format(err, errlen, "input has no channel '%s' (%s)",
+			           in_names[i], why);
+			return RF_ECHANNEL;
+		}
+	return 0;
+}
+
+/* The fast test of the pass's own reads: D finite (where the mode does
+ * not give radiance), mask in [0, 1], P finite (where there is a mask). */
+static void
+plan_check(rf_shade *s)
+{
+	static const int finite[6] = { IN_DX, IN_DY, IN_DZ, IN_PX, IN_PY, IN_PZ };
+	int k;
+
+	s->check.n = 0;
+	for (k = 0; k < 6; k++)
+		if (s->in[finite[k]] >= 0 && (k < 3 ? !s->mode_radiance : s->in[IN_MASK] >= 0)) {
+			s->check.item[s->check.n].kind = RF__CHECK_FINITE;
+			s->check.item[s->check.n++].at[0] = s->in[finite[k]];
+		}
+	if (s->in[IN_MASK] >= 0) {
+		s->check.item[s->check.n].kind = RF__CHECK_UNIT;
+		s->check.item[s->check.n++].at[0] = s->in[IN_MASK];
+	}
+}
+
+int
+rf_shade_begin_frame(rf_shade *s, const rf_header *in, const float center[3],
+                     rf_header **out, char *err, size_t errlen)
+{
+	size_t i;
+	int c, rc;
+
+	*out = NULL;
+	s->rows_done = 0;
+	s->error[0] = '\0';
+	for (i = 0; i < IN_COUNT; i++)
+		s->in[i] = rf_header_find_channel(in, in_names[i]);
+	plan_check(s);
+	if (s->mode_radiance) {
+		if ((rc = require(s, in, IN_SR, IN_SB, "the radiance the shade mode "
+		                  "writes", err, errlen)) < 0)
+			return rc;
+	} else if ((rc = require(s, in, IN_REFF, IN_REFF, "the effective "
+	                         "roughness a shade mode writes", err, errlen)) < 0 ||
+	           (rc = require(s, in, IN_DX, IN_DZ, "the lookup direction that "
+	                         "reflect-project writes", err, errlen)) < 0) {
+		return rc;
+	}
+	if (s->in[IN_MASK] >= 0) {
+		if ((rc = require(s, in, IN_PX, IN_PZ, "pixels with mask 0 show the "
+		                  "environment seen from the probe centre toward P",
+		                  err, errlen)) < 0)
+			return rc;
+		if (!center) {
+			rf__format(err, errlen, "pixels with mask 0 show the environment "
+			           "seen from the probe centre, and there is none");
+			return RF_EINVAL;
+		}
+		memcpy(s->center, center, sizeof(s->center));
+	}
+	if (s->final &&
+	    (rc = require(s, in, IN_ROUGH, IN_VZ, "the final colour's environment "
+	                  "BRDF reads roughness, N and V", err, errlen)) < 0)
+		return rc;
+	rf_header_free(s->out_h);
+	if (!(s->out_h = rf_header_dup(in)))
+		return RF_ENOMEM;
+	for (i = 0; i < s->nout; i++) {
+		if ((c = rf_header_find_channel(s->out_h, out_names[i])) < 0 &&
+		    (c = rf_header_add_channel(s->out_h, out_names[i])) < 0) {
+			rf__format(err, errlen, "cannot add channel '%s': %s",
+			           out_names[i], rf_strerror(c));
+			return c;
+		}
+		s->out[i] = c;
+	}
+	s->ncols = rf_header_ncols(in);
+	s->in_ncomp = rf_header_nchannels(in);
+	s->out_ncomp = rf_header_nchannels(s->out_h);
+	if (s->ncols * s->out_ncomp * sizeof(float) > RF_ROW_BYTES_MAX) {
+		rf__format(err, errlen, "output rows of %zu channels are too large",
+		           s->out_ncomp);
+		return RF_ETOOBIG;
+	}
+	if ((rc = alloc_reads(s, s->ncols)) < 0)
+		return rc;
+	*out = s->out_h;
+	return 0;
+}
+
+static float
+sat(float x)
+{
+	return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; /* NaN -> 0 */
+}
+
+/* The optional channel c of pixel p, or 1 when the stream lacks it. */
+static float
+or_one(const rf_shade *s, const float *p, int c)
+{
+	return s->in[c] >= 0 ? p[s->in[c]] : 1.0f;
+}
+
+/* Adds a read; a direction that is not finite (never from
+ * reflect-project) reads nothing, so black rather than NaN. */
+static inline int32_t
+add_read(struct reads *r, size_t *n, float x, float y, float z, float lod)
+{
+	if (!isfinite(x) || !isfinite(y) || !isfinite(z))
+		return -1;
+	r->x[*n] = x;
+	r->y[*n] = y;
+	r->z[*n] = z;
+	r->lod[*n] = lod;
+	return (int32_t)(*n)++;
+}
+
+/* The pass's own reads of pixel x (row y) checked, only under ERROR. */
+static void
+check_pixel(const rf_shade *s, const float *p, size_t y, size_t x, struct reads *r)
+{
+	static const char *const names[6] = { "D.X", "D.Y", "D.Z", "P.X", "P.Y", "P.Z" };
+	const int at[6] = { s->in[IN_DX], s->in[IN_DY], s->in[IN_DZ],
+		            s->in[IN_PX], s->in[IN_PY], s->in[IN_PZ] };
+	float m = s->in[IN_MASK] >= 0 ? p[s->in[IN_MASK]] : 1.0f;
+	int k;
+
+	if (!(m >= 0.0f && m <= 1.0f)) {
+		rf__first_invalid_keep(&r->first, y * s->ncols + x,
+		                       "channel 'mask' is %g, outside [0, 1]", (double)m);
+		return;
+	}
+	for (k = 0; k < 6; k++)
+		if (at[k] >= 0 && ((k < 3 && m > 0.0f && !s->mode_radiance) || (k >= 3 && m < 1.0f)) &&
+		    !isfinite(p[at[k]])) {
+			rf__first_invalid_keep(&r->first, y * s->ncols + x, "channel '%s' is %g",
+			                       names[k], (double)p[at[k]]);
+			return;
+		}
+}
+
+/* The reads of a row's pixels: the mirror direction at the lod of its
+ * effective roughness, and where the mask is partial or 0, the wall it
+ * shows (the environment at lod 0 from the capture point toward P).
+ * The channel numbers are held in locals: stores to the int tables
+ * would otherwise make the compiler read them again for every pixel. */
+static size_t
+plan_reads(const rf_shade *s, const float *in, size_t in_ncomp, size_t y, struct reads *r)
+{
+	const int cm = s->in[IN_MASK], cr = s->in[IN_REFF];
+	const int cdx = s->in[IN_DX], cdy = s->in[IN_DY], cdz = s->in[IN_DZ];
+	const int cpx = s->in[IN_PX], cpy = s->in[IN_PY], cpz = s->in[IN_PZ];
+	const int mirror = !s->mode_radiance;
+	const float ox = s->center[0], oy = s->center[1], oz = s->center[2];
+	size_t x, n = 0;
+
+	if (s->invalid == RF_INVALID_ERROR && !rf__check_row(&s->check, in, in_ncomp, s->ncols))
+		for (x = 0; x < s->ncols; x++)
+			check_pixel(s, in + x * in_ncomp, y, x, r);
+	for (x = 0; x < s->ncols; x++, in += in_ncomp) {
+		float m = cm >= 0 ? sat(in[cm]) : 1.0f;
+		int32_t a = -1, b = -1;
+
+		if (m > 0.0f && mirror)
+			a = add_read(r, &n, in[cdx], in[cdy], in[cdz],
+			             rf_roughness_to_lod(s->mapping, s->steps, in[cr]));
+		if (m < 1.0f)
+			b = add_read(r, &n, in[cpx] - ox, in[cpy] - oy, in[cpz] - oz, 0.0f);
+		r->mask[x] = m;
+		r->mirror[x] = a;
+		r->wall[x] = b;
+	}
+	return n;
+}
+
+/* Pixel p's outputs into o (which may be p) from its reads. */
+static void
+shade_pixel(const rf_shade *s, const float *p, float *o, const struct reads *r, size_t x)
+{
+	float rgb[3] = { 0, 0, 0 }, wall[3] = { 0, 0, 0 }, spec[3], m = r->mask[x];
+	int k;
+
+	if (m > 0.0f && s->mode_radiance) {
+		for (k = 0; k < 3; k++)
+			rgb[k] = p[s->in[IN_SR + k]];
+	} else if (r->mirror[x] >= 0) {
+		for (k = 0; k < 3; k++)
+			rgb[k] = r->rgb[r->mirror[x]][k];
+	}
+	if (r->wall[x] >= 0)
+		for (k = 0; k < 3; k++)
+			wall[k] = r->rgb[r->wall[x]][k];
+	for (k = 0; k < 3; k++)
+		spec[k] = rgb[k];
+	if (s->final && m > 0.0f) {
+		float nv = p[s->in[IN_NX]] * p[s->in[IN_VX]] +
+		           p[s->in[IN_NY]] * p[s->in[IN_VY]] +
+		           p[s->in[IN_NZ]] * p[s->in[IN_VZ]];
+		float metal = sat(or_one(s, p, IN_METAL)), a, b;
+
+		rf_dfg_lookup(nv, p[s->in[IN_ROUGH]], &a, &b);
+		for (k = 0; k < 3; k++) {
+			float albedo = sat(or_one(s, p, IN_AR + k));
+			float f0 = 0.04f + (albedo - 0.04f) * metal;
+
+			rgb[k] *= f0 * a + b;
+		}
+	}
+	/* Every input is read: now the outputs, which may overwrite them. */
+	for (k = 0; k < 3; k++)
+		o[s->out[OUT_SR + k]] = m * spec[k] + (1.0f - m) * wall[k];
+	/* Walls are light sources here, not reflectors: no BRDF. */
+	if (s->final)
+		for (k = 0; k < 3; k++)
+			o[s->out[OUT_R + k]] = m * rgb[k] + (1.0f - m) * wall[k];
+}
+
+/* A row of ncols pixels: its reads gathered, made in one go (eight at a
+ * time where the CPU allows), then the pixels finished. */
+static void
+shade_pixels(const rf_shade *s, const float *in, size_t in_ncomp, float *out, size_t y,
+             struct reads *r)
+{
+	size_t x, n = plan_reads(s, in, in_ncomp, y, r);
+
+	rf__rgba_levels_fetch_many(&s->levels, s->vector, n, r->x, r->y, r->z, r->lod, r->rgb);
+	for (x = 0; x < s->ncols; x++)
+		shade_pixel(s, in + x * in_ncomp, out + x * s->out_ncomp, r, x);
+}
+
+/* Row r of the block, on thread `thread` (whose reads it uses). */
+static void
+shade_row(void *arg, size_t r, int thread)
+{
+	const rf_shade *s = arg;
+	const float *in = s->block_in + r * s->ncols * s->in_ncomp;
+	float *out = s->block_out + r * s->ncols * s->out_ncomp;
+
+	if (in != out)
+		rf__widen_pixels(out, s->out_ncomp, in, s->in_ncomp, s->ncols);
+	shade_pixels(s, in, s->in_ncomp, out, s->block_y + r, &s->reads[thread]);
+}
+
+/* Row r: the stage into out, then the pass over it in place, while the
+ * row is still in this core's cache. */
+static void
+stage_and_shade_row(void *arg, size_t r, int thread)
+{
+	const rf_shade *s = arg;
+	const float *in = s->block_in + r * s->ncols * s->stage_in_ncomp;
+	float *out = s->block_out + r * s->ncols * s->out_ncomp;
+
+	rf__stage_row(s->stage, in, out, s->block_y + r, thread);
+	shade_pixels(s, out, s->out_ncomp, out, s->block_y + r, &s->reads[thread]);
+}
+
+static void
+block_begin(rf_shade *s)
+{
+	int t;
+
+	for (t = 0; t < s->nthreads; t++)
+		rf__first_invalid_clear(&s->reads[t].first);
+}
+
+/* RF_EINVAL with s->error for the block's first invalid pixel. */
+static int
+block_end(rf_shade *s)
+{
+	return rf__first_invalid_report(&s->reads[0].first, (size_t)s->nthreads,
+	                                sizeof(struct reads), s->ncols, s->error,
+	                                sizeof(s->error));
+}
+
+void
+rf_shade_set_invalid(rf_shade *s, enum rf_invalid policy)
+{
+	s->invalid = policy;
+}
+
+const char *
+rf_shade_error(const rf_shade *s)
+{
+	return s->error;
+}
+
+int
+rf_shade_run_stage(rf_shade *s, rf_stage *stage, const float *in, float *out, size_t y,
+                   size_t nrows)
+{
+	size_t sin, sout;
+	int rc;
+
+	if (!s->out_h || !s->env)
+		return RF_EINVAL;
+	if ((rc = rf__stage_ready(stage, y, nrows, &sin, &sout)) < 0)
+		return rc;
+	/* The stage's output must be the pass's input, with its channels. */
+	if (sout != s->in_ncomp || s->in_ncomp != s->out_ncomp ||
+	    rf__stage_threads(stage) < rf__pool_threads(s->pool))
+		return RF_EINVAL;
+	s->block_in = in;
+	s->block_out = out;
+	s->block_y = y;
+	s->stage = stage;
+	s->stage_in_ncomp = sin;
+	rf__stage_block_begin(stage);
+	block_begin(s);
+	rf__pool_run(s->pool, nrows, stage_and_shade_row, s);
+	if ((rc = rf__stage_block_end(stage)) < 0)
+		return rc;
+	return block_end(s);
+}
+
+int
+rf_shade_run(rf_shade *s, const float *in, float *out, size_t nrows)
+{
+	if (!s->out_h || !s->env || (in == out && s->in_ncomp != s->out_ncomp))
+		return RF_EINVAL;
+	s->block_in = in;
+	s->block_out = out;
+	s->block_y = s->rows_done;
+	s->rows_done += nrows;
+	block_begin(s);
+	rf__pool_run(s->pool, nrows, shade_row, s);
+	return block_end(s);
+}

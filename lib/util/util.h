@@ -1,0 +1,32 @@
+/* Internal to libreflect, for every area: nothing here is installed. */
+#ifndef REFLECT_UTIL_H
+#define REFLECT_UTIL_H
+
+#include <stdarg.h>
+#include <stddef.h>
+
+#include "reflect/reflect.h"
+
+#if defined(__GNUC__)
+#define RF__PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define RF__PRINTF(a, b)
+#endif
+
+/* Writes a message into buf; always terminated, silently truncated. */
+void rf__format(char *buf, size_t size, const char *fmt, ...) RF__PRINTF(3, 4);
+
+/* x * y * z without overflow; 0 and *out set on success. */
+int rf__mul3(size_t x, size_t y, size_t z, size_t *out);
+
+/* Big buffers (megabytes: cube levels, RGBA levels): on 2 MB pages where
+ * the system allows, as faulting in and clearing 4 KB pages one by one
+ * cost a stage a third of its start-up.  Free with free(). */
+void *rf__alloc_big(size_t bytes, int zero);
+
+/* RF_EINVAL with "cannot open 'path': not a regular file (a FIFO)" when
+ * path exists and is no regular file; 0 otherwise (lib/util/file.c says
+ * why decoders see only files). */
+int rf__regular_file(const char *path, char *err, size_t errlen);
+
+#endif
