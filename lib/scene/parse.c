@@ -10,224 +10,49 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene/lexer.h"
 #include "scene/scene-internal.h"
 
 #define SCENE_BYTES_MAX ((size_t)64 << 20)
 #define ATTRS_MAX 64
 
-struct token {
-	const char *text; /* not terminated; owned by `owned` when quoted */
-	size_t len;
-	size_t line, col;
-	char *owned;
-};
-
-struct lexer {
-	const char *src;
-	size_t len, pos, line, col;
-};
-
 struct parser {
-	struct lexer lx;
+	struct rf__lexer lx; /* and the statement's tokens */
 	const char *name; /* for messages */
 	char *dir;        /* base of relative paths, or NULL */
-	char *err;
-	size_t errlen;
 	rf_scene *s;
-	/* the statement being parsed */
-	struct token *tok;
-	size_t ntok, cap, pos;
-	size_t end_line, end_col; /* just past its last token */
+	size_t pos; /* the statement's next token */
 	/* attribute names seen in it, for duplicates */
-	const struct token *attrs[ATTRS_MAX];
+	const struct rf__token *attrs[ATTRS_MAX];
 	size_t nattrs;
 	size_t camera_line, name_line, room_line;
 };
 
-static int
-fail_at(struct parser *p, size_t line, size_t col, const char *fmt, ...)
-	RF__PRINTF(4, 5);
-
-static int
-fail_at(struct parser *p, size_t line, size_t col, const char *fmt, ...)
-{
-	char msg[512];
-	va_list ap;
-
-	va_start(ap, fmt);
-	vsnprintf(msg, sizeof(msg), fmt, ap);
-	va_end(ap);
-	rf__format(p->err, p->errlen, "%s:%zu:%zu: %s", p->name, line, col, msg);
-	return RF_EFORMAT;
-}
-
+#define fail_at(p, ...) rf__lexer_fail(&(p)->lx, __VA_ARGS__)
 #define FAIL_TOK(p, t, ...) fail_at((p), (t)->line, (t)->col, __VA_ARGS__)
-#define FAIL_END(p, ...) fail_at((p), (p)->end_line, (p)->end_col, __VA_ARGS__)
-
-/* ---- lexing ------------------------------------------------------------ */
-
-static int
-lx_peek(const struct lexer *lx, size_t ahead)
-{
-	return lx->pos + ahead < lx->len ? (unsigned char)lx->src[lx->pos + ahead] : -1;
-}
-
-static void
-lx_advance(struct lexer *lx)
-{
-	if (lx->src[lx->pos] == '\n') {
-		lx->line++;
-		lx->col = 1;
-	} else {
-		lx->col++;
-	}
-	lx->pos++;
-}
-
-static void
-free_tokens(struct parser *p)
-{
-	size_t i;
-
-	for (i = 0; i < p->ntok; i++)
-		free(p->tok[i].owned);
-	p->ntok = 0;
-	p->pos = 0;
-	p->nattrs = 0;
-}
-
-static int
-push_token(struct parser *p, const struct token *t)
-{
-	if (p->ntok == p->cap) {
-		size_t cap = p->cap ? 2 * p->cap : 32;
-		struct token *tok = realloc(p->tok, cap * sizeof(*tok));
-
-		if (!tok)
-			return RF_ENOMEM;
-		p->tok = tok;
-		p->cap = cap;
-	}
-	p->tok[p->ntok++] = *t;
-	return 0;
-}
-
-/* A "quoted word": \" and \\ stand for themselves. */
-static int
-lex_quoted(struct parser *p, struct token *t)
-{
-	struct lexer *lx = &p->lx;
-	size_t n = 0, end;
-	char *buf;
-	int c;
-
-	/* The word's own length, not the rest of the file: a scene of many
-	 * short quoted words would otherwise allocate the file again for
-	 * each.  Escapes only shorten it. */
-	for (end = lx->pos + 1; end < lx->len && lx->src[end] != '"' && lx->src[end] != '\n';
-	     end++)
-		if (lx->src[end] == '\\' && end + 1 < lx->len &&
-		    (lx->src[end + 1] == '"' || lx->src[end + 1] == '\\'))
-			end++;
-	if (!(buf = malloc(end - lx->pos + 1)))
-		return RF_ENOMEM;
-	lx_advance(lx);
-	while ((c = lx_peek(lx, 0)) != '"') {
-		if (c == -1 || c == '\n') {
-			free(buf);
-			return fail_at(p, lx->line, lx->col, "expected a closing '\"' for "
-			               "the word opened at column %zu", t->col);
-		}
-		if (c == '\\' && (lx_peek(lx, 1) == '"' || lx_peek(lx, 1) == '\\')) {
-			lx_advance(lx);
-			c = lx_peek(lx, 0);
-		}
-		buf[n++] = (char)c;
-		lx_advance(lx);
-	}
-	lx_advance(lx);
-	t->owned = buf;
-	t->text = buf;
-	t->len = n;
-	return 0;
-}
+#define FAIL_END(p, ...) fail_at((p), (p)->lx.end_line, (p)->lx.end_col, __VA_ARGS__)
 
 /* Reads the next statement's tokens: 1, or 0 at the end of the text. */
 static int
 next_statement(struct parser *p)
 {
-	struct lexer *lx = &p->lx;
-	int c, rc;
-
-	free_tokens(p);
-	for (;;) {
-		struct token t = { 0 };
-
-		c = lx_peek(lx, 0);
-		if (c == -1 || (c == '\n' && p->ntok)) {
-			if (c == '\n')
-				lx_advance(lx);
-			return p->ntok ? 1 : 0;
-		}
-		if (c == ' ' || c == '\t' || c == '\r' || c == '\n') {
-			lx_advance(lx);
-			continue;
-		}
-		if (c == '#') {
-			while ((c = lx_peek(lx, 0)) != -1 && c != '\n')
-				lx_advance(lx);
-			continue;
-		}
-		if (c == '\\') {
-			size_t k = 1;
-
-			while (lx_peek(lx, k) == ' ' || lx_peek(lx, k) == '\t' ||
-			       lx_peek(lx, k) == '\r')
-				k++;
-			if (lx_peek(lx, k) == '\n' || lx_peek(lx, k) == -1) {
-				while (k-- > 0)
-					lx_advance(lx);
-				if (lx_peek(lx, 0) == '\n')
-					lx_advance(lx); /* the statement goes on */
-				continue;
-			}
-		}
-		if (c == 0)
-			return fail_at(p, lx->line, lx->col, "expected text, found a NUL "
-			               "byte");
-		t.line = lx->line;
-		t.col = lx->col;
-		if (c == '"') {
-			if ((rc = lex_quoted(p, &t)) < 0)
-				return rc;
-		} else {
-			t.text = lx->src + lx->pos;
-			while ((c = lx_peek(lx, 0)) != -1 && c != ' ' && c != '\t' &&
-			       c != '\r' && c != '\n' && c != '#' && c != 0 && c != '"')
-				lx_advance(lx);
-			t.len = (size_t)(lx->src + lx->pos - t.text);
-		}
-		if ((rc = push_token(p, &t)) < 0) {
-			free(t.owned);
-			return rc;
-		}
-		p->end_line = lx->line;
-		p->end_col = lx->col;
-	}
+	p->pos = 0;
+	p->nattrs = 0;
+	return rf__lexer_next(&p->lx);
 }
 
 /* ---- values -------------------------------------------------------------- */
 
 static int
-tok_is(const struct token *t, const char *word)
+tok_is(const struct rf__token *t, const char *word)
 {
 	return !t->owned && t->len == strlen(word) && !memcmp(t->text, word, t->len);
 }
 
-static const struct token *
+static const struct rf__token *
 take(struct parser *p)
 {
-	return p->pos < p->ntok ? &p->tok[p->pos++] : NULL;
+	return p->pos < p->lx.ntok ? &p->lx.tok[p->pos++] : NULL;
 }
 
 /* The token shown in a message, cut to a sensible length. */
@@ -237,7 +62,7 @@ take(struct parser *p)
 static int
 number(struct parser *p, const char *what, double *v)
 {
-	const struct token *t = take(p);
+	const struct rf__token *t = take(p);
 	char buf[64];
 	char *end;
 	size_t i;
@@ -281,7 +106,7 @@ number_in(struct parser *p, const char *what, double lo, double hi, double *v)
 	if (rc < 0)
 		return rc;
 	if (*v < lo || *v > hi)
-		return FAIL_TOK(p, &p->tok[p->pos - 1], "expected '%s' in [%g, %g], "
+		return FAIL_TOK(p, &p->lx.tok[p->pos - 1], "expected '%s' in [%g, %g], "
 		                "found %g", what, lo, hi, *v);
 	return 0;
 }
@@ -294,13 +119,13 @@ positive(struct parser *p, const char *what, double *v)
 	if (rc < 0)
 		return rc;
 	if (!(*v > 0))
-		return FAIL_TOK(p, &p->tok[p->pos - 1], "expected a positive %s, found %g",
+		return FAIL_TOK(p, &p->lx.tok[p->pos - 1], "expected a positive %s, found %g",
 		                what, *v);
 	return 0;
 }
 
 static int
-word(struct parser *p, const char *what, const struct token **t)
+word(struct parser *p, const char *what, const struct rf__token **t)
 {
 	if (!(*t = take(p)))
 		return FAIL_END(p, "expected %s, found the end of the line", what);
@@ -310,7 +135,7 @@ word(struct parser *p, const char *what, const struct token **t)
 static int
 on_off(struct parser *p, const char *what, int *v)
 {
-	const struct token *t;
+	const struct rf__token *t;
 	int rc;
 
 	if ((rc = word(p, "on or off", &t)) < 0)
@@ -327,7 +152,7 @@ on_off(struct parser *p, const char *what, int *v)
 
 /* A copy of a path, relative ones taken from the scene file's directory. */
 static int
-resolve_path(struct parser *p, const struct token *t, char **out)
+resolve_path(struct parser *p, const struct rf__token *t, char **out)
 {
 	size_t dlen = p->dir && t->text[0] != '/' ? strlen(p->dir) : 0;
 	char *s;
@@ -353,7 +178,7 @@ resolve_path(struct parser *p, const struct token *t, char **out)
 
 /* The next attribute name, refusing one given twice.  NULL at the end. */
 static int
-attribute(struct parser *p, const struct token **key)
+attribute(struct parser *p, const struct rf__token **key)
 {
 	size_t i;
 
@@ -371,7 +196,7 @@ attribute(struct parser *p, const struct token **key)
 	return 1;
 }
 
-static const struct token *
+static const struct rf__token *
 seen(const struct parser *p, const char *name)
 {
 	size_t i;
@@ -390,13 +215,13 @@ seen(const struct parser *p, const char *name)
 /* 1 when key was a material attribute (and its value is read), 0 when it
  * is not one, < 0 on error. */
 static int
-material_attribute(struct parser *p, const struct token *key, struct material *m)
+material_attribute(struct parser *p, const struct rf__token *key, struct material *m)
 {
 	double v, vv[3];
 	int rc, on, i;
 
 	if (tok_is(key, "roughness") || tok_is(key, "smoothness")) {
-		const struct token *other = seen(p, tok_is(key, "roughness") ? "smoothness"
+		const struct rf__token *other = seen(p, tok_is(key, "roughness") ? "smoothness"
 		                                                              : "roughness");
 
 		if (other)
@@ -421,7 +246,7 @@ material_attribute(struct parser *p, const struct token *key, struct material *m
 			return rc;
 		m->mask = on ? 1.0f : 0.0f;
 	} else if (tok_is(key, "normalmap")) {
-		const struct token *t;
+		const struct rf__token *t;
 
 		if ((rc = word(p, "tiles, bumps, noise, image FILE or none", &t)) < 0)
 			return rc;
@@ -467,7 +292,7 @@ material_attribute(struct parser *p, const struct token *key, struct material *m
 		if ((rc = numbers(p, "tiling", vv, 2)) < 0)
 			return rc;
 		if (vv[0] == 0 || vv[1] == 0)
-			return FAIL_TOK(p, &p->tok[p->pos - 1], "expected non-zero tiling, "
+			return FAIL_TOK(p, &p->lx.tok[p->pos - 1], "expected non-zero tiling, "
 			                "found %g %g", vv[0], vv[1]);
 		m->nm.tiling[0] = vv[0];
 		m->nm.tiling[1] = vv[1];
@@ -488,7 +313,7 @@ material_check(struct parser *p)
 {
 	static const char *const nm_words[] = { "strength", "scale", "tiling", "offset",
 		                                NULL };
-	const struct token *t;
+	const struct rf__token *t;
 	int i;
 
 	if (seen(p, "normalmap"))
@@ -503,7 +328,7 @@ material_check(struct parser *p)
 /* ---- statements ---------------------------------------------------------- */
 
 static int
-unknown_attribute(struct parser *p, const struct token *key, const char *what,
+unknown_attribute(struct parser *p, const struct rf__token *key, const char *what,
                   const char *expected)
 {
 	return FAIL_TOK(p, key, "unknown %s attribute " TOKFMT " (expected %s)", what,
@@ -511,7 +336,7 @@ unknown_attribute(struct parser *p, const struct token *key, const char *what,
 }
 
 static int
-missing(struct parser *p, const struct token *kw, const char *what)
+missing(struct parser *p, const struct rf__token *kw, const char *what)
 {
 	return FAIL_TOK(p, kw, "expected %s on this line", what);
 }
@@ -520,7 +345,7 @@ missing(struct parser *p, const struct token *kw, const char *what)
  * columns right, up, back (the camera looks along -Z, as in OpenGL and
  * Blender), position. */
 static int
-camera_from_matrix(struct parser *p, const struct token *at, const double m[16],
+camera_from_matrix(struct parser *p, const struct rf__token *at, const double m[16],
                    struct rf_camera *c)
 {
 	double back[3] = { m[2], m[6], m[10] };
@@ -542,10 +367,10 @@ camera_from_matrix(struct parser *p, const struct token *at, const double m[16],
 }
 
 static int
-parse_camera(struct parser *p, const struct token *kw)
+parse_camera(struct parser *p, const struct rf__token *kw)
 {
 	struct rf_camera c = { { 0, 0, 0 }, { 0, 0, -1 }, { 0, 1, 0 }, 60.0 };
-	const struct token *key;
+	const struct rf__token *key;
 	double m[16];
 	char msg[256];
 	int rc;
@@ -574,7 +399,7 @@ parse_camera(struct parser *p, const struct token *kw)
 	if (rc < 0)
 		return rc;
 	if ((key = seen(p, "matrix"))) {
-		const struct token *other = seen(p, "position");
+		const struct rf__token *other = seen(p, "position");
 
 		if (!other)
 			other = seen(p, "target");
@@ -596,7 +421,7 @@ parse_camera(struct parser *p, const struct token *kw)
 }
 
 static int
-box_check(struct parser *p, const struct token *at, const double *mn,
+box_check(struct parser *p, const struct rf__token *at, const double *mn,
           const double *mx, int dims, const char *axes)
 {
 	int i;
@@ -610,10 +435,10 @@ box_check(struct parser *p, const struct token *at, const double *mn,
 }
 
 static int
-parse_probe(struct parser *p, const struct token *kw)
+parse_probe(struct parser *p, const struct rf__token *kw)
 {
 	struct rf_scene_probe pr, *probes;
-	const struct token *key, *t;
+	const struct rf__token *key, *t;
 	double box[6];
 	int rc, i;
 
@@ -678,18 +503,18 @@ parse_probe(struct parser *p, const struct token *kw)
 }
 
 static int
-parse_room(struct parser *p, const struct token *kw)
+parse_room(struct parser *p, const struct rf__token *kw)
 {
-	const struct token *key;
+	const struct rf__token *key;
 	int rc;
 
 	if (p->room_line)
 		return FAIL_TOK(p, kw, "expected one 'room' line, the first is line %zu",
 		                p->room_line);
 	p->room_line = kw->line;
-	if (p->pos < p->ntok && (tok_is(&p->tok[p->pos], "on") ||
-	                         tok_is(&p->tok[p->pos], "off"))) {
-		p->s->room = tok_is(&p->tok[p->pos], "on");
+	if (p->pos < p->lx.ntok && (tok_is(&p->lx.tok[p->pos], "on") ||
+	                         tok_is(&p->lx.tok[p->pos], "off"))) {
+		p->s->room = tok_is(&p->lx.tok[p->pos], "on");
 		p->pos++;
 	}
 	while ((rc = attribute(p, &key)) > 0) {
@@ -704,9 +529,9 @@ parse_room(struct parser *p, const struct token *kw)
 }
 
 static int
-parse_name(struct parser *p, const struct token *kw)
+parse_name(struct parser *p, const struct rf__token *kw)
 {
-	const struct token *t;
+	const struct rf__token *t;
 	char *name;
 	size_t i;
 	int rc;
@@ -720,8 +545,8 @@ parse_name(struct parser *p, const struct token *kw)
 	for (i = 0; i < t->len; i++)
 		if ((unsigned char)t->text[i] < 0x20)
 			return FAIL_TOK(p, t, "expected a name of printable characters");
-	if (p->pos < p->ntok)
-		return FAIL_TOK(p, &p->tok[p->pos], "expected the end of the line after "
+	if (p->pos < p->lx.ntok)
+		return FAIL_TOK(p, &p->lx.tok[p->pos], "expected the end of the line after "
 		                "the name (quote a name with spaces)");
 	if (!(name = malloc(t->len + 1)))
 		return RF_ENOMEM;
@@ -747,9 +572,9 @@ add_object(struct parser *p, const struct object *o)
 }
 
 static int
-parse_sphere(struct parser *p, const struct token *kw, struct object *o)
+parse_sphere(struct parser *p, const struct rf__token *kw, struct object *o)
 {
-	const struct token *key;
+	const struct rf__token *key;
 	int rc;
 
 	while ((rc = attribute(p, &key)) > 0) {
@@ -773,9 +598,9 @@ parse_sphere(struct parser *p, const struct token *kw, struct object *o)
 }
 
 static int
-parse_box(struct parser *p, const struct token *kw, struct object *o)
+parse_box(struct parser *p, const struct rf__token *kw, struct object *o)
 {
-	const struct token *key;
+	const struct rf__token *key;
 	int rc;
 
 	while ((rc = attribute(p, &key)) > 0) {
@@ -801,7 +626,7 @@ parse_box(struct parser *p, const struct token *kw, struct object *o)
 /* rect plane x|y|z VALUE min A B max A B: A B are the other two axes in
  * x, y, z order; the normal is +axis, the tangent the first other axis. */
 static int
-rect_from_plane(struct parser *p, const struct token *at, int axis, double value,
+rect_from_plane(struct parser *p, const struct rf__token *at, int axis, double value,
                 const double mn[2], const double mx[2], struct object *o)
 {
 	int a = axis == 0 ? 1 : 0, b = axis == 2 ? 1 : 2, rc;
@@ -836,9 +661,9 @@ rect_from_plane(struct parser *p, const struct token *at, int axis, double value
 }
 
 static int
-parse_rect(struct parser *p, const struct token *kw, struct object *o)
+parse_rect(struct parser *p, const struct rf__token *kw, struct object *o)
 {
-	const struct token *key, *t, *plane = NULL;
+	const struct rf__token *key, *t, *plane = NULL;
 	double mn[2], mx[2], size[2], value = 0, tangent[3];
 	int rc, axis = -1;
 
@@ -922,7 +747,7 @@ parse_rect(struct parser *p, const struct token *kw, struct object *o)
 }
 
 static int
-parse_object(struct parser *p, const struct token *kw)
+parse_object(struct parser *p, const struct rf__token *kw)
 {
 	struct object o;
 	int rc;
@@ -947,7 +772,7 @@ parse_object(struct parser *p, const struct token *kw)
 static int
 statement(struct parser *p)
 {
-	const struct token *kw = take(p);
+	const struct rf__token *kw = take(p);
 
 	if (tok_is(kw, "camera"))
 		return parse_camera(p, kw);
@@ -993,12 +818,7 @@ rf_scene_parse(rf_scene **sp, const char *text, size_t len, const char *name,
 	*sp = NULL;
 	memset(&p, 0, sizeof(p));
 	p.name = name ? name : "<scene>";
-	p.err = err;
-	p.errlen = errlen;
-	p.lx.src = text;
-	p.lx.len = len;
-	p.lx.line = 1;
-	p.lx.col = 1;
+	rf__lexer_init(&p.lx, text, len, p.name, err, errlen);
 	if (!(p.s = rf__scene_new()))
 		return RF_ENOMEM;
 	if (name && (slash = strrchr(name, '/'))) {
@@ -1015,8 +835,7 @@ rf_scene_parse(rf_scene **sp, const char *text, size_t len, const char *name,
 	while ((rc = next_statement(&p)) > 0)
 		if ((rc = statement(&p)) < 0)
 			break;
-	free_tokens(&p);
-	free(p.tok);
+	rf__lexer_free(&p.lx);
 	free(p.dir);
 	if (rc == 0 && !p.s->nprobes)
 		rc = fail_at(&p, p.lx.line, 1, "expected a 'probe' line (the room's box and "
