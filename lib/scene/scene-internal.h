@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdint.h>
 
+#include "scene/vector.h"
 #include "util/util.h"
 #include "reflect/scene.h"
 
@@ -70,9 +71,6 @@ int rf__scene_image(rf_scene *s, const char *path, const rf_image **img, char *e
                     size_t errlen);
 /* Completes an object's derived fields (squares, bounds, frames). */
 void rf__object_prepare(struct object *o);
-/* A unit tangent for a plane of normal n: horizontal on walls so that the
- * bitangent (cross(n, t)) points up, +X on floors and ceilings. */
-void rf__plane_tangent(const double n[3], double t[3]);
 
 /* raycast.c */
 /* Fills k[(nobjects + 1) * RF__ORIGIN_STRIDE] for rays from o (the room
@@ -92,39 +90,6 @@ int rf__trace(const rf_scene *s, const double o[3], const double *k,
 void rf__normalmap_apply(const struct normalmap *nm, const double uv[2],
                          const double t[3], const double b[3], const double ng[3],
                          double out[3]);
-
-/* Small vector helpers shared by the scene files. */
-static inline double
-rf__dot(const double a[3], const double b[3])
-{
-	return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static inline void
-rf__cross(const double a[3], const double b[3], double out[3])
-{
-	double x = a[1] * b[2] - a[2] * b[1];
-	double y = a[2] * b[0] - a[0] * b[2];
-	double z = a[0] * b[1] - a[1] * b[0];
-
-	out[0] = x;
-	out[1] = y;
-	out[2] = z;
-}
-
-/* Normalises v in place; returns its former length (0 leaves v alone). */
-static inline double
-rf__normalize(double v[3])
-{
-	double len = sqrt(rf__dot(v, v));
-
-	if (len > 0) {
-		v[0] /= len;
-		v[1] /= len;
-		v[2] /= len;
-	}
-	return len;
-}
 
 /* A camera ready for rays: the ray through image point (x, y) in [-1, 1]
  * (y up) is normalize(f + (x tx) r + (y ty) u).  rf_camera_ray and the

@@ -95,23 +95,6 @@ rf__scene_image(rf_scene *s, const char *path, const rf_image **imgp, char *err,
 }
 
 void
-rf__plane_tangent(const double n[3], double t[3])
-{
-	static const double y[3] = { 0, 1, 0 };
-
-	if (fabs(n[1]) < 0.999) {
-		rf__cross(y, n, t);
-		rf__normalize(t);
-	} else {
-		/* +X made perpendicular to n */
-		t[0] = 1.0 - n[0] * n[0];
-		t[1] = -n[0] * n[1];
-		t[2] = -n[0] * n[2];
-		rf__normalize(t);
-	}
-}
-
-void
 rf__object_prepare(struct object *o)
 {
 	int i;
