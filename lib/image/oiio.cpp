@@ -505,6 +505,9 @@ module_write_levels(const char *path, size_t nlevels, const size_t *w, const siz
 		}
 		for (size_t a = 0; attributes && attributes[a]; a += 2)
 			spec.attribute(attributes[a], attributes[a + 1]);
+		// Else OpenEXR's capDate is the time of writing (see
+		// module_writer_open).
+		spec.attribute("DateTime", fixed_date());
 		if (!out->open(path, spec, k ? ImageOutput::AppendMIPLevel : ImageOutput::Create) ||
 		    !out->write_image(TypeFloat, pixels[k])) {
 			set_error(err, errlen, "cannot write", path, out->geterror());
