@@ -166,6 +166,15 @@ die_status(int status, const char *msg)
 }
 
 void
+die_header_key(int rc)
+{
+	if (rc == RF_ENOMEM)
+		die_status(rc, NULL);
+	die("cannot write the output's header: a value is longer than a header line "
+	    "(%d bytes)", RF_HEADER_LINE_MAX);
+}
+
+void
 warn(const char *fmt, ...)
 {
 	va_list ap;

@@ -32,6 +32,9 @@ CLI_NORETURN void die(const char *fmt, ...) CLI_PRINTF(1, 2);
 CLI_NORETURN void die_sys(const char *fmt, ...) CLI_PRINTF(1, 2);
 /* Exit status for a libreflect error: 2 for system errors, else 1. */
 CLI_NORETURN void die_status(int status, const char *msg);
+/* Dies for a header key the library refused (rc): a value too long for
+ * a header line, or out of memory. */
+CLI_NORETURN void die_header_key(int rc);
 void warn(const char *fmt, ...) CLI_PRINTF(1, 2);
 /* For a message written in pieces: "tool: ", and a name in quotes; both
  * write control bytes as '?', as every message does. */
@@ -112,6 +115,14 @@ int cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
 
 /* Threads over row blocks: -j N, else REFLECT_THREADS, else every core. */
 int cli_threads(const char *arg);
+
+/* --box, --center, --box-projection as given (NULL: not given), for
+ * rf_probe_resolve. */
+struct cli_probe {
+	const char *box;
+	const char *center;
+	const char *projection;
+};
 
 /* Modes (plugins) of one kind: -l and -m name:key=value:... */
 struct cli_mode {

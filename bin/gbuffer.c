@@ -99,48 +99,13 @@ load_scene(const char *path)
 	return s;
 }
 
-static void
-set_key(rf_header *h, const char *key, const char *value)
-{
-	if (rf_header_set(h, key, value) < 0)
-		die("cannot write header key %s='%s'", key, value);
-}
-
-static void
-probe_keys(rf_header *h, const struct rf_scene_probe *p, size_t i)
-{
-	char prefix[32], key[64], buf[256];
-
-	/* The first probe keeps the plain names that every tool reads. */
-	if (i == 0)
-		snprintf(prefix, sizeof(prefix), "PROBE");
-	else
-		snprintf(prefix, sizeof(prefix), "PROBE%zu", i + 1);
-	snprintf(key, sizeof(key), "%s_BOX", prefix);
-	snprintf(buf, sizeof(buf), "%.9g %.9g %.9g %.9g %.9g %.9g", p->box_min[0],
-	         p->box_min[1], p->box_min[2], p->box_max[0], p->box_max[1],
-	         p->box_max[2]);
-	set_key(h, key, buf);
-	snprintf(key, sizeof(key), "%s_CENTER", prefix);
-	snprintf(buf, sizeof(buf), "%.9g %.9g %.9g", p->center[0], p->center[1],
-	         p->center[2]);
-	set_key(h, key, buf);
-	snprintf(key, sizeof(key), "%s_BOX_PROJECTION", prefix);
-	set_key(h, key, p->box_projection ? "1" : "0");
-	snprintf(key, sizeof(key), "%s_ENV", prefix);
-	set_key(h, key, p->env ? p->env : "default");
-	snprintf(key, sizeof(key), "%s_BLEND", prefix);
-	snprintf(buf, sizeof(buf), "%.9g", p->blend);
-	set_key(h, key, buf);
-}
-
 static rf_header *
 frame_header(const rf_scene *s, const rf_gbuffer *g, const struct rf_camera *cam,
              size_t frame, size_t width, size_t height)
 {
 	rf_header *h = rf_header_new();
-	char buf[512];
 	size_t i;
+	int rc;
 
 	if (!h || rf_header_set_size(h, width, height) < 0)
 		die_sys("out of memory");
@@ -148,16 +113,9 @@ frame_header(const rf_scene *s, const rf_gbuffer *g, const struct rf_camera *cam
 		if (rf_header_add_channel(h, rf_gbuffer_channel(g, i)) < 0)
 			die_sys("out of memory");
 	cli_record_command(h);
-	set_key(h, "SCENE", rf_scene_name(s));
-	snprintf(buf, sizeof(buf), "%.9g %.9g %.9g %.9g %.9g %.9g %.9g %.9g %.9g %.9g",
-	         cam->position[0], cam->position[1], cam->position[2], cam->target[0],
-	         cam->target[1], cam->target[2], cam->up[0], cam->up[1], cam->up[2],
-	         cam->fov);
-	set_key(h, "CAMERA", buf);
-	for (i = 0; i < rf_scene_nprobes(s); i++)
-		probe_keys(h, rf_scene_probe(s, i), i);
-	snprintf(buf, sizeof(buf), "%zu", frame);
-	set_key(h, "FRAME", buf);
+	/* A probe's env path may be too long for a header line. */
+	if ((rc = rf_scene_frame_keys(s, cam, frame, h)) < 0)
+		die_header_key(rc);
 	return h;
 }
 

@@ -4,7 +4,6 @@
 #include <string.h>
 
 #include "cli.h"
-#include "cli_probe.h"
 #include "reflect/import.h"
 
 static void
@@ -32,7 +31,7 @@ struct import_opts {
 	int z_up;          /* -1: by preset */
 	const char *camera;
 	const char *roughness;
-	struct probe_opts probe;
+	struct cli_probe probe;
 	int verbose;
 	enum rf_format format;
 	int no_header;
@@ -157,9 +156,11 @@ main(int argc, char **argv)
 	if (o.probe.box) {
 		struct rf_probe probe;
 
-		if (probe_resolve(&o.probe, h, &probe, err, sizeof(err)) < 0)
+		if ((rc = rf_probe_resolve(&probe, h, o.probe.box, o.probe.center, NULL, err,
+		                           sizeof(err))) < 0)
 			die("%s", err);
-		probe_to_header(&probe, h);
+		if ((rc = rf_probe_to_header(&probe, h)) < 0)
+			die_header_key(rc);
 	} else if (o.probe.center) {
 		die("--center needs --box");
 	}

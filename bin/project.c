@@ -3,7 +3,6 @@
 #include <string.h>
 
 #include "cli.h"
-#include "cli_probe.h"
 
 static void
 usage(void)
@@ -48,7 +47,7 @@ project_block(void *arg, const float *in, float *out, size_t y, size_t n)
 }
 
 static void
-project_frame(struct cli_io *io, struct cli_mode *mode, const struct probe_opts *po,
+project_frame(struct cli_io *io, struct cli_mode *mode, const struct cli_probe *po,
               const char *spec, int nthreads, const rf_header *in)
 {
 	struct rf_host host;
@@ -66,8 +65,9 @@ project_frame(struct cli_io *io, struct cli_mode *mode, const struct probe_opts 
 	host.abi_minor = RF_PLUGIN_ABI_MINOR;
 	host.ctx = (void *)in;
 	host.header_get = header_get;
-	prc = probe_resolve(po, in, &probe, perr, sizeof(perr));
-	if (prc == -1)
+	prc = rf_probe_resolve(&probe, in, po->box, po->center, po->projection, perr,
+	                       sizeof(perr));
+	if (prc < 0 && prc != RF_ENOTFOUND)
 		die("%s", perr);
 	host.probe = prc == 0 ? &probe : NULL;
 	if ((rc = rf_stage_create(&stage, mode->plugin, mode->values, &host,
@@ -77,9 +77,9 @@ project_frame(struct cli_io *io, struct cli_mode *mode, const struct probe_opts 
 	if ((rc = rf_stage_begin_frame(stage, in, &out, err, sizeof(err))) < 0)
 		die_status(rc, err);
 	cli_record_command(out);
-	rf_header_set(out, "PROJECTION", spec);
-	if (host.probe)
-		probe_to_header(&probe, out);
+	if ((rc = rf_header_set(out, RF_KEY_PROJECTION, spec)) < 0 ||
+	    (host.probe && (rc = rf_probe_to_header(&probe, out)) < 0))
+		die_header_key(rc);
 	cli_io_begin(io, out);
 	rows = rf_block_rows(rf_header_ncols(out), rf_header_nchannels(out),
 	                     CLI_BLOCK_BYTES);
@@ -106,7 +106,7 @@ main(int argc, char **argv)
 {
 	struct cli_io io = { 0 };
 	struct cli_mode mode = { 0 };
-	struct probe_opts po = { 0 };
+	struct cli_probe po = { 0 };
 	const char *spec = "box", *threads = NULL;
 	const rf_header *in;
 	int c, list = 0, verbose = 0, nthreads;

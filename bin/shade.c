@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include "cli_envmap.h"
-#include "cli_probe.h"
 #include "reflect/shading.h"
 
 static void
@@ -53,7 +52,7 @@ struct shade_opts {
 	const char *spec;
 	int nthreads, verbose, final;
 	struct envmap_opts env;
-	struct probe_opts probe;
+	struct cli_probe probe;
 	int mapping_set;
 	enum rf_mapping mapping;
 	float steps;       /* 0: the environment's */
@@ -282,8 +281,9 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	size_t rows, k, ncols = rf_header_ncols(in), nrows = rf_header_nrows(in);
 	int rc, prc;
 
-	prc = probe_resolve(&o->probe, in, &probe, perr, sizeof(perr));
-	if (prc == -1)
+	prc = rf_probe_resolve(&probe, in, o->probe.box, o->probe.center,
+	                       o->probe.projection, perr, sizeof(perr));
+	if (prc < 0 && prc != RF_ENOTFOUND)
 		die("%s", perr);
 	if (prc == 0) {
 		center = probe.center;
@@ -293,7 +293,7 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	}
 	check_frame(o, shade, in, center);
 
-	name = o->env.path ? o->env.path : rf_header_get(in, "PROBE_ENV");
+	name = o->env.path ? o->env.path : rf_header_get(in, RF_KEY_PROBE_ENV);
 	if (!name || !*name)
 		name = "default";
 	if (!env->name || strcmp(env->name, name))
@@ -332,14 +332,13 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	env->fresh = 0;
 
 	cli_record_command(out);
-	rf_header_set(out, "SHADE", o->spec);
-	rf_header_set(out, "ENV_MAPPING", rf_mapping_name(env->mapping));
 	snprintf(buf, sizeof(buf), "%.9g", (double)env->steps);
-	rf_header_set(out, "ENV_STEPS", buf);
-	if (o->env.path)
-		rf_header_set(out, "PROBE_ENV", o->env.path);
-	if (prc == 0)
-		probe_to_header(&probe, out);
+	if ((rc = rf_header_set(out, RF_KEY_SHADE, o->spec)) < 0 ||
+	    (rc = rf_header_set(out, RF_KEY_ENV_MAPPING, rf_mapping_name(env->mapping))) < 0 ||
+	    (rc = rf_header_set(out, RF_KEY_ENV_STEPS, buf)) < 0 ||
+	    (o->env.path && (rc = rf_header_set(out, RF_KEY_PROBE_ENV, o->env.path)) < 0) ||
+	    (prc == 0 && (rc = rf_probe_to_header(&probe, out)) < 0))
+		die_header_key(rc);
 	cli_io_begin(io, out);
 
 	rows = rf_block_rows(ncols, rf_header_nchannels(out), CLI_BLOCK_BYTES);

@@ -107,6 +107,37 @@ RF_EXTERN int rf_header_add_command(rf_header *h, int argc, char *const *argv);
 RF_EXTERN const char *rf_header_line(const rf_header *h, size_t i);
 
 /*
+ * The header keys the tools share (reflect-stream(5) lists them).  Each
+ * name is defined here once; the probe's keys are written and read only
+ * by the functions below, so that a word means one thing in every tool.
+ */
+#define RF_KEY_SCENE "SCENE"           /* the scene's name */
+#define RF_KEY_CAMERA "CAMERA"         /* position, target, up (3 each), fov */
+#define RF_KEY_FRAME "FRAME"           /* the frame's number, from 0 */
+#define RF_KEY_PROBE_BOX "PROBE_BOX"   /* XMIN YMIN ZMIN XMAX YMAX ZMAX */
+#define RF_KEY_PROBE_CENTER "PROBE_CENTER" /* X Y Z, the capture point */
+#define RF_KEY_PROBE_BOX_PROJECTION "PROBE_BOX_PROJECTION" /* 1 or 0 */
+#define RF_KEY_PROBE_ENV "PROBE_ENV"   /* the probe's environment file */
+#define RF_KEY_PROBE_BLEND "PROBE_BLEND" /* blend distance in metres */
+#define RF_KEY_PROJECTION "PROJECTION" /* reflect-project's mode */
+#define RF_KEY_SHADE "SHADE"           /* reflect-shade's mode */
+#define RF_KEY_ENV_MAPPING "ENV_MAPPING" /* the roughness-to-lod mapping used */
+#define RF_KEY_ENV_STEPS "ENV_STEPS"   /* the lod of its roughest level */
+
+struct rf_probe;
+/* The probe of a frame, from the strings a tool was given for its
+ * --box, --center and --box-projection (NULL: not given), else from the
+ * frame's PROBE_BOX, PROBE_CENTER and PROBE_BOX_PROJECTION; the centre
+ * defaults to the box's, box projection to on.  RF_ENOTFOUND when
+ * neither gives a box, RF_EINVAL for a value that does not parse or an
+ * empty box; err says which. */
+RF_EXTERN int rf_probe_resolve(struct rf_probe *probe, const rf_header *h,
+                               const char *box, const char *center,
+                               const char *projection, char *err, size_t errlen);
+/* Writes the probe as PROBE_BOX, PROBE_CENTER, PROBE_BOX_PROJECTION. */
+RF_EXTERN int rf_probe_to_header(const struct rf_probe *probe, rf_header *h);
+
+/*
  * Reading.  A reader takes frames back to back until EOF.  Errors fill a
  * message (see rf_reader_error) that names the input, the header line or
  * the row, and what was expected.

@@ -58,6 +58,11 @@ RF_EXTERN void rf_scene_camera(const rf_scene *s, struct rf_camera *cam);
 RF_EXTERN size_t rf_scene_nprobes(const rf_scene *s);
 /* NULL past the end.  Probe 0 is the room. */
 RF_EXTERN const struct rf_scene_probe *rf_scene_probe(const rf_scene *s, size_t i);
+/* The keys of frame `frame` seen by cam: SCENE, CAMERA, each probe's
+ * PROBE_BOX, PROBE_CENTER, PROBE_BOX_PROJECTION, PROBE_ENV and
+ * PROBE_BLEND (the second probe's as PROBE2_BOX...), and FRAME. */
+RF_EXTERN int rf_scene_frame_keys(const rf_scene *s, const struct rf_camera *cam,
+                                  size_t frame, rf_header *h);
 RF_EXTERN size_t rf_scene_nobjects(const rf_scene *s);
 
 /* Object ids, as in the objid channel: objects count from 1 in the order

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "scene/scene-internal.h"
+#include "stream/stream-internal.h"
 
 static const double pi = 3.14159265358979323846;
 
@@ -326,4 +327,39 @@ rf_camera_at_frame(const struct rf_camera *start, const struct rf_camera_path *p
 		}
 		break;
 	}
+}
+
+int
+rf_scene_frame_keys(const rf_scene *s, const struct rf_camera *cam, size_t frame,
+                    rf_header *h)
+{
+	char key[64], buf[32];
+	double camera[10];
+	size_t i;
+	int rc;
+
+	for (i = 0; i < 3; i++) {
+		camera[i] = cam->position[i];
+		camera[i + 3] = cam->target[i];
+		camera[i + 6] = cam->up[i];
+	}
+	camera[9] = cam->fov;
+	if ((rc = rf_header_set(h, RF_KEY_SCENE, rf_scene_name(s))) < 0 ||
+	    (rc = rf__header_set_numbers(h, RF_KEY_CAMERA, camera, 10)) < 0)
+		return rc;
+	for (i = 0; i < s->nprobes; i++) {
+		const struct rf_scene_probe *p = &s->probes[i];
+
+		if ((rc = rf__header_set_probe_keys(h, i, p->box_min, p->box_max, p->center,
+		                                    p->box_projection)) < 0)
+			return rc;
+		rf__header_probe_key(key, sizeof(key), i, RF_KEY_PROBE_ENV);
+		if ((rc = rf_header_set(h, key, p->env ? p->env : "default")) < 0)
+			return rc;
+		rf__header_probe_key(key, sizeof(key), i, RF_KEY_PROBE_BLEND);
+		if ((rc = rf__header_set_numbers(h, key, &p->blend, 1)) < 0)
+			return rc;
+	}
+	snprintf(buf, sizeof(buf), "%zu", frame);
+	return rf_header_set(h, RF_KEY_FRAME, buf);
 }

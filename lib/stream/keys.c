@@ -1,0 +1,174 @@
+/*
+ * The header keys the tools share.  A key's name and the form of its
+ * value live here, so that reflect-gbuffer's PROBE_BOX and the one
+ * reflect-shade reads are one word: numbers as %.9g (a float's value
+ * exactly, and back to the same float), separated by spaces.
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "stream/stream-internal.h"
+#include "reflect/plugin.h"
+
+int
+rf__header_set_numbers(rf_header *h, const char *key, const double *v, size_t n)
+{
+	char buf[512];
+	size_t i, k = 0;
+
+	for (i = 0; i < n && k < sizeof(buf); i++)
+		k += (size_t)snprintf(buf + k, sizeof(buf) - k, "%s%.9g", i ? " " : "", v[i]);
+	if (k >= sizeof(buf))
+		return RF_EINVAL;
+	return rf_header_set(h, key, buf);
+}
+
+int
+rf__header_set_probe_keys(rf_header *h, size_t index, const double box_min[3],
+                          const double box_max[3], const double center[3],
+                          int box_projection)
+{
+	char box_key[64], center_key[64], projection_key[64];
+	double box[6];
+	int rc, i;
+
+	/* The first probe keeps the plain names that every tool reads. */
+	if (index == 0) {
+		snprintf(box_key, sizeof(box_key), "%s", RF_KEY_PROBE_BOX);
+		snprintf(center_key, sizeof(center_key), "%s", RF_KEY_PROBE_CENTER);
+		snprintf(projection_key, sizeof(projection_key), "%s",
+		         RF_KEY_PROBE_BOX_PROJECTION);
+	} else {
+		rf__header_probe_key(box_key, sizeof(box_key), index, RF_KEY_PROBE_BOX);
+		rf__header_probe_key(center_key, sizeof(center_key), index, RF_KEY_PROBE_CENTER);
+		rf__header_probe_key(projection_key, sizeof(projection_key), index,
+		                     RF_KEY_PROBE_BOX_PROJECTION);
+	}
+	for (i = 0; i < 3; i++) {
+		box[i] = box_min[i];
+		box[i + 3] = box_max[i];
+	}
+	if ((rc = rf__header_set_numbers(h, box_key, box, 6)) < 0 ||
+	    (rc = rf__header_set_numbers(h, center_key, center, 3)) < 0)
+		return rc;
+	return rf_header_set(h, projection_key, box_projection ? "1" : "0");
+}
+
+void
+rf__header_probe_key(char *buf, size_t size, size_t index, const char *key)
+{
+	/* PROBE_BOX of probe 2 is PROBE2_BOX. */
+	if (index == 0 || strncmp(key, "PROBE_", 6))
+		snprintf(buf, size, "%s", key);
+	else
+		snprintf(buf, size, "PROBE%zu_%s", index + 1, key + 6);
+}
+
+int
+rf_probe_to_header(const struct rf_probe *probe, rf_header *h)
+{
+	double mn[3], mx[3], c[3];
+	int i;
+
+	for (i = 0; i < 3; i++) {
+		mn[i] = probe->box_min[i];
+		mx[i] = probe->box_max[i];
+		c[i] = probe->center[i];
+	}
+	return rf__header_set_probe_keys(h, 0, mn, mx, c, probe->box_projection);
+}
+
+/* n numbers separated by commas or spaces; 0 on success. */
+static int
+scan_floats(const char *s, float *out, int n)
+{
+	char *end;
+	int i;
+
+	for (i = 0; i < n; i++) {
+		double v;
+
+		while (*s == ' ' || (i && *s == ','))
+			s++;
+		errno = 0;
+		v = strtod(s, &end);
+		if (end == s || errno == ERANGE || !isfinite(v))
+			return -1;
+		out[i] = (float)v;
+		s = end;
+	}
+	while (*s == ' ')
+		s++;
+	return *s ? -1 : 0;
+}
+
+int
+rf_probe_resolve(struct rf_probe *probe, const rf_header *h, const char *box_arg,
+                 const char *center_arg, const char *projection_arg, char *err,
+                 size_t errlen)
+{
+	float box[6];
+	const char *v;
+	int i;
+
+	memset(probe, 0, sizeof(*probe));
+	probe->box_projection = 1;
+	if (box_arg) {
+		if (scan_floats(box_arg, box, 6) < 0) {
+			rf__format(err, errlen, "--box: '%s' needs 6 comma-separated "
+			           "numbers XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX", box_arg);
+			return RF_EINVAL;
+		}
+	} else if ((v = rf_header_get(h, RF_KEY_PROBE_BOX))) {
+		if (scan_floats(v, box, 6) < 0) {
+			rf__format(err, errlen, "header key %s: '%s' needs 6 numbers",
+			           RF_KEY_PROBE_BOX, v);
+			return RF_EINVAL;
+		}
+	} else {
+		rf__format(err, errlen, "no probe box: give --box=XMIN,YMIN,ZMIN,XMAX,"
+		           "YMAX,ZMAX or a stream with a %s key", RF_KEY_PROBE_BOX);
+		return RF_ENOTFOUND;
+	}
+	for (i = 0; i < 3; i++) {
+		probe->box_min[i] = box[i];
+		probe->box_max[i] = box[i + 3];
+		if (!(probe->box_min[i] < probe->box_max[i])) {
+			rf__format(err, errlen, "%s: the box is empty on axis %c (min %g, "
+			           "max %g)", box_arg ? "--box" : RF_KEY_PROBE_BOX, "XYZ"[i],
+			           (double)probe->box_min[i], (double)probe->box_max[i]);
+			return RF_EINVAL;
+		}
+	}
+	if (center_arg) {
+		if (scan_floats(center_arg, probe->center, 3) < 0) {
+			rf__format(err, errlen, "--center: '%s' needs 3 comma-separated "
+			           "numbers X,Y,Z", center_arg);
+			return RF_EINVAL;
+		}
+	} else if ((v = rf_header_get(h, RF_KEY_PROBE_CENTER))) {
+		if (scan_floats(v, probe->center, 3) < 0) {
+			rf__format(err, errlen, "header key %s: '%s' needs 3 numbers",
+			           RF_KEY_PROBE_CENTER, v);
+			return RF_EINVAL;
+		}
+	} else {
+		for (i = 0; i < 3; i++)
+			probe->center[i] = 0.5f * (probe->box_min[i] + probe->box_max[i]);
+	}
+	v = projection_arg ? projection_arg : rf_header_get(h, RF_KEY_PROBE_BOX_PROJECTION);
+	if (v) {
+		if (!strcmp(v, "1") || !strcmp(v, "on"))
+			probe->box_projection = 1;
+		else if (!strcmp(v, "0") || !strcmp(v, "off"))
+			probe->box_projection = 0;
+		else {
+			rf__format(err, errlen, "box projection must be on or off, not '%s'", v);
+			return RF_EINVAL;
+		}
+	}
+	return 0;
+}
