@@ -10,9 +10,6 @@
 
 #include "stream/stream-internal.h"
 
-#define MAGIC "#?REFLECT"
-#define STREAM_VERSION 1
-
 struct rf_reader {
 	FILE *fp;
 	char *name;
@@ -209,11 +206,11 @@ parse_size(rf_reader *r, size_t lineno, const char *key, const char *s, size_t *
 static int
 check_magic(rf_reader *r, const char *line)
 {
-	size_t n = strlen(MAGIC);
+	size_t n = strlen(RF__STREAM_MAGIC);
 	char *end;
 	long v;
 
-	if (strncmp(line, MAGIC, n)) {
+	if (strncmp(line, RF__STREAM_MAGIC, n)) {
 		char shown[24];
 		size_t i;
 
@@ -223,23 +220,24 @@ check_magic(rf_reader *r, const char *line)
 			           ? line[i] : '?';
 		shown[i] = '\0';
 		return fail(r, RF_EFORMAT,
-		            "not a reflect stream: expected '#?REFLECT1', got '%s'", shown);
+		            "not a reflect stream: expected '" RF__STREAM_IDENT "', got '%s'",
+		            shown);
 	}
 	/* The version: decimal digits and nothing else. */
 	line += n;
 	n = strspn(line, "0123456789");
 	if (!n || line[n] || line[0] == '0')
-		return fail(r, RF_EFORMAT, "bad stream identifier '#?REFLECT%.30s'",
+		return fail(r, RF_EFORMAT, "bad stream identifier '" RF__STREAM_MAGIC "%.30s'",
 		            line);
 	errno = 0;
 	v = strtol(line, &end, 10);
 	if (errno == ERANGE)
 		return fail(r, RF_EVERSION, "stream version %.30s is newer than this "
-		            "reader's (%d); upgrade reflect", line, STREAM_VERSION);
-	if (v != STREAM_VERSION)
+		            "reader's (%d); upgrade reflect", line, RF__STREAM_VERSION);
+	if (v != RF__STREAM_VERSION)
 		return fail(r, RF_EVERSION,
 		            "stream version %ld is newer than this reader's (%d); "
-		            "upgrade reflect", v, STREAM_VERSION);
+		            "upgrade reflect", v, RF__STREAM_VERSION);
 	return 0;
 }
 
@@ -666,7 +664,7 @@ rf_reader_next_frame(rf_reader *r, const rf_header **hp)
 	len = read_line(r->fp, line, &binary);
 	if (len < 0 || binary || strncmp(line, "#?", 2)) {
 		rc = fail(r, RF_EFORMAT, "not a reflect stream: expected "
-		          "'#?REFLECT1' at the start%s",
+		          "'" RF__STREAM_IDENT "' at the start%s",
 		          r->frames > 1 ? " of the frame (more data than the "
 		                          "previous header said?)" : "");
 		goto bad;

@@ -4,6 +4,12 @@
 
 #include "util/util.h"
 
+/* The first line of every frame: the magic string and the format's
+ * version, as the writer writes them and the reader expects them. */
+#define RF__STREAM_MAGIC "#?REFLECT"
+#define RF__STREAM_VERSION 1
+#define RF__STREAM_IDENT RF__STREAM_MAGIC "1"
+
 /* Header fields the reader fills while parsing. */
 void rf__header_set_format(rf_header *h, enum rf_format format, int big_endian);
 /* Adds a stored line as read, without the checks rf_header_set makes. */

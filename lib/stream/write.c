@@ -89,7 +89,7 @@ write_header(rf_writer *w, const rf_header *h)
 	const unsigned one = 1;
 	int big = *(const unsigned char *)&one == 0;
 
-	if (putline(w, "#?REFLECT1") < 0)
+	if (putline(w, RF__STREAM_IDENT) < 0)
 		return RF_EIO;
 	for (i = 0; (s = rf_header_line(h, i)); i++)
 		if (putline(w, s) < 0)
