@@ -157,7 +157,7 @@ main(int argc, char **argv)
 		case 0:
 			envmap_opts_parse(&eo, long_options[idx].name, optarg);
 			break;
-		case 'S': eo.strict = 1; break;
+		case 'S': eo.load.strict = 1; break;
 		case 'v': o.verbose = 1; break;
 		case 'V': print_version(); break;
 		case 'o': o.output = optarg; break;
@@ -208,7 +208,7 @@ main(int argc, char **argv)
 	if (optind < argc)
 		eo.path = argv[optind];
 	o.pf.nthreads = cli_threads(threads);
-	eo.nthreads = o.pf.nthreads;
+	eo.load.nthreads = o.pf.nthreads;
 	if (isatty(STDERR_FILENO))
 		o.pf.progress = progress;
 	src = envmap_load(&eo, &info);

@@ -170,7 +170,7 @@ load_environment(const struct shade_opts *o, const char *name, struct environmen
 	free(e->name);
 	e->name = estrdup(name);
 	eo.path = name;
-	eo.from_header = !o->env.path;
+	eo.load.from_header = !o->env.path;
 	c = envmap_load(&eo, &info);
 	levels = rf_cubemap_levels(c);
 	e->mapping = o->mapping_set ? o->mapping : RF_MAPPING_DEFAULT;
@@ -186,7 +186,7 @@ load_environment(const struct shade_opts *o, const char *name, struct environmen
 		/* The chain was made with one mapping; sampling it with another
 		 * would pick the wrong levels.  --prefiltered says the options
 		 * describe a chain another tool made. */
-		if (!o->env.prefiltered &&
+		if (!o->env.load.prefiltered &&
 		    ((o->mapping_set && o->mapping != info.mapping) ||
 		     (o->steps > 0.0f && o->steps != steps))) {
 			rf_cubemap_free(c);
@@ -195,9 +195,9 @@ load_environment(const struct shade_opts *o, const char *name, struct environmen
 			    "override them)", name, rf_mapping_name(info.mapping),
 			    (double)steps);
 		}
-		e->mapping = o->env.prefiltered && o->mapping_set ? o->mapping
+		e->mapping = o->env.load.prefiltered && o->mapping_set ? o->mapping
 		                                                  : info.mapping;
-		e->steps = o->env.prefiltered && o->steps > 0.0f ? o->steps : steps;
+		e->steps = o->env.load.prefiltered && o->steps > 0.0f ? o->steps : steps;
 		e->cube = c;
 	}
 	e->fresh = 1;
@@ -475,7 +475,7 @@ main(int argc, char **argv)
 	if (list)
 		mode_list(RF_KIND_SHADE);
 	o.nthreads = cli_threads(threads);
-	o.env.nthreads = o.nthreads;
+	o.env.load.nthreads = o.nthreads;
 	mode_load(&o.mode, RF_KIND_SHADE, o.spec, o.verbose);
 	so.final = o.final;
 	so.mode_radiance = mode_radiance(o.mode.plugin);

@@ -202,6 +202,38 @@ struct rf_chain_info {
 	int base_copied;          /* 1: level 0 is the source as it was */
 };
 
+/* How an environment is read: the options of reflect-prefilter(1) and
+ * reflect-shade(1) (--layout, --prefiltered, --srgb, --rgbm,
+ * --intensity, --size). */
+struct rf_envmap_options {
+	enum rf_layout layout;  /* RF_LAYOUT_AUTO: from the file */
+	int prefiltered;        /* take the file's levels as convolved */
+	int srgb;               /* 1, 0, or -1: from the file's colour space */
+	struct rf_decode decode; /* its srgb is set from the field above */
+	int strict;             /* refuse NaN and Inf texels, not replace them */
+	size_t size;            /* face size of level 0 (0: the file's) */
+	int nthreads;           /* for rendering the embedded room */
+	int from_header;        /* the path came from a stream (PROBE_ENV): a
+	                           regular file, never standard input or a pipe */
+};
+RF_EXTERN void rf_envmap_options_init(struct rf_envmap_options *o);
+/* Loads the environment at path: NULL or "default" is the embedded room,
+ * "-" a stream on standard input, a name with %d or %s six face images
+ * (or with --prefiltered one file per level), else a stream, DDS,
+ * MIP-mapped OpenEXR chain or image in any layout.  A raw environment
+ * is level 0 of a one-level cube (info->prefiltered 0), a chain all its
+ * levels.  *nonfinite (may be NULL) counts the NaN and Inf texel values
+ * replaced by 0.  RF_ENOTFOUND when the file cannot be opened. */
+RF_EXTERN int rf_envmap_load(rf_cubemap **c, struct rf_chain_info *info, const char *path,
+                             const struct rf_envmap_options *o, size_t *nonfinite,
+                             char *err, size_t errlen);
+/* Levels of a prefiltered chain of a cube of `size` texels: `want` when
+ * not 0 (RF_EINVAL when the size cannot halve that often), else at most
+ * RF_STEPS_DEFAULT + 1 (Unity's 7), never below min_size texels, never
+ * halving an odd size. */
+RF_EXTERN int rf_chain_levels(size_t size, size_t want, size_t min_size, size_t *levels,
+                              char *err, size_t errlen);
+
 /* Writes every level as one frame of a stream: NCOLS=N NROWS=6N,
  * channels R G B, keys ENVMAP=CUBE LEVEL LEVELS and the chain's info. */
 RF_EXTERN int rf_chain_write_stream(const rf_cubemap *c, const struct rf_chain_info *info,

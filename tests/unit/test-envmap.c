@@ -472,6 +472,77 @@ TEST(default_room_threads)
 	rf_cubemap_free(b);
 }
 
+/* The loader is a library call: every failure is a status and a message
+ * naming the file, never an exit. */
+TEST(load_reports_instead_of_exiting)
+{
+	struct rf_envmap_options o;
+	struct rf_chain_info info, back_info;
+	rf_cubemap *c = small_chain(&info), *back;
+	struct rf_writer_options wo = { RF_FORMAT_FLOAT, 0 };
+	char path[] = "/tmp/reflect-load-XXXXXX.rfl", err[512];
+	int fd = mkstemps(path, 4);
+	size_t bad = 99, levels;
+	rf_writer *w;
+	FILE *fp;
+
+	ASSERT(fd >= 0);
+	ASSERT(fp = fdopen(fd, "wb"));
+	ASSERT_EQ(rf_writer_open(&w, fp, path, &wo), 0);
+	ASSERT_EQ(rf_chain_write_stream(c, &info, w, NULL, err, sizeof(err)), 0);
+	rf_writer_close(w);
+	fclose(fp);
+	rf_envmap_options_init(&o);
+
+	/* A stream file: the chain with its info, nothing replaced. */
+	ASSERT_EQ(rf_envmap_load(&back, &back_info, path, &o, &bad, err, sizeof(err)), 0);
+	ASSERT_EQ(bad, 0);
+	ASSERT_EQ(rf_cubemap_levels(back), 4);
+	ASSERT_EQ(back_info.prefiltered, 1);
+	ASSERT_EQ(back_info.mapping, RF_MAPPING_EXACT);
+	ASSERT(max_difference(c, back) == 0.0);
+	rf_cubemap_free(back);
+	unlink(path);
+
+	/* Gone: RF_ENOTFOUND, the path and the reason. */
+	ASSERT_EQ(rf_envmap_load(&back, &back_info, path, &o, NULL, err, sizeof(err)),
+	          RF_ENOTFOUND);
+	ASSERT(back == NULL);
+	ASSERT(strstr(err, path) && strstr(err, "No such file"));
+
+	/* A directory is no environment; a header may not name stdin. */
+	ASSERT_EQ(rf_envmap_load(&back, &back_info, "/tmp", &o, NULL, err, sizeof(err)),
+	          RF_EINVAL);
+	ASSERT(strstr(err, "'/tmp': not a regular file (a directory)"));
+	o.from_header = 1;
+	ASSERT_EQ(rf_envmap_load(&back, &back_info, "-", &o, NULL, err, sizeof(err)),
+	          RF_EINVAL);
+	ASSERT(strstr(err, "PROBE_ENV '-'"));
+	o.from_header = 0;
+
+	/* Face patterns need one %d or %s. */
+	ASSERT_EQ(rf_envmap_load(&back, &back_info, "face%x.png", &o, NULL, err,
+	                         sizeof(err)), RF_EINVAL);
+	ASSERT(strstr(err, "needs one %d"));
+
+	/* The embedded room at the size asked for, one level, raw. */
+	o.size = 8;
+	ASSERT_EQ(rf_envmap_load(&back, &back_info, NULL, &o, NULL, err, sizeof(err)), 0);
+	ASSERT_EQ(rf_cubemap_size(back), 8);
+	ASSERT_EQ(rf_cubemap_levels(back), 1);
+	ASSERT_EQ(back_info.prefiltered, 0);
+	rf_cubemap_free(back);
+
+	/* Chain lengths: 256 gives Unity's 7 levels, 6 cannot halve twice. */
+	ASSERT_EQ(rf_chain_levels(256, 0, 1, &levels, err, sizeof(err)), 0);
+	ASSERT_EQ(levels, 7);
+	ASSERT_EQ(rf_chain_levels(256, 0, 64, &levels, err, sizeof(err)), 0);
+	ASSERT_EQ(levels, 3);
+	ASSERT_EQ(rf_chain_levels(6, 3, 1, &levels, err, sizeof(err)), RF_EINVAL);
+	ASSERT(strstr(err, "a 6-texel cube has no 3 levels (it halves to 3)"));
+	rf_cubemap_free(c);
+}
+
 int
 main(void)
 {
@@ -485,6 +556,7 @@ main(void)
 	RUN(decoding);
 	RUN(chain_stream_roundtrip);
 	RUN(chain_exr_roundtrip);
+	RUN(load_reports_instead_of_exiting);
 	RUN(edge_fixup_makes_edges_equal);
 	RUN(default_room_threads);
 	TAP_DONE();
