@@ -29,11 +29,11 @@ test_expect_success '-l lists box and infinite: summary, file, channels' '
 	test_line_count 0 err &&
 	cat >expect <<-EOF &&
 	box${tab}box projection: look up where the reflected ray leaves the probe box
-	  file: $B/box.so (version 1.0, plugin ABI 1.0, reflect developers, MIT)
+	  file: $B/box.so (version 1.0, plugin ABI 1.1, reflect developers, MIT)
 	  reads: P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z
 	  writes: R.X R.Y R.Z D.X D.Y D.Z hit.dist probe.dist
 	infinite${tab}no parallax: look up the reflection vector itself (distant environment)
-	  file: $B/infinite.so (version 1.0, plugin ABI 1.0, reflect developers, MIT)
+	  file: $B/infinite.so (version 1.0, plugin ABI 1.1, reflect developers, MIT)
 	  reads: N.X N.Y N.Z V.X V.Y V.Z
 	  writes: R.X R.Y R.Z D.X D.Y D.Z hit.dist probe.dist
 	EOF
@@ -45,7 +45,7 @@ test_expect_success '-l lists parameters with default, help and range' '
 	sed -n "/^echo_params$tab/,/^[^ ]/p" out >echo &&
 	cat >expect <<-EOF &&
 	echo_params${tab}test: echoes its parameters into its output channels
-	  file: $P/echo_params.so (version 1.0, plugin ABI 1.0, reflect tests, MIT)
+	  file: $P/echo_params.so (version 1.0, plugin ABI 1.1, reflect tests, MIT)
 	  reads: N.X
 	  writes: echo.scale echo.offset echo.count echo.invert echo.shape echo.nx echo.y echo.frame
 	  parameters:
@@ -61,12 +61,13 @@ test_expect_success '-l lists parameters with default, help and range' '
 test_expect_success '-l warns about every broken plugin and lists the rest' '
 	REFLECT_PLUGIN_PATH="$P:$B" reflect-project -l >out 2>err &&
 	for p in bad_major bad_minor bad_size no_entry bad_name \
-		bad_param_flags bad_flags no_summary
+		bad_param_flags bad_flags no_summary radiance_projection flags_abi_1_0 \
+		radiance_no_spec shade_no_roughness
 	do
 		test_grep "^reflect-project: ignoring plugin .$P/$p\.so.: " err ||
 		return 1
 	done &&
-	test_line_count 8 err &&
+	test_line_count 12 err &&
 	test_grep "^box$tab" out &&
 	test_grep "^infinite$tab" out &&
 	test_grep "^echo_params$tab" out

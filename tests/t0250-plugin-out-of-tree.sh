@@ -90,7 +90,7 @@ test_expect_success 'the installed reflect-project lists it with its parameter' 
 	test_line_count 0 err &&
 	tab=$(printf "\\t") &&
 	test_grep "^sphere${tab}sphere proxy: look up where the reflected ray leaves a sphere around the capture point$" out &&
-	test_grep "^  file: $oot/sphere\.so (version 1\.0, plugin ABI 1\.0, reflect developers, public domain)$" out &&
+	test_grep "^  file: $oot/sphere\.so (version 1\.0, plugin ABI 1\.1, reflect developers, public domain)$" out &&
 	test_grep "^  reads: P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z$" out &&
 	test_grep "^    radius=5${tab}radius of the proxy sphere around the capture point (\[0\.001, 1e+06\])$" out &&
 	test_grep "^box${tab}" out &&

@@ -134,11 +134,21 @@ test_expect_success 'a mode that samples through the host services equals none' 
 	cmp_numbers a b 1e-4
 '
 
+test_expect_success 'a mode of plugin ABI 1.0 that samples itself still does' '
+	reflect-shade -fa -m "$REFLECT_TEST_PLUGINS/shade_radiance_1_0.so" \
+		--env=room.rfl scene.rfl >legacy.txt &&
+	test_grep "^CHANNELS=.* spec.R spec.G spec.B$" legacy.txt &&
+	! grep "roughness.eff" legacy.txt &&
+	column legacy.txt spec.R spec.G spec.B >c &&
+	test_line_count $((2 * 40 * 24)) c &&
+	cmp b c
+'
+
 test_expect_success 'a mode that writes neither roughness.eff nor spec is refused' '
-	test_expect_code 1 reflect-shade -m "$REFLECT_TEST_PLUGINS/shade_kind.so" \
-		scene.rfl 2>err &&
+	test_expect_code 1 reflect-shade \
+		-m "$REFLECT_TEST_PLUGINS/shade_no_roughness.so" scene.rfl 2>err &&
 	test_one_line_message reflect-shade err &&
-	test_grep "writes neither" err
+	test_grep "a shade mode must output roughness.eff (or, with RF_PLUGIN_RADIANCE, spec.R spec.G spec.B); add it and rebuild the plugin" err
 '
 
 test_expect_success 'a closed pipe downstream ends the tool quietly' '

@@ -14,6 +14,8 @@
  *
  * History of the ABI version:
  *   1.0  first version (reflect 0.1.0).
+ *   1.1  the descriptor flag RF_PLUGIN_RADIANCE: a shade mode says that
+ *        it writes radiance itself (a 1.0 mode's outputs still tell).
  * A minor bump only appends fields at the end of a struct, or defines new
  * flag bits or kinds; a major bump is anything else.  The host accepts a
  * plugin when its major equals the host's and its minor is not newer, and
@@ -32,7 +34,7 @@ extern "C" {
 #endif
 
 #define RF_PLUGIN_ABI_MAJOR 1
-#define RF_PLUGIN_ABI_MINOR 0
+#define RF_PLUGIN_ABI_MINOR 1
 
 #if defined(__GNUC__)
 #define RF_PLUGIN_EXPORT __attribute__((visibility("default")))
@@ -52,11 +54,19 @@ enum rf_plugin_kind {
 
 /* What a kind writes, named once for hosts and plugins alike.  A shade
  * mode writes either the effective perceptual roughness, which the host
- * turns into a lod and samples, or the radiance itself. */
+ * turns into a lod and samples, or (with RF_PLUGIN_RADIANCE) the
+ * radiance itself. */
 #define RF_SHADE_ROUGHNESS "roughness.eff"
 #define RF_SHADE_SPEC_R "spec.R"
 #define RF_SHADE_SPEC_G "spec.G"
 #define RF_SHADE_SPEC_B "spec.B"
+
+/* Descriptor flags; a bit the host does not know makes it refuse the
+ * plugin. */
+#define RF_PLUGIN_RADIANCE 0x1u /* shade: writes spec.R spec.G spec.B itself
+                                   (through the host's sample service), not
+                                   roughness.eff (ABI 1.1) */
+#define RF_PLUGIN_KNOWN_FLAGS RF_PLUGIN_RADIANCE
 
 /* Parameter flags; a bit the host does not know makes it refuse the plugin. */
 #define RF_PARAM_INTEGER 0x1u /* only whole numbers are accepted */
@@ -123,7 +133,7 @@ struct rf_plugin {
 	uint32_t size; /* sizeof(struct rf_plugin) as the plugin was built */
 
 	uint32_t kind;  /* enum rf_plugin_kind */
-	uint32_t flags; /* none defined yet: must be 0 */
+	uint32_t flags; /* RF_PLUGIN_* (ABI 1.0 defines none) */
 	const char *name;    /* equal to the file name without ".so" */
 	const char *summary; /* one line, lowercase, no full stop */
 	const char *version;

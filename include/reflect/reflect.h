@@ -201,6 +201,10 @@ struct rf_plugin;
 typedef struct rf_module rf_module;
 
 RF_EXTERN const char *rf_plugin_kind_name(unsigned kind);
+/* 1 for a shade mode that writes spec.R G B itself (RF_PLUGIN_RADIANCE,
+ * or an ABI 1.0 mode without roughness.eff), 0 for one the host
+ * samples for. */
+RF_EXTERN int rf_plugin_writes_radiance(const struct rf_plugin *p);
 /* Searches REFLECT_PLUGIN_PATH, then REFLECT_PLUGIN_SYSTEM_PATH (when set;
  * empty means none) else the installed directory.  A name containing '/'
  * is a path.  On failure err holds the reason. */

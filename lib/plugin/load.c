@@ -193,9 +193,66 @@ check_params(const struct rf_plugin *p, const char *path, char *err, size_t errl
 }
 
 static int
+writes(const struct rf_plugin *p, const char *name)
+{
+	size_t i;
+
+	for (i = 0; p->outputs[i]; i++)
+		if (!strcmp(p->outputs[i], name))
+			return 1;
+	return 0;
+}
+
+int
+rf_plugin_writes_radiance(const struct rf_plugin *p)
+{
+	if (p->kind != RF_KIND_SHADE)
+		return 0;
+	if (p->abi_minor >= 1)
+		return (p->flags & RF_PLUGIN_RADIANCE) != 0;
+	/* ABI 1.0 had no flag: a mode writing spec.* and no roughness.eff
+	 * was one that samples itself. */
+	return !writes(p, RF_SHADE_ROUGHNESS);
+}
+
+/* A kind's output contract (plugin.h): a shade mode writes the roughness
+ * the host samples with, or with RF_PLUGIN_RADIANCE the radiance. */
+static int
+check_outputs(const struct rf_plugin *p, const char *path, char *err, size_t errlen)
+{
+	if (p->flags & RF_PLUGIN_RADIANCE && p->kind != RF_KIND_SHADE) {
+		rf__format(err, errlen, "plugin '%s': its descriptor sets RF_PLUGIN_RADIANCE, "
+		           "which only a shade mode may; clear it and rebuild the plugin",
+		           path);
+		return RF_EPLUGIN;
+	}
+	if (p->kind != RF_KIND_SHADE)
+		return 0;
+	if (rf_plugin_writes_radiance(p)) {
+		if (!writes(p, RF_SHADE_SPEC_R) || !writes(p, RF_SHADE_SPEC_G) ||
+		    !writes(p, RF_SHADE_SPEC_B)) {
+			rf__format(err, errlen, "plugin '%s': a shade mode that writes "
+			           "radiance (RF_PLUGIN_RADIANCE) must output %s %s %s; add "
+			           "them and rebuild the plugin", path, RF_SHADE_SPEC_R,
+			           RF_SHADE_SPEC_G, RF_SHADE_SPEC_B);
+			return RF_EPLUGIN;
+		}
+	} else if (!writes(p, RF_SHADE_ROUGHNESS)) {
+		rf__format(err, errlen, "plugin '%s': a shade mode must output %s (or, "
+		           "with RF_PLUGIN_RADIANCE, %s %s %s); add it and rebuild the "
+		           "plugin", path, RF_SHADE_ROUGHNESS, RF_SHADE_SPEC_R,
+		           RF_SHADE_SPEC_G, RF_SHADE_SPEC_B);
+		return RF_EPLUGIN;
+	}
+	return 0;
+}
+
+static int
 check_descriptor(const struct rf_plugin *p, const char *path, unsigned kind,
                  char *err, size_t errlen)
 {
+	uint32_t known;
+	int rc;
 	char stem[256];
 	const char *missing = NULL;
 
@@ -257,12 +314,14 @@ check_descriptor(const struct rf_plugin *p, const char *path, unsigned kind,
 		           p->name, p->name, stem);
 		return RF_EPLUGIN;
 	}
-	if (p->flags) {
+	known = p->abi_minor >= 1 ? RF_PLUGIN_KNOWN_FLAGS : 0;
+	if (p->flags & ~known) {
 		rf__format(err, errlen, "plugin '%s': built for plugin ABI %u.%u, its "
-		           "descriptor sets flags 0x%x that this ABI does not define "
-		           "(this reflect (%s) supports ABI %d.%d); set flags to 0 and "
-		           "rebuild it", path, p->abi_major, p->abi_minor, p->flags,
-		           RF_VERSION_STRING, RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR);
+		           "descriptor sets flags 0x%x that ABI %u.%u does not define "
+		           "(this reflect (%s) supports ABI %d.%d); clear them and "
+		           "rebuild it", path, p->abi_major, p->abi_minor, p->flags & ~known,
+		           p->abi_major, p->abi_minor, RF_VERSION_STRING,
+		           RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR);
 		return RF_EPLUGIN;
 	}
 	if (!rf_plugin_kind_name(p->kind)) {
@@ -280,6 +339,8 @@ check_descriptor(const struct rf_plugin *p, const char *path, unsigned kind,
 		           rf_plugin_kind_name(kind), kind_tool(p->kind));
 		return RF_EPLUGIN;
 	}
+	if ((rc = check_outputs(p, path, err, errlen)) < 0)
+		return rc;
 	return check_params(p, path, err, errlen);
 }
 

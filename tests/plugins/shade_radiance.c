@@ -1,6 +1,9 @@
 /* A shade mode that computes radiance itself through the host's
  * services (roughness_to_lod, sample), as a Monte-Carlo mode would: the
- * tests compare it with `none`, which the host samples. */
+ * tests compare it with `none`, which the host samples.  Built a second
+ * time with TEST_ABI_1_0 as shade_radiance_1_0: a mode of ABI 1.0, which
+ * had no RF_PLUGIN_RADIANCE and said so by its outputs alone, and must
+ * still work. */
 #include <stddef.h>
 
 #include "reflect/plugin.h"
@@ -40,9 +43,19 @@ destroy(void *state)
 	(void)state;
 }
 
+#ifdef TEST_ABI_1_0
+#define MINOR 0
+#define FLAGS 0
+#define NAME "shade_radiance_1_0"
+#else
+#define MINOR RF_PLUGIN_ABI_MINOR
+#define FLAGS RF_PLUGIN_RADIANCE
+#define NAME "shade_radiance"
+#endif
+
 static const struct rf_plugin descriptor = {
-	RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR, sizeof(struct rf_plugin),
-	RF_KIND_SHADE, 0, "shade_radiance",
+	RF_PLUGIN_ABI_MAJOR, MINOR, sizeof(struct rf_plugin),
+	RF_KIND_SHADE, FLAGS, NAME,
 	"test: radiance from the host's services, like none",
 	"1.0", "reflect developers", "MIT",
 	0, NULL, inputs, outputs, create, run, destroy,

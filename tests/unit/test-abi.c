@@ -111,7 +111,7 @@ TEST(struct_layout)
 TEST(constants)
 {
 	ASSERT_EQ(RF_PLUGIN_ABI_MAJOR, 1);
-	ASSERT_EQ(RF_PLUGIN_ABI_MINOR, 0);
+	ASSERT_EQ(RF_PLUGIN_ABI_MINOR, 1);
 	ASSERT_STR_EQ(RF_PLUGIN_ENTRY, "rf_plugin_entry");
 	ASSERT_EQ(RF_KIND_PROJECTION, 1);
 	ASSERT_EQ(RF_KIND_SHADE, 2);
@@ -121,6 +121,12 @@ TEST(constants)
 	ASSERT_EQ(RF_PARAM_BOOL, 0x2);
 	ASSERT_EQ(RF_PARAM_CHOICE, 0x4);
 	ASSERT_EQ(RF_PARAM_KNOWN_FLAGS, 0x7);
+	ASSERT_EQ(RF_PLUGIN_RADIANCE, 0x1);
+	ASSERT_EQ(RF_PLUGIN_KNOWN_FLAGS, 0x1);
+	ASSERT_STR_EQ(RF_SHADE_ROUGHNESS, "roughness.eff");
+	ASSERT_STR_EQ(RF_SHADE_SPEC_R, "spec.R");
+	ASSERT_STR_EQ(RF_SHADE_SPEC_G, "spec.G");
+	ASSERT_STR_EQ(RF_SHADE_SPEC_B, "spec.B");
 	/* The three leading fields never move, whatever the platform. */
 	ASSERT_EQ(offsetof(struct rf_plugin, abi_major), 0);
 	ASSERT_EQ(offsetof(struct rf_plugin, abi_minor), 4);
@@ -431,6 +437,25 @@ TEST(loader_refusals)
 	ASSERT(strstr(msg, "use it with reflect-shade") != NULL);
 	ASSERT_EQ(load("shade_kind", 0, &m), 0);
 	ASSERT_EQ(rf_module_plugin(m)->kind, RF_KIND_SHADE);
+	ASSERT_EQ(rf_plugin_writes_radiance(rf_module_plugin(m)), 0);
+	rf_module_unload(m);
+	/* The output contract of a kind, and the flag that chooses it. */
+	ASSERT_EQ(load("shade_no_roughness", RF_KIND_SHADE, &m), RF_EPLUGIN);
+	ASSERT(strstr(msg, "a shade mode must output roughness.eff (or, with "
+	                   "RF_PLUGIN_RADIANCE, spec.R spec.G spec.B)") != NULL);
+	ASSERT_EQ(load("radiance_no_spec", RF_KIND_SHADE, &m), RF_EPLUGIN);
+	ASSERT(strstr(msg, "(RF_PLUGIN_RADIANCE) must output spec.R spec.G spec.B") != NULL);
+	ASSERT_EQ(load("radiance_projection", RF_KIND_PROJECTION, &m), RF_EPLUGIN);
+	ASSERT(strstr(msg, "which only a shade mode may") != NULL);
+	ASSERT_EQ(load("flags_abi_1_0", RF_KIND_SHADE, &m), RF_EPLUGIN);
+	ASSERT(strstr(msg, "sets flags 0x1 that ABI 1.0 does not define") != NULL);
+	ASSERT_EQ(load("shade_radiance", RF_KIND_SHADE, &m), 0);
+	ASSERT_EQ(rf_plugin_writes_radiance(rf_module_plugin(m)), 1);
+	rf_module_unload(m);
+	/* A 1.0 mode had no flag: its outputs still say it samples itself. */
+	ASSERT_EQ(load("shade_radiance_1_0", RF_KIND_SHADE, &m), 0);
+	ASSERT_EQ(rf_module_plugin(m)->abi_minor, 0);
+	ASSERT_EQ(rf_plugin_writes_radiance(rf_module_plugin(m)), 1);
 	rf_module_unload(m);
 	ASSERT_EQ(load("nonexistent", 0, &m), RF_ENOTFOUND);
 	ASSERT(strstr(msg, "cannot open plugin") != NULL);
