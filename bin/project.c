@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "reflect/host.h"
 
 static void
 usage(void)
@@ -23,12 +24,6 @@ static const struct option long_options[] = {
 	{ NULL, 0, NULL, 0 },
 };
 
-static const char *
-header_get(void *ctx, const char *key)
-{
-	return rf_header_get(ctx, key);
-}
-
 struct project_block {
 	rf_stage *stage;
 	int failed; /* the stage refused a pixel (rf_stage_error says why) */
@@ -48,9 +43,8 @@ project_block(void *arg, const float *in, float *out, size_t y, size_t n)
 
 static void
 project_frame(struct cli_io *io, struct cli_mode *mode, const struct cli_probe *po,
-              const char *spec, int nthreads, const rf_header *in)
+              const char *spec, int nthreads, rf_plugin_host *host, const rf_header *in)
 {
-	struct rf_host host;
 	struct rf_probe probe;
 	struct project_block pb;
 	char err[1024], perr[512];
@@ -59,26 +53,21 @@ project_frame(struct cli_io *io, struct cli_mode *mode, const struct cli_probe *
 	size_t rows;
 	int rc, prc;
 
-	memset(&host, 0, sizeof(host));
-	host.size = sizeof(host);
-	host.abi_major = RF_PLUGIN_ABI_MAJOR;
-	host.abi_minor = RF_PLUGIN_ABI_MINOR;
-	host.ctx = (void *)in;
-	host.header_get = header_get;
 	prc = rf_probe_resolve(&probe, in, po->box, po->center, po->projection, perr,
 	                       sizeof(perr));
 	if (prc < 0 && prc != RF_ENOTFOUND)
 		die("%s", perr);
-	host.probe = prc == 0 ? &probe : NULL;
-	if ((rc = rf_stage_create(&stage, mode->plugin, mode->values, &host,
-	                          nthreads, err, sizeof(err))) < 0)
+	rf_plugin_host_set_frame(host, in);
+	rf_plugin_host_set_probe(host, prc == 0 ? &probe : NULL);
+	if ((rc = rf_stage_create(&stage, mode->plugin, mode->values,
+	                          rf_plugin_host_table(host), nthreads, err, sizeof(err))) < 0)
 		die_status(rc, err);
 	rf_stage_set_invalid(stage, io->invalid);
 	if ((rc = rf_stage_begin_frame(stage, in, &out, err, sizeof(err))) < 0)
 		die_status(rc, err);
 	cli_record_command(out);
 	if ((rc = rf_header_set(out, RF_KEY_PROJECTION, spec)) < 0 ||
-	    (host.probe && (rc = rf_probe_to_header(&probe, out)) < 0))
+	    (prc == 0 && (rc = rf_probe_to_header(&probe, out)) < 0))
 		die_header_key(rc);
 	cli_io_begin(io, out);
 	rows = rf_block_rows(rf_header_ncols(out), rf_header_nchannels(out),
@@ -109,7 +98,8 @@ main(int argc, char **argv)
 	struct cli_probe po = { 0 };
 	const char *spec = "box", *threads = NULL;
 	const rf_header *in;
-	int c, list = 0, verbose = 0, nthreads;
+	rf_plugin_host *host;
+	int c, list = 0, verbose = 0, nthreads, rc;
 
 	cli_init(argc, argv);
 	while ((c = getopt_long(argc, argv, "lvVm:j:" CLI_IO_OPTSTRING, long_options,
@@ -147,9 +137,12 @@ main(int argc, char **argv)
 		mode_list(RF_KIND_PROJECTION);
 	nthreads = cli_threads(threads);
 	mode_load(&mode, RF_KIND_PROJECTION, spec, verbose);
+	if ((rc = rf_plugin_host_create(&host)) < 0)
+		die_status(rc, NULL);
 	cli_io_open(&io, optind < argc ? argv[optind] : NULL);
 	while (cli_io_next(&io, &in))
-		project_frame(&io, &mode, &po, spec, nthreads, in);
+		project_frame(&io, &mode, &po, spec, nthreads, host, in);
+	rf_plugin_host_destroy(host);
 	mode_unload(&mode);
 	cli_io_close(&io);
 	return 0;

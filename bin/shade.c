@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include "cli_envmap.h"
+#include "reflect/host.h"
 #include "reflect/shading.h"
 
 static void
@@ -68,40 +69,6 @@ struct environment {
 	float steps;
 	int fresh; /* loaded since the sampling pass last took it */
 };
-
-/* What the host services of a plugin see. */
-struct host_ctx {
-	const rf_header *h;
-	const struct environment *env;
-};
-
-static const char *
-host_header_get(void *ctx, const char *key)
-{
-	return rf_header_get(((struct host_ctx *)ctx)->h, key);
-}
-
-static void
-host_sample(void *ctx, const float dir[3], float lod, float rgb[3])
-{
-	rf_cubemap_sample(((struct host_ctx *)ctx)->env->cube, dir, lod, rgb);
-}
-
-static float
-host_roughness_to_lod(void *ctx, float roughness)
-{
-	const struct environment *e = ((struct host_ctx *)ctx)->env;
-
-	return rf_roughness_to_lod(e->mapping, e->steps, roughness);
-}
-
-static float
-host_lod_to_roughness(void *ctx, float lod)
-{
-	const struct environment *e = ((struct host_ctx *)ctx)->env;
-
-	return rf_lod_to_roughness(e->mapping, e->steps, lod);
-}
 
 static double
 parse_whole(const char *name, const char *arg, double hi)
@@ -266,10 +233,8 @@ shade_block(void *arg, const float *in, float *out, size_t y, size_t n)
 
 static void
 shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *env,
-            rf_shade *shade, const rf_header *in)
+            rf_shade *shade, rf_plugin_host *host, const rf_header *in)
 {
-	struct host_ctx ctx = { in, env };
-	struct rf_host host;
 	struct rf_probe probe;
 	struct shade_block sb;
 	float centre[3], *center = NULL;
@@ -299,20 +264,13 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	if (!env->name || strcmp(env->name, name))
 		load_environment(o, name, env);
 
-	memset(&host, 0, sizeof(host));
-	host.size = sizeof(host);
-	host.abi_major = RF_PLUGIN_ABI_MAJOR;
-	host.abi_minor = RF_PLUGIN_ABI_MINOR;
-	host.ctx = &ctx;
-	host.header_get = host_header_get;
-	host.probe = prc == 0 ? &probe : NULL;
-	host.sample = host_sample;
-	host.roughness_to_lod = host_roughness_to_lod;
-	host.lod_to_roughness = host_lod_to_roughness;
-	host.lod_steps = env->steps;
-	host.seed = o->seed;
-	if ((rc = rf_stage_create(&stage, o->mode.plugin, o->mode.values, &host,
-	                          o->nthreads, err, sizeof(err))) < 0)
+	rf_plugin_host_set_frame(host, in);
+	rf_plugin_host_set_probe(host, prc == 0 ? &probe : NULL);
+	rf_plugin_host_set_environment(host, env->cube, env->mapping, env->steps);
+	rf_plugin_host_set_seed(host, o->seed);
+	if ((rc = rf_stage_create(&stage, o->mode.plugin, o->mode.values,
+	                          rf_plugin_host_table(host), o->nthreads, err,
+	                          sizeof(err))) < 0)
 		die_status(rc, err);
 	rf_stage_set_invalid(stage, io->invalid);
 	rf_shade_set_invalid(shade, io->invalid);
@@ -364,31 +322,6 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	cli_io_end_frame(io);
 }
 
-static int
-writes(const struct rf_plugin *p, const char *name)
-{
-	size_t i;
-
-	for (i = 0; p->outputs[i]; i++)
-		if (!strcmp(p->outputs[i], name))
-			return 1;
-	return 0;
-}
-
-/* A roughness model writes roughness.eff and the tool samples; a mode
- * that computes radiance itself (through the host's sample service)
- * writes spec.R spec.G spec.B. */
-static int
-mode_radiance(const struct rf_plugin *p)
-{
-	if (writes(p, RF_SHADE_ROUGHNESS))
-		return 0;
-	if (writes(p, RF_SHADE_SPEC_R) && writes(p, RF_SHADE_SPEC_G) && writes(p, RF_SHADE_SPEC_B))
-		return 1;
-	die("mode '%s' writes neither '%s' nor spec.R spec.G spec.B: it is not a "
-	    "mode reflect-shade can use", p->name, RF_SHADE_ROUGHNESS);
-}
-
 int
 main(int argc, char **argv)
 {
@@ -399,6 +332,7 @@ main(int argc, char **argv)
 	float centre[3];
 	const char *threads = NULL;
 	const rf_header *in;
+	rf_plugin_host *host;
 	rf_shade *shade;
 	int c, idx, list = 0, rc;
 
@@ -478,13 +412,14 @@ main(int argc, char **argv)
 	o.env.load.nthreads = o.nthreads;
 	mode_load(&o.mode, RF_KIND_SHADE, o.spec, o.verbose);
 	so.final = o.final;
-	so.mode_radiance = mode_radiance(o.mode.plugin);
+	so.mode_radiance = rf_plugin_writes_radiance(o.mode.plugin);
 	so.nthreads = o.nthreads;
-	if ((rc = rf_shade_create(&shade, &so)) < 0)
+	if ((rc = rf_shade_create(&shade, &so)) < 0 || (rc = rf_plugin_host_create(&host)) < 0)
 		die_status(rc, NULL);
 	cli_io_open(&io, optind < argc ? argv[optind] : NULL);
 	while (cli_io_next(&io, &in))
-		shade_frame(&io, &o, &env, shade, in);
+		shade_frame(&io, &o, &env, shade, host, in);
+	rf_plugin_host_destroy(host);
 	rf_shade_destroy(shade);
 	rf_cubemap_free(env.cube);
 	free(env.name);
