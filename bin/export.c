@@ -203,48 +203,6 @@ is_alpha_name(const char *name)
 	return !strcmp(name, "A") || (n > 2 && !strcmp(name + n - 2, ".A"));
 }
 
-/* Exposure, tone curve and sRGB for one block of pixels, channel by
- * channel, after un-premultiplying for integer files: colour channels are
- * encoded, alpha channels only clamped (at integer depths) or left alone
- * (at float depths).  Float output that asks for no tone curve and no
- * sRGB is only scaled: no clamp, so HDR values survive into EXR. */
-static void
-encode_block(float *out, size_t npix, size_t nch, const unsigned char *alpha,
-             const struct export_opts *o, int srgb, float *scratch)
-{
-	int integer = is_integer(o->type);
-	size_t i, c;
-
-	/* Stream colour is premultiplied by A (OpenEXR's convention); 8- and
-	 * 16-bit files hold straight colour, so divide where A > 0. */
-	if (integer && nch == 4)
-		for (i = 0; i < npix; i++) {
-			float a = out[i * nch + 3];
-
-			if (a > 0.0f)
-				for (c = 0; c < 3; c++)
-					out[i * nch + c] /= a;
-		}
-	for (c = 0; c < nch; c++) {
-		if (!integer && (alpha[c] || (o->tone == RF_TONE_NONE && !srgb))) {
-			if (!alpha[c] && o->scale != 1.0f)
-				for (i = 0; i < npix; i++)
-					out[i * nch + c] *= o->scale;
-			continue;
-		}
-		for (i = 0; i < npix; i++)
-			scratch[i] = out[i * nch + c];
-		rf_display_encode(scratch, npix, 1, alpha[c] ? 0 : 1, o->scale, o->tone,
-		                  srgb);
-		for (i = 0; i < npix; i++)
-			out[i * nch + c] = scratch[i];
-	}
-	if (o->format->nonneg)
-		for (i = 0; i < npix * nch; i++)
-			if (!(out[i] > 0.0f))
-				out[i] = 0.0f; /* RGBE would make garbage of it */
-}
-
 /* A block of rows on its way to the file: the chosen channels, encoded. */
 struct export_block {
 	const struct export_opts *o;
@@ -252,8 +210,8 @@ struct export_block {
 	const int *map;
 	const unsigned char *alpha;
 	size_t nch, ncomp, ncols;
-	int srgb;
-	float *out, *scratch;
+	struct rf_file_encoding enc;
+	float *out;
 };
 
 static int
@@ -268,7 +226,7 @@ export_block(void *arg, const float *in, float *out, size_t y, size_t n)
 	for (i = 0; i < n * eb->ncols; i++)
 		for (c = 0; c < eb->nch; c++)
 			eb->out[i * eb->nch + c] = in[i * eb->ncomp + (size_t)eb->map[c]];
-	encode_block(eb->out, n * eb->ncols, eb->nch, eb->alpha, eb->o, eb->srgb, eb->scratch);
+	rf_file_encode(eb->out, n * eb->ncols, eb->nch, eb->alpha, &eb->enc);
 	if ((rc = rf_image_writer_write_rows(eb->w, y, n, eb->out, err, sizeof(err))) < 0)
 		die_status(rc, err);
 	return 0;
@@ -331,12 +289,14 @@ export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
 	eb.nch = nch;
 	eb.ncomp = ncomp;
 	eb.ncols = ncols;
-	eb.srgb = srgb;
+	eb.enc.scale = o->scale;
+	eb.enc.tone = o->tone;
+	eb.enc.srgb = srgb;
+	eb.enc.integer = integer;
+	eb.enc.nonneg = o->format->nonneg;
 	eb.out = emalloc(rows * ncols * nch * sizeof(float));
-	eb.scratch = emalloc(rows * ncols * sizeof(float));
 	rc = cli_blocks(io, nrows, rows, ncols * ncomp, 0, export_block, &eb);
 	free(eb.out);
-	free(eb.scratch);
 	if (rc < 0)
 		cli_io_read_failed(io, rc);
 	if ((rc = rf_image_writer_close(w, err, sizeof(err))) < 0)

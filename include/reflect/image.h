@@ -91,6 +91,24 @@ RF_EXTERN void rf_display_encode(float *values, size_t npix, size_t nchannels,
                                  size_t ncolour, float scale, enum rf_tone tone,
                                  int srgb);
 
+/* How stream values become the values a file of some pixel type holds
+ * (reflect-export(1)). */
+struct rf_file_encoding {
+	float scale;       /* exposure: 2^stops */
+	enum rf_tone tone;
+	int srgb;
+	int integer;       /* 8 or 16 bits: straight colour, clamped to [0, 1] */
+	int nonneg;        /* the format holds no negative values (RGBE) */
+};
+/* Encodes npix pixels of nch channels in place; alpha[c] marks the alpha
+ * channels.  Integer files get straight colour (divided by A where
+ * there are 4 channels and A > 0), every channel clamped and colour
+ * display-encoded; float files get colour scaled, and display-encoded
+ * only with a tone curve or sRGB, so that HDR values survive. */
+RF_EXTERN void rf_file_encode(float *px, size_t npix, size_t nch,
+                              const unsigned char *alpha,
+                              const struct rf_file_encoding *e);
+
 #ifdef __cplusplus
 }
 #endif

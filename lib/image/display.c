@@ -57,3 +57,36 @@ rf_display_encode(float *v, size_t npix, size_t nchannels, size_t ncolour,
 			v[c] = x;
 		}
 }
+
+void
+rf_file_encode(float *px, size_t npix, size_t nch, const unsigned char *alpha,
+               const struct rf_file_encoding *e)
+{
+	size_t i, c;
+
+	/* Stream colour is premultiplied by A (OpenEXR's convention); 8- and
+	 * 16-bit files hold straight colour, so divide where A > 0. */
+	if (e->integer && nch == 4)
+		for (i = 0; i < npix; i++) {
+			float a = px[i * nch + 3];
+
+			if (a > 0.0f)
+				for (c = 0; c < 3; c++)
+					px[i * nch + c] /= a;
+		}
+	for (c = 0; c < nch; c++) {
+		if (!e->integer && (alpha[c] || (e->tone == RF_TONE_NONE && !e->srgb))) {
+			if (!alpha[c] && e->scale != 1.0f)
+				for (i = 0; i < npix; i++)
+					px[i * nch + c] *= e->scale;
+			continue;
+		}
+		for (i = 0; i < npix; i++)
+			rf_display_encode(px + i * nch + c, 1, 1, alpha[c] ? 0 : 1, e->scale,
+			                  e->tone, e->srgb);
+	}
+	if (e->nonneg)
+		for (i = 0; i < npix * nch; i++)
+			if (!(px[i] > 0.0f))
+				px[i] = 0.0f; /* RGBE would make garbage of it */
+}
