@@ -3,6 +3,7 @@
 #include <pthread.h>
 #include <stdint.h>
 
+#include "util/pool.h"
 #include "reflect/shading.h"
 
 /*
@@ -152,48 +153,47 @@ rf_dfg_integrate(double n_dot_v, double roughness, unsigned samples, double *a,
 	*b = sb / samples;
 }
 
-#define BUILD_THREADS 4
-
 static double disc[3 * DFG_SAMPLES];
 
-/* Rows first, first + step, ... of the table. */
-static void *
-build_rows(void *arg)
+/* Row `task` of the table (roughness task / (size - 1)). */
+static void
+build_row(void *arg, size_t task, int thread)
 {
-	unsigned first = (unsigned)(uintptr_t)arg, i, j;
+	unsigned j = (unsigned)task, i;
 
-	for (j = first; j < RF_DFG_SIZE; j += BUILD_THREADS)
-		for (i = 0; i < RF_DFG_SIZE; i++) {
-			double x = (double)i / (RF_DFG_SIZE - 1), a, b;
+	(void)arg;
+	(void)thread;
+	for (i = 0; i < RF_DFG_SIZE; i++) {
+		double x = (double)i / (RF_DFG_SIZE - 1), a, b;
 
-			integrate(x * x, (double)j / (RF_DFG_SIZE - 1), disc, DFG_SAMPLES,
-			          &a, &b);
-			table[2 * (j * RF_DFG_SIZE + i)] = (float)a;
-			table[2 * (j * RF_DFG_SIZE + i) + 1] = (float)b;
-		}
-	return NULL;
+		integrate(x * x, (double)j / (RF_DFG_SIZE - 1), disc, DFG_SAMPLES,
+		          &a, &b);
+		table[2 * (j * RF_DFG_SIZE + i)] = (float)a;
+		table[2 * (j * RF_DFG_SIZE + i) + 1] = (float)b;
+	}
 }
 
 /* Four million samples: a tenth of a second on one core, so the rows are
- * shared among threads (the entries do not depend on how). */
+ * shared among threads (the entries do not depend on how).  No -j
+ * reaches here (the first lookup builds the table, from whichever thread
+ * makes it), hence a fixed count. */
+#define BUILD_THREADS 4
+
 static void
 build(void)
 {
-	pthread_t tid[BUILD_THREADS];
-	int running[BUILD_THREADS] = { 0 };
+	struct rf__pool *pool = NULL;
 	unsigned k;
 
 	for (k = 0; k < DFG_SAMPLES; k++)
 		disc_point(k, DFG_SAMPLES, disc + 3 * k);
-	for (k = 1; k < BUILD_THREADS; k++)
-		running[k] = pthread_create(&tid[k], NULL, build_rows,
-		                            (void *)(uintptr_t)k) == 0;
-	build_rows((void *)(uintptr_t)0);
-	for (k = 1; k < BUILD_THREADS; k++) {
-		if (running[k])
-			pthread_join(tid[k], NULL);
-		else
-			build_rows((void *)(uintptr_t)k); /* no thread: do it here */
+	/* Without a pool, the caller integrates every row. */
+	if (rf__pool_new(&pool, BUILD_THREADS) == 0) {
+		rf__pool_run(pool, RF_DFG_SIZE, build_row, NULL);
+		rf__pool_free(pool);
+	} else {
+		for (k = 0; k < RF_DFG_SIZE; k++)
+			build_row(NULL, k, 0);
 	}
 }
 
