@@ -2,7 +2,6 @@
  * threads; every pixel depends on its own ray only, so the bytes do not
  * depend on the thread count. */
 #include <math.h>
-#include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,14 +49,17 @@ struct rf_gbuffer {
 	struct bounds *bounds; /* per object, where it can be on the image */
 	uint32_t *scratch;     /* per thread: the objects of a row, of a pixel */
 	double *rays;          /* per thread: a row of directions, reciprocals */
+	/* Kept from block to block, so that a frame of many blocks starts its
+	 * threads once; NULL for one thread or if none could be had: the
+	 * caller renders alone. */
+	struct rf__pool *pool;
 };
 
-struct worker {
+/* A block being rendered. */
+struct block {
 	const rf_gbuffer *g;
 	float *out;
-	size_t y, nrows, first, step;
-	uint32_t *row_list, *pixel_list;
-	double *rays;
+	size_t y;
 };
 
 static int
@@ -159,6 +161,8 @@ rf_gbuffer_create(rf_gbuffer **gp, const rf_scene *s, size_t width, size_t heigh
 		rf_gbuffer_destroy(g);
 		return RF_ENOMEM;
 	}
+	if (g->nthreads > 1)
+		rf__pool_new(&g->pool, g->nthreads);
 	rf_gbuffer_set_camera(g, &s->camera, NULL, 0);
 	*gp = g;
 	return 0;
@@ -169,6 +173,7 @@ rf_gbuffer_destroy(rf_gbuffer *g)
 {
 	if (!g)
 		return;
+	rf__pool_free(g->pool);
 	free(g->k);
 	free(g->bounds);
 	free(g->scratch);
@@ -260,10 +265,17 @@ rf_gbuffer_set_camera(rf_gbuffer *g, const struct rf_camera *cam, char *err,
 	return 0;
 }
 
+/* Row `task` of the block, with thread `thread`'s scratch. */
 static void
-render_row(const struct worker *w, size_t y, float *out)
+render_row(void *arg, size_t task, int thread)
 {
-	const rf_gbuffer *g = w->g;
+	const struct block *bk = arg;
+	const rf_gbuffer *g = bk->g;
+	size_t y = bk->y + task;
+	float *out = bk->out + task * g->width * g->nch;
+	uint32_t *row_list = g->scratch + (size_t)thread * 2 * (g->s->nobjects + 1);
+	uint32_t *pixel_list = row_list + g->s->nobjects + 1;
+	double *rays = g->rays + (size_t)thread * g->width * 6;
 	const double *o = g->cam.position;
 	double sy = 1.0 - (2.0 * (double)y + 1.0) / (double)g->height;
 	float tmp[CH_COUNT], *v;
@@ -272,11 +284,11 @@ render_row(const struct worker *w, size_t y, float *out)
 
 	for (i = 0; i < g->s->nobjects; i++)
 		if (g->bounds[i].y0 <= (long)y && (long)y <= g->bounds[i].y1)
-			w->row_list[nrow++] = (uint32_t)i;
+			row_list[nrow++] = (uint32_t)i;
 	/* The row's rays first: a loop of independent square roots and
 	 * divisions runs at their throughput, not at their latency. */
 	for (x = 0; x < g->width; x++) {
-		double *ray = w->rays + 6 * x;
+		double *ray = rays + 6 * x;
 
 		rf__camera_dir(&g->cb, (2.0 * (double)x + 1.0) / (double)g->width - 1.0, sy,
 		               ray);
@@ -285,15 +297,15 @@ render_row(const struct worker *w, size_t y, float *out)
 		ray[5] = 1.0 / ray[2];
 	}
 	for (x = 0; x < g->width; x++, out += g->nch) {
-		const double *d = w->rays + 6 * x;
+		const double *d = rays + 6 * x;
 
 		for (i = npix = 0; i < nrow; i++) {
-			const struct bounds *b = &g->bounds[w->row_list[i]];
+			const struct bounds *b = &g->bounds[row_list[i]];
 
 			if (b->x0 <= (long)x && (long)x <= b->x1)
-				w->pixel_list[npix++] = w->row_list[i];
+				pixel_list[npix++] = row_list[i];
 		}
-		rf__trace(g->s, o, g->k, d, d + 3, w->pixel_list, npix, &hit);
+		rf__trace(g->s, o, g->k, d, d + 3, pixel_list, npix, &hit);
 		/* All channels in their order (the usual case) go straight out. */
 		v = g->identity ? out : tmp;
 		v[CH_PX] = (float)hit.P[0];
@@ -323,50 +335,24 @@ render_row(const struct worker *w, size_t y, float *out)
 	}
 }
 
-static void *
-work(void *arg)
-{
-	struct worker *w = arg;
-	size_t row = w->g->width * w->g->nch, r;
-
-	/* Interleaved rows: neighbours cost alike, so the threads finish
-	 * together. */
-	for (r = w->first; r < w->nrows; r += w->step)
-		render_row(w, w->y + r, w->out + r * row);
-	return NULL;
-}
-
 int
 rf_gbuffer_render(rf_gbuffer *g, float *out, size_t y, size_t nrows)
 {
-	struct worker w[RF__THREADS_MAX];
-	pthread_t tid[RF__THREADS_MAX];
-	unsigned char running[RF__THREADS_MAX] = { 0 };
-	int n = g->nthreads, t;
+	struct block bk;
+	size_t r;
 
 	if (y > g->height || nrows > g->height - y)
 		return RF_EINVAL;
-	if ((size_t)n > nrows)
-		n = nrows ? (int)nrows : 1;
-	for (t = 0; t < n; t++) {
-		w[t].g = g;
-		w[t].out = out;
-		w[t].y = y;
-		w[t].nrows = nrows;
-		w[t].first = (size_t)t;
-		w[t].step = (size_t)n;
-		w[t].row_list = g->scratch + (size_t)t * 2 * (g->s->nobjects + 1);
-		w[t].pixel_list = w[t].row_list + g->s->nobjects + 1;
-		w[t].rays = g->rays + (size_t)t * g->width * 6;
-	}
-	for (t = 1; t < n; t++)
-		running[t] = pthread_create(&tid[t], NULL, work, &w[t]) == 0;
-	work(&w[0]);
-	for (t = 1; t < n; t++) {
-		if (running[t])
-			pthread_join(tid[t], NULL);
-		else
-			work(&w[t]); /* no thread to be had: do its rows here */
-	}
+	if (!nrows)
+		return 0;
+	bk.g = g;
+	bk.out = out;
+	bk.y = y;
+	/* A row is a task: threads that start late or run slow take fewer. */
+	if (g->pool)
+		rf__pool_run(g->pool, nrows, render_row, &bk);
+	else
+		for (r = 0; r < nrows; r++)
+			render_row(&bk, r, 0);
 	return 0;
 }
