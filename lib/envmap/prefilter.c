@@ -1,10 +1,9 @@
 /* GGX specular convolution of a cubemap into its mip levels. */
 #include <math.h>
-#include <pthread.h>
-#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "util/pool.h"
 #include "envmap/envmap-internal.h"
 #include "envmap/rgba_levels_simd.h"
 #include "envmap/rgba_levels.h"
@@ -29,8 +28,6 @@ struct job {
 	const struct rf__lobe_table *table;
 	const struct rf__rgba_levels *levels;
 	enum rf_prefilter_method method;
-	atomic_size_t next_row; /* rows of all six faces, 6 * n */
-	size_t rows;
 	/* brute force: integration points of the source */
 	const float *src_dir;
 	const float *src_omega;
@@ -283,31 +280,28 @@ rf_prefilter_brute_texel(const rf_cubemap *src, const float n[3], float roughnes
 		rgb[0] = rgb[1] = rgb[2] = NAN;
 }
 
-static void *
-work(void *arg)
+/* Row `task` (face task / n, row task % n) of the job's level. */
+static void
+filter_row(void *arg, size_t task, int thread)
 {
-	struct job *jb = arg;
-	size_t n = rf_cubemap_level_size(jb->out, jb->level), row, i;
+	const struct job *jb = arg;
+	size_t n = rf_cubemap_level_size(jb->out, jb->level), i, j = task % n;
+	enum rf_face f = (enum rf_face)(task / n);
 	double alpha = (double)jb->roughness * jb->roughness;
 
-	while ((row = atomic_fetch_add(&jb->next_row, 1)) < jb->rows) {
-		enum rf_face f = (enum rf_face)(row / n);
-		size_t j = row % n;
+	(void)thread;
+	for (i = 0; i < n; i++) {
+		float d[3], *out = rf_cubemap_texel(jb->out, jb->level, f, i, j);
 
-		for (i = 0; i < n; i++) {
-			float d[3], *out = rf_cubemap_texel(jb->out, jb->level, f, i, j);
-
-			rf_cube_direction(f, ((float)i + 0.5f) / (float)n,
-			                  ((float)j + 0.5f) / (float)n, d);
-			normalize3(d);
-			if (jb->method == RF_PREFILTER_BRUTE)
-				brute_texel(jb->src_dir, jb->src_omega, jb->src_radiance,
-				            jb->src_count, d, alpha, out);
-			else
-				filtered_texel(jb, d, out);
-		}
+		rf_cube_direction(f, ((float)i + 0.5f) / (float)n,
+		                  ((float)j + 0.5f) / (float)n, d);
+		normalize3(d);
+		if (jb->method == RF_PREFILTER_BRUTE)
+			brute_texel(jb->src_dir, jb->src_omega, jb->src_radiance,
+			            jb->src_count, d, alpha, out);
+		else
+			filtered_texel(jb, d, out);
 	}
-	return NULL;
 }
 
 /*
@@ -357,7 +351,8 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 	struct rf__rgba_levels rgba = { 0 };
 	float *dirs = NULL, *omega = NULL, *radiance = NULL;
 	size_t count = 0, sub = 0;
-	int rc = 0, nthreads = o->nthreads < 1 ? 1 : o->nthreads > 64 ? 64 : o->nthreads;
+	struct rf__pool *pool = NULL;
+	int rc = 0;
 
 	if (levels < 2) {
 		rf__format(err, errlen, "a chain of one level has nothing to convolve "
@@ -409,11 +404,12 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 	}
 	for (k = 1; k < levels; k++)
 		total += 6 * rf_cubemap_level_size(out, k);
+	/* One pool for every level; without one, the caller filters alone. */
+	if (o->nthreads > 1)
+		rf__pool_new(&pool, o->nthreads > RF__THREADS_MAX ? RF__THREADS_MAX : o->nthreads);
 	for (k = 1; k < levels; k++) {
 		struct job jb;
-		pthread_t tid[64];
-		int t, started[64] = { 0 };
-		size_t n = rf_cubemap_level_size(out, k);
+		size_t n = rf_cubemap_level_size(out, k), row;
 
 		memset(&jb, 0, sizeof(jb));
 		jb.src = chain;
@@ -421,8 +417,6 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 		jb.level = k;
 		jb.roughness = rf_lod_to_roughness(o->mapping, steps, (float)k);
 		jb.method = o->method;
-		jb.rows = 6 * n;
-		atomic_init(&jb.next_row, 0);
 		if (o->method == RF_PREFILTER_BRUTE) {
 			size_t want = brute_subdivision(n0, (double)jb.roughness * jb.roughness);
 
@@ -459,18 +453,20 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 				jb.levels = &rgba;
 			}
 		}
-		for (t = 1; t < nthreads; t++)
-			started[t] = pthread_create(&tid[t], NULL, work, &jb) == 0;
-		work(&jb);
-		for (t = 1; t < nthreads; t++)
-			if (started[t])
-				pthread_join(tid[t], NULL);
+		/* A row is a task: each texel is its own sum, so the bytes do not
+		 * depend on which thread takes it. */
+		if (pool)
+			rf__pool_run(pool, 6 * n, filter_row, &jb);
+		else
+			for (row = 0; row < 6 * n; row++)
+				filter_row(&jb, row, 0);
 		rf_cubemap_seal_level(out, k);
 		done += 6 * n;
 		if (o->progress)
 			o->progress(o->progress_arg, (double)done, (double)total);
 	}
 out:
+	rf__pool_free(pool);
 	free(samples);
 	rf__lobe_table_free(&table);
 	free(dirs);
