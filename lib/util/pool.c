@@ -76,7 +76,8 @@ rf__pool_new(struct rf__pool **pp, int nthreads)
 	*pp = NULL;
 	if (!(p = calloc(1, sizeof(*p))))
 		return RF_ENOMEM;
-	p->nthreads = nthreads < 1 ? 1 : nthreads;
+	/* The tools hold -j to RF__THREADS_MAX; a library caller is held here. */
+	p->nthreads = nthreads < 1 ? 1 : nthreads > RF__THREADS_MAX ? RF__THREADS_MAX : nthreads;
 	if (p->nthreads > 1 && !(p->tid = calloc((size_t)p->nthreads, sizeof(pthread_t)))) {
 		free(p);
 		return RF_ENOMEM;

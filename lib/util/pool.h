@@ -14,8 +14,8 @@ struct rf__pool;
  * rf__pool_threads). */
 typedef void rf__pool_fn(void *arg, size_t task, int thread);
 
-/* nthreads counting the caller's, started by the first rf__pool_run;
- * fewer start if the system refuses. */
+/* nthreads counting the caller's (at most RF__THREADS_MAX), started by
+ * the first rf__pool_run; fewer start if the system refuses. */
 int rf__pool_new(struct rf__pool **p, int nthreads);
 int rf__pool_threads(const struct rf__pool *p);
 /* Runs tasks 0..ntasks-1, each once, on whichever thread is free, the
