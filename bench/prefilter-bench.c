@@ -11,6 +11,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "envmap/envmap-internal.h" /* the brute-force reference */
 #include "reflect/envmap.h"
 
 static double
@@ -44,8 +45,8 @@ timed(const rf_cubemap *src, size_t levels, unsigned samples, int threads, int r
 		char err[256];
 		double c0, w0;
 
-		rf_cubemap_free(out);
-		rf_cubemap_new(&out, rf_cubemap_size(src), levels);
+		rf_cubemap_destroy(out);
+		rf_cubemap_create(&out, rf_cubemap_size(src), levels);
 		rf_prefilter_defaults(&o);
 		o.samples = samples;
 		o.nthreads = threads;
@@ -93,7 +94,7 @@ level_error(const rf_cubemap *src, const rf_cubemap *out, size_t level, size_t c
 		idx[k] = t;
 		rf_cube_direction((enum rf_face)f, (i + 0.5f) / n, (j + 0.5f) / n, dirs + 3 * k);
 	}
-	rf_prefilter_brute_texels(src, dirs, count, roughness, ref);
+	rf__prefilter_brute_texels(src, dirs, count, roughness, ref);
 	for (k = 0; k < count; k++) {
 		size_t t = idx[k];
 		const float *p = rf_cubemap_texel_const(out, level, (enum rf_face)(t / (n * n)),
@@ -124,7 +125,7 @@ report(const char *name, const rf_cubemap *src, unsigned samples, int runs, int 
 		total += 6.0 * (double)(n * n) * (double)rf_prefilter_level_samples(samples, k);
 	}
 	out = timed(src, levels, samples, 1, runs, &cpu1, &wall1);
-	rf_cubemap_free(timed(src, levels, samples, threads, runs, &cpun, &walln));
+	rf_cubemap_destroy(timed(src, levels, samples, threads, runs, &cpun, &walln));
 	printf("%s, %u samples at level 1 (x3 per level), %.1f M GGX samples\n", name,
 	       samples, total / 1e6);
 	printf("  1 thread : %.3f s cpu, %.3f s wall, %.1f M samples/s\n", cpu1, wall1,
@@ -140,7 +141,7 @@ report(const char *name, const rf_cubemap *src, unsigned samples, int runs, int 
 			worst = e;
 	}
 	printf("\n  worst level error %.2f%%\n", 100.0 * worst);
-	rf_cubemap_free(out);
+	rf_cubemap_destroy(out);
 	return worst;
 }
 
@@ -156,7 +157,7 @@ main(int argc, char **argv)
 
 	if (runs < 1 || runs > 9)
 		runs = 3;
-	rf_cubemap_new(&cube, 256, 1);
+	rf_cubemap_create(&cube, 256, 1);
 	rf_default_environment_cube(cube);
 	/* The default count, then the smallest count (in steps of 32) whose
 	 * worst level is within the 2% bound. */
@@ -168,7 +169,7 @@ main(int argc, char **argv)
 	/* The same room as a 2048x1024 lat-long, read as reflect reads files. */
 	px = malloc(2048 * 1024 * 3 * sizeof(float));
 	rf_envmap_to_pixels(cube, 0, RF_LAYOUT_LATLONG, px, 2048, 1024);
-	rf_cubemap_new(&ll, 256, 1);
+	rf_cubemap_create(&ll, 256, 1);
 	{
 		double c0 = seconds(CLOCK_PROCESS_CPUTIME_ID);
 
@@ -182,7 +183,7 @@ main(int argc, char **argv)
 	}
 	report("2048x1024 lat-long as a 256 cube", ll, samples, runs, threads);
 	free(px);
-	rf_cubemap_free(cube);
-	rf_cubemap_free(ll);
+	rf_cubemap_destroy(cube);
+	rf_cubemap_destroy(ll);
 	return 0;
 }

@@ -98,7 +98,7 @@ envmap_cube_new(size_t size, size_t levels)
 
 	if ((rc = rf_cubemap_check_size(size, levels, err, sizeof(err))) < 0)
 		die("%s", err);
-	if ((rc = rf_cubemap_new(&c, size, levels)) < 0) {
+	if ((rc = rf_cubemap_create(&c, size, levels)) < 0) {
 		if (rc == RF_EINVAL)
 			die("a cube of %zu texels cannot have %zu levels", size, levels);
 		die_status(rc, NULL);

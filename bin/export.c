@@ -219,7 +219,6 @@ export_block(void *arg, const float *in, float *out, size_t y, size_t n)
 {
 	struct export_block *eb = arg;
 	size_t i, c;
-	char err[1024];
 	int rc;
 
 	(void)out;
@@ -227,8 +226,8 @@ export_block(void *arg, const float *in, float *out, size_t y, size_t n)
 		for (c = 0; c < eb->nch; c++)
 			eb->out[i * eb->nch + c] = in[i * eb->ncomp + (size_t)eb->map[c]];
 	rf_file_encode(eb->out, n * eb->ncols, eb->nch, eb->alpha, &eb->enc);
-	if ((rc = rf_image_writer_write_rows(eb->w, y, n, eb->out, err, sizeof(err))) < 0)
-		die_status(rc, err);
+	if ((rc = rf_image_writer_write_rows(eb->w, y, n, eb->out)) < 0)
+		die_status(rc, rf_image_writer_error(eb->w));
 	return 0;
 }
 

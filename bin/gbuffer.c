@@ -103,11 +103,11 @@ static rf_header *
 frame_header(const rf_scene *s, const rf_gbuffer *g, const struct rf_camera *cam,
              size_t frame, size_t width, size_t height)
 {
-	rf_header *h = rf_header_new();
+	rf_header *h;
 	size_t i;
 	int rc;
 
-	if (!h || rf_header_set_size(h, width, height) < 0)
+	if (rf_header_create(&h) < 0 || rf_header_set_size(h, width, height) < 0)
 		die_sys("out of memory");
 	for (i = 0; i < rf_gbuffer_nchannels(g); i++)
 		if (rf_header_add_channel(h, rf_gbuffer_channel(g, i)) < 0)
@@ -209,12 +209,12 @@ main(int argc, char **argv)
 			flag_camera(s, &cam, file ? file : "<default>", frame);
 		h = frame_header(s, g, &cam, frame, width, height);
 		cli_io_begin(&io, h);
-		rf_header_free(h);
+		rf_header_destroy(h);
 		cli_blocks(&io, height, rows, 0, width * rf_gbuffer_nchannels(g), render_block, g);
 		cli_io_end_frame(&io);
 	}
 	rf_gbuffer_destroy(g);
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 	cli_io_close(&io);
 	return 0;
 }

@@ -148,10 +148,11 @@ main(int argc, char **argv)
 		}
 		io.roughness = o.roughness;
 		(void)box;
-		if ((rc = rf_import_new(&im, imgs, paths, nsrc, &io, err, sizeof(err))) < 0)
+		if ((rc = rf_import_create(&im, imgs, paths, nsrc, &io, err, sizeof(err))) < 0)
 			die_status(rc, err);
 	}
-	h = rf_header_dup(rf_import_header(im));
+	if ((rc = rf_header_dup(&h, rf_import_header(im))) < 0)
+		die_status(rc, NULL);
 	cli_record_command(h);
 	if (o.probe.box) {
 		struct rf_probe probe;
@@ -188,10 +189,10 @@ main(int argc, char **argv)
 		die_status(rc, rf_writer_error(w));
 	free(buf);
 	rf_writer_close(w);
-	rf_header_free(h);
-	rf_import_free(im);
+	rf_header_destroy(h);
+	rf_import_destroy(im);
 	for (i = 0; i < nsrc; i++)
-		rf_image_free(src[i].img);
+		rf_image_destroy(src[i].img);
 	for (i = 0; i < o.nmaps; i++)
 		free((char *)o.maps[i].out);
 	fshut(stdout, "<stdout>");

@@ -71,9 +71,11 @@ dump_levels(const rf_cubemap *c, const char *spec)
 		rf_envmap_to_pixels(c, k, layout, px, w, h);
 		snprintf(path, sizeof(path), "level%zu-%s.exr", k, spec);
 		if ((rc = rf_image_writer_open(&iw, path, w, h, 3, names, RF_PIXEL_HALF, err,
-		                               sizeof(err))) < 0 ||
-		    (rc = rf_image_writer_write_rows(iw, 0, h, px, err, sizeof(err))) < 0 ||
-		    (rc = rf_image_writer_close(iw, err, sizeof(err))) < 0)
+		                               sizeof(err))) < 0)
+			die_status(rc, err);
+		if ((rc = rf_image_writer_write_rows(iw, 0, h, px)) < 0)
+			die_status(rc, rf_image_writer_error(iw));
+		if ((rc = rf_image_writer_close(iw, err, sizeof(err))) < 0)
 			die_status(rc, err);
 		warn("wrote '%s'", path);
 		free(px);
@@ -86,11 +88,14 @@ write_chain(const struct prefilter_opts *o, const rf_cubemap *c,
 {
 	struct rf_writer_options wopt = { o->format, o->no_header };
 	char err[1024];
-	rf_header *base = rf_header_new();
+	rf_header *base;
 	rf_writer *w;
 	FILE *fp = stdout;
 	const char *name = "<stdout>";
 	int rc;
+
+	if ((rc = rf_header_create(&base)) < 0)
+		die_status(rc, NULL);
 
 	if (o->output) {
 		const char *dot = strrchr(o->output, '.');
@@ -98,7 +103,7 @@ write_chain(const struct prefilter_opts *o, const rf_cubemap *c,
 		if (dot && strcmp(dot, ".rfl") && strcmp(dot, ".stream")) {
 			if ((rc = rf_chain_write_file(c, info, o->output, err, sizeof(err))) < 0)
 				die_status(rc, err);
-			rf_header_free(base);
+			rf_header_destroy(base);
 			return;
 		}
 		if (!(fp = fopen(o->output, "wb")))
@@ -111,7 +116,7 @@ write_chain(const struct prefilter_opts *o, const rf_cubemap *c,
 	if ((rc = rf_chain_write_stream(c, info, w, base, err, sizeof(err))) < 0)
 		die_status(rc, err);
 	rf_writer_close(w);
-	rf_header_free(base);
+	rf_header_destroy(base);
 	if (fp != stdout)
 		fshut(fp, name);
 }
@@ -220,7 +225,7 @@ main(int argc, char **argv)
 			dump_levels(src, o.dump);
 		if (!o.dump || o.output)
 			write_chain(&o, src, &info);
-		rf_cubemap_free(src);
+		rf_cubemap_destroy(src);
 		fshut(stdout, "<stdout>");
 		return 0;
 	}
@@ -281,8 +286,8 @@ main(int argc, char **argv)
 		dump_levels(out, o.dump);
 	if (!o.dump || o.output)
 		write_chain(&o, out, &info);
-	rf_cubemap_free(src);
-	rf_cubemap_free(out);
+	rf_cubemap_destroy(src);
+	rf_cubemap_destroy(out);
 	fshut(stdout, "<stdout>");
 	return 0;
 }

@@ -133,7 +133,7 @@ load_environment(const struct shade_opts *o, const char *name, struct environmen
 	rf_cubemap *c;
 	size_t levels;
 
-	rf_cubemap_free(e->cube);
+	rf_cubemap_destroy(e->cube);
 	free(e->name);
 	e->name = estrdup(name);
 	eo.path = name;
@@ -146,7 +146,7 @@ load_environment(const struct shade_opts *o, const char *name, struct environmen
 			warn("'%s' has box-filtered levels, not GGX ones: prefiltering its "
 			     "level 0 (--prefiltered takes them as they are)", name);
 		e->cube = prefilter(o, name, c, e);
-		rf_cubemap_free(c);
+		rf_cubemap_destroy(c);
 	} else {
 		float steps = info.steps > 0.0f ? info.steps : (float)(levels - 1);
 
@@ -156,7 +156,7 @@ load_environment(const struct shade_opts *o, const char *name, struct environmen
 		if (!o->env.load.prefiltered &&
 		    ((o->mapping_set && o->mapping != info.mapping) ||
 		     (o->steps > 0.0f && o->steps != steps))) {
-			rf_cubemap_free(c);
+			rf_cubemap_destroy(c);
 			die("'%s' was prefiltered with mapping %s and steps %g; "
 			    "--mapping and --steps must agree (or give --prefiltered to "
 			    "override them)", name, rf_mapping_name(info.mapping),
@@ -200,14 +200,14 @@ check_frame(const struct shade_opts *o, rf_shade *shade, const rf_header *in,
 	if (rf_header_find_channel(in, "mask") >= 0 && !center)
 		die("pixels with mask 0 show the environment seen from the probe "
 		    "centre: give --center=X,Y,Z or a stream with PROBE_CENTER");
-	if (!(h = rf_header_dup(in)))
-		die_sys("out of memory");
+	if ((rc = rf_header_dup(&h, in)) < 0)
+		die_status(rc, NULL);
 	for (i = 0; p->outputs[i]; i++)
 		if (rf_header_find_channel(h, p->outputs[i]) < 0)
 			rf_header_add_channel(h, p->outputs[i]);
 	if ((rc = rf_shade_begin_frame(shade, h, center, &out, err, sizeof(err))) < 0)
 		die_status(rc, err);
-	rf_header_free(h);
+	rf_header_destroy(h);
 }
 
 /* What a block of rows needs: the mode's stage, then the sampling pass
@@ -421,7 +421,7 @@ main(int argc, char **argv)
 		shade_frame(&io, &o, &env, shade, host, in);
 	rf_plugin_host_destroy(host);
 	rf_shade_destroy(shade);
-	rf_cubemap_free(env.cube);
+	rf_cubemap_destroy(env.cube);
 	free(env.name);
 	mode_unload(&o.mode);
 	cli_io_close(&io);

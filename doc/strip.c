@@ -182,14 +182,16 @@ main(int argc, char **argv)
 		*strrchr(argv[optind + k], '=') = '\0';
 		label(px, width, height, x0, argv[optind + k], scale);
 		x0 += iw + RULE; /* the rule stays black (calloc) */
-		rf_image_free(img[k]);
+		rf_image_destroy(img[k]);
 	}
 	if ((type = rf_image_type_for_path(out)) < 0)
 		die("no image type for that name", out);
 	if (rf_image_writer_open(&w, out, width, height, 3, names, (enum rf_pixel_type)type,
-	                         err, sizeof(err)) < 0 ||
-	    rf_image_writer_write_rows(w, 0, height, px, err, sizeof(err)) < 0 ||
-	    rf_image_writer_close(w, err, sizeof(err)) < 0)
+	                         err, sizeof(err)) < 0)
+		die(err, NULL);
+	if (rf_image_writer_write_rows(w, 0, height, px) < 0)
+		die(rf_image_writer_error(w), NULL);
+	if (rf_image_writer_close(w, err, sizeof(err)) < 0)
 		die(err, NULL);
 	free(px);
 	free(img);

@@ -53,6 +53,6 @@ main(int argc, char **argv)
 				printf("%.9g", v);
 			putchar(c + 1 < n ? ' ' : '\n');
 		}
-	rf_image_free(img);
+	rf_image_destroy(img);
 	return fflush(stdout) || ferror(stdout) ? 1 : 0;
 }

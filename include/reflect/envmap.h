@@ -63,7 +63,7 @@ typedef struct rf_cubemap rf_cubemap;
 
 /* size: level 0 face width; nlevels: 0 means down to 1x1.  RF_ETOOBIG
  * past the memory limit (rf_cubemap_check_size). */
-RF_EXTERN int rf_cubemap_new(rf_cubemap **c, size_t size, size_t nlevels);
+RF_EXTERN int rf_cubemap_create(rf_cubemap **c, size_t size, size_t nlevels);
 /* The bytes a cube of these levels takes (its texels, borders
  * included), and whether that fits: RF_ETOOBIG with a message when it
  * is over the limit, REFLECT_MAX_CUBE_MB megabytes (default 1024: faces
@@ -72,7 +72,7 @@ RF_EXTERN int rf_cubemap_new(rf_cubemap **c, size_t size, size_t nlevels);
  * that a forged or sparse file cannot make it take gigabytes. */
 RF_EXTERN size_t rf_cubemap_bytes(size_t size, size_t nlevels);
 RF_EXTERN int rf_cubemap_check_size(size_t size, size_t nlevels, char *err, size_t errlen);
-RF_EXTERN void rf_cubemap_free(rf_cubemap *c);
+RF_EXTERN void rf_cubemap_destroy(rf_cubemap *c);
 RF_EXTERN size_t rf_cubemap_size(const rf_cubemap *c);
 RF_EXTERN size_t rf_cubemap_levels(const rf_cubemap *c);
 RF_EXTERN size_t rf_cubemap_level_size(const rf_cubemap *c, size_t level);
@@ -180,14 +180,6 @@ RF_EXTERN void rf_prefilter_defaults(struct rf_prefilter_options *o);
 RF_EXTERN int rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
                            const struct rf_prefilter_options *o, char *err,
                            size_t errlen);
-/* One texel of one lobe by brute force over the source level 0 (for
- * tests and the bench). */
-RF_EXTERN void rf_prefilter_brute_texel(const rf_cubemap *src, const float n[3],
-                                        float roughness, float rgb[3]);
-/* The same for count directions at once (the source tables are built
- * once): rgb[3 * count]. */
-RF_EXTERN int rf_prefilter_brute_texels(const rf_cubemap *src, const float *dirs,
-                                        size_t count, float roughness, float *rgb);
 /* GGX samples a texel of level k >= 1 takes when level 1 takes `base`. */
 RF_EXTERN size_t rf_prefilter_level_samples(unsigned base, size_t level);
 
@@ -258,7 +250,7 @@ RF_EXTERN int rf_chain_read_file(rf_cubemap **c, struct rf_chain_info *info,
                                  size_t errlen);
 /* Reads a DDS cube map (all six faces) with its mip levels as a
  * prefiltered chain (mapping unity, steps = levels - 1): the levels while
- * the size halves evenly, as rf_cubemap_new counts them.  Float, half,
+ * the size halves evenly, as rf_cubemap_create counts them.  Float, half,
  * R11G11B10, RGB9E5 and 8-bit RGBA/BGRA (sRGB decoded) texels; alpha is
  * ignored, block-compressed formats are refused.  Faces are mirrored
  * from Direct3D's orientation to OpenEXR's, so a direction reads what

@@ -28,7 +28,7 @@ RF_EXTERN int rf_image_module_check(char *err, size_t errlen);
 
 RF_EXTERN int rf_image_read(rf_image **img, const char *path, char *err,
                             size_t errlen);
-RF_EXTERN void rf_image_free(rf_image *img);
+RF_EXTERN void rf_image_destroy(rf_image *img);
 RF_EXTERN size_t rf_image_width(const rf_image *img);
 RF_EXTERN size_t rf_image_height(const rf_image *img);
 RF_EXTERN size_t rf_image_nchannels(const rf_image *img);
@@ -52,10 +52,11 @@ RF_EXTERN int rf_image_writer_open(rf_image_writer **w, const char *path,
                                    size_t width, size_t height, size_t nchannels,
                                    const char *const *names, enum rf_pixel_type type,
                                    char *err, size_t errlen);
-/* Rows y .. y+nrows-1 as floats, channels interleaved; rows in order. */
+/* Rows y .. y+nrows-1 as floats, channels interleaved; rows in order.
+ * A failure's message is rf_image_writer_error's. */
 RF_EXTERN int rf_image_writer_write_rows(rf_image_writer *w, size_t y, size_t nrows,
-                                         const float *pixels, char *err,
-                                         size_t errlen);
+                                         const float *pixels);
+RF_EXTERN const char *rf_image_writer_error(const rf_image_writer *w);
 /* Closes the file; returns its last error. */
 RF_EXTERN int rf_image_writer_close(rf_image_writer *w, char *err, size_t errlen);
 /* The pixel type a file name's extension stores best (8-bit for PNG and

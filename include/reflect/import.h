@@ -39,11 +39,11 @@ typedef struct rf_import rf_import;
  * every other input channel under its own name (names found in several
  * images are left out unless mapped), then V from the camera when no V
  * is given, then a constant roughness when asked for. */
-RF_EXTERN int rf_import_new(rf_import **im, const rf_image *const *images,
+RF_EXTERN int rf_import_create(rf_import **im, const rf_image *const *images,
                             const char *const *paths, size_t n,
                             const struct rf_import_options *o, char *err,
                             size_t errlen);
-RF_EXTERN void rf_import_free(rf_import *im);
+RF_EXTERN void rf_import_destroy(rf_import *im);
 /* The output frame's header: size and channels. */
 RF_EXTERN const rf_header *rf_import_header(const rf_import *im);
 /* Rows y .. y+n-1 of the output, channels interleaved. */

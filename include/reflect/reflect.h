@@ -1,9 +1,22 @@
 /*
  * libreflect: box-projected cubemap reflections, offline.
  *
- * Every function returns 0 or a positive count on success and a negative
- * rf_status on failure; nothing here prints or exits.  Objects that hold
- * state are opaque and come with a create/destroy pair.
+ * Every function that can fail returns 0 (or a count) on success and a
+ * negative rf_status on failure; nothing here prints or exits.
+ *
+ * Objects that hold state are opaque, made by rf_<name>_create (or a
+ * constructor that says how it makes one: rf_header_dup, rf_image_read,
+ * rf_scene_parse) and ended by rf_<name>_destroy.  Handles on a file or
+ * a stream are opened and closed (rf_reader_open, rf_image_writer_close),
+ * plugins loaded and unloaded (rf_module_load).
+ *
+ * Where there is more to say than the status, the message goes where
+ * the caller gave room for it: the err buffer (char *err, size_t
+ * errlen) of a call that sets something up, or, for the calls a tool
+ * makes on an open handle block after block (rf_reader_read_rows,
+ * rf_writer_write_rows, rf_stage_run, rf_image_writer_write_rows...),
+ * the handle, whose rf_<name>_error() returns it.  Messages name the
+ * file, line or channel and what was expected.
  */
 #ifndef REFLECT_REFLECT_H
 #define REFLECT_REFLECT_H
@@ -73,9 +86,10 @@ enum rf_format {
 
 typedef struct rf_header rf_header;
 
-RF_EXTERN rf_header *rf_header_new(void);
-RF_EXTERN rf_header *rf_header_dup(const rf_header *h);
-RF_EXTERN void rf_header_free(rf_header *h);
+RF_EXTERN int rf_header_create(rf_header **h);
+/* A copy of every field and line of h. */
+RF_EXTERN int rf_header_dup(rf_header **copy, const rf_header *h);
+RF_EXTERN void rf_header_destroy(rf_header *h);
 
 RF_EXTERN size_t rf_header_ncols(const rf_header *h);
 RF_EXTERN size_t rf_header_nrows(const rf_header *h);

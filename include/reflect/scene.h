@@ -51,7 +51,7 @@ RF_EXTERN int rf_scene_read(rf_scene **s, FILE *fp, const char *name, char *err,
 /* The embedded default scene, as text in the format, and parsed. */
 RF_EXTERN const char *rf_scene_default_text(void);
 RF_EXTERN int rf_scene_default(rf_scene **s, char *err, size_t errlen);
-RF_EXTERN void rf_scene_free(rf_scene *s);
+RF_EXTERN void rf_scene_destroy(rf_scene *s);
 
 RF_EXTERN const char *rf_scene_name(const rf_scene *s);
 RF_EXTERN void rf_scene_camera(const rf_scene *s, struct rf_camera *cam);

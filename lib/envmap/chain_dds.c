@@ -409,7 +409,7 @@ parse_header(const char *path, const unsigned char *h, size_t got,
 	}
 	l->size = width;
 	l->file_levels = mips;
-	/* rf_cubemap_new's rule: halve while even.  The first odd level is
+	/* rf_cubemap_create's rule: halve while even.  The first odd level is
 	 * the last one kept; the file's smaller levels are skipped (they
 	 * still count in each face's stride). */
 	for (l->levels = 1; l->levels < mips && !((width >> (l->levels - 1)) & 1); l->levels++)
@@ -535,13 +535,13 @@ rf_chain_read_dds(rf_cubemap **cp, struct rf_chain_info *info, size_t *nonfinite
 		return rc;
 	}
 	if ((rc = rf_cubemap_check_size(l.size, l.levels, msg, sizeof(msg))) < 0 ||
-	    (rc = rf_cubemap_new(cp, l.size, l.levels)) < 0) {
+	    (rc = rf_cubemap_create(cp, l.size, l.levels)) < 0) {
 		rf__format(err, errlen, "'%s': %s", path, rc == RF_ETOOBIG ? msg : rf_strerror(rc));
 		fclose(fp);
 		return rc;
 	}
 	if ((rc = read_levels(fp, path, &l, *cp, nonfinite, err, errlen)) < 0) {
-		rf_cubemap_free(*cp);
+		rf_cubemap_destroy(*cp);
 		*cp = NULL;
 		fclose(fp);
 		return rc;

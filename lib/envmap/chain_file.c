@@ -115,7 +115,7 @@ rf_chain_read_file(rf_cubemap **cp, struct rf_chain_info *info, int *is_reflect,
 	if (rf_image_height(img) != 6 * n) {
 		rf__format(err, errlen, "'%s': a MIP-mapped cube is N x 6N, not %zux%zu",
 		           path, n, rf_image_height(img));
-		rf_image_free(img);
+		rf_image_destroy(img);
 		return RF_EFORMAT;
 	}
 	/* The cube levels: those still N x 6N with N even or 1. */
@@ -141,7 +141,7 @@ rf_chain_read_file(rf_cubemap **cp, struct rf_chain_info *info, int *is_reflect,
 			levels = l;
 	}
 	if ((rc = rf_cubemap_check_size(n, levels, err, errlen)) < 0 ||
-	    (rc = rf_cubemap_new(cp, n, levels)) < 0)
+	    (rc = rf_cubemap_create(cp, n, levels)) < 0)
 		goto fail;
 	for (k = 0; k < levels; k++) {
 		size_t got;
@@ -157,15 +157,15 @@ rf_chain_read_file(rf_cubemap **cp, struct rf_chain_info *info, int *is_reflect,
 		rc = rf__cube_level_from_pixels(*cp, k, rf_image_pixels(img),
 		                                 rf_image_width(img), rf_image_height(img),
 		                                 rf_image_nchannels(img), &got, err, errlen);
-		rf_image_free(img);
+		rf_image_destroy(img);
 		img = NULL;
 		if (rc < 0)
 			goto fail;
 	}
 	return 0;
 fail:
-	rf_image_free(img);
-	rf_cubemap_free(*cp);
+	rf_image_destroy(img);
+	rf_cubemap_destroy(*cp);
 	*cp = NULL;
 	return rc;
 }

@@ -28,7 +28,7 @@ rf_chain_write_stream(const rf_cubemap *c, const struct rf_chain_info *info,
 		return RF_ENOMEM;
 	for (k = 0; k < levels && rc == 0; k++) {
 		n = rf_cubemap_level_size(c, k);
-		if (!(h = base ? rf_header_dup(base) : rf_header_new())) {
+		if ((base ? rf_header_dup(&h, base) : rf_header_create(&h)) < 0) {
 			rc = RF_ENOMEM;
 			break;
 		}
@@ -45,7 +45,7 @@ rf_chain_write_stream(const rf_cubemap *c, const struct rf_chain_info *info,
 		rf_header_set(h, "BASE", info->base_copied ? "copied" : "filtered");
 		if ((rc = rf_writer_begin_frame(w, h)) < 0) {
 			rf__format(err, errlen, "%s", rf_writer_error(w));
-			rf_header_free(h);
+			rf_header_destroy(h);
 			break;
 		}
 		for (f = 0; f < 6 && rc == 0; f++)
@@ -61,7 +61,7 @@ rf_chain_write_stream(const rf_cubemap *c, const struct rf_chain_info *info,
 			}
 		if (rc == 0 && (rc = rf_writer_end_frame(w)) < 0)
 			rf__format(err, errlen, "%s", rf_writer_error(w));
-		rf_header_free(h);
+		rf_header_destroy(h);
 	}
 	free(row);
 	return rc;
@@ -177,7 +177,7 @@ rf_chain_read_stream(rf_cubemap **cp, struct rf_chain_info *info, rf_reader *r,
 	info->samples = (unsigned)samples;
 	if ((rc = rf_cubemap_check_size(n, (size_t)levels, err, errlen)) < 0)
 		return rc;
-	if ((rc = rf_cubemap_new(cp, n, (size_t)levels)) < 0) {
+	if ((rc = rf_cubemap_create(cp, n, (size_t)levels)) < 0) {
 		rf__format(err, errlen, "a cube of %zu texels cannot have %g levels", n,
 		           levels);
 		return rc;
@@ -203,7 +203,7 @@ rf_chain_read_stream(rf_cubemap **cp, struct rf_chain_info *info, rf_reader *r,
 	}
 	return 0;
 fail:
-	rf_cubemap_free(*cp);
+	rf_cubemap_destroy(*cp);
 	*cp = NULL;
 	return rc;
 }

@@ -145,7 +145,7 @@ rf_cubemap_check_size(size_t size, size_t nlevels, char *err, size_t errlen)
 }
 
 int
-rf_cubemap_new(rf_cubemap **cp, size_t size, size_t nlevels)
+rf_cubemap_create(rf_cubemap **cp, size_t size, size_t nlevels)
 {
 	rf_cubemap *c;
 	size_t k, total = 0, maxlevels = 1;
@@ -177,7 +177,7 @@ rf_cubemap_new(rf_cubemap **cp, size_t size, size_t nlevels)
 }
 
 void
-rf_cubemap_free(rf_cubemap *c)
+rf_cubemap_destroy(rf_cubemap *c)
 {
 	if (!c)
 		return;

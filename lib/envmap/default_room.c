@@ -166,9 +166,9 @@ rf_default_environment_cube_threads(rf_cubemap *c, int nthreads)
 
 	/* Each texel is its own sum, so any thread count gives the same
 	 * bytes; without threads to be had, the caller renders it all. */
-	if (nthreads > 1 && rf__pool_new(&pool, nthreads) == 0) {
+	if (nthreads > 1 && rf__pool_create(&pool, nthreads) == 0) {
 		rf__pool_run(pool, 6 * n, render_row, c);
-		rf__pool_free(pool);
+		rf__pool_destroy(pool);
 	} else {
 		for (row = 0; row < 6 * n; row++)
 			render_row(c, row, 0);

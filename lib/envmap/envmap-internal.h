@@ -16,4 +16,13 @@ int rf__cube_level_from_pixels(rf_cubemap *c, size_t level, const float *px,
  * texels, rows top first, starting at border texel (-1, -1). */
 const float *rf__cubemap_padded_face(const rf_cubemap *c, size_t level, int face);
 
+/* Exported for the test suite and the bench only, never installed: the
+ * reference the prefilter is measured against.  One texel of one lobe by
+ * brute force over the source level 0, and the same for count
+ * directions at once (the source tables built once): rgb[3 * count]. */
+RF_EXTERN void rf__prefilter_brute_texel(const rf_cubemap *src, const float n[3],
+                                         float roughness, float rgb[3]);
+RF_EXTERN int rf__prefilter_brute_texels(const rf_cubemap *src, const float *dirs,
+                                         size_t count, float roughness, float *rgb);
+
 #endif

@@ -354,7 +354,7 @@ rf_envmap_from_pixels(rf_cubemap *c, const float *px, size_t w, size_t h, size_t
 	}
 	for (k = 0; (m >> k) > n; k++)
 		;
-	if ((m >> k) != n || (k && (rc = rf_cubemap_new(&tmp, m, k + 1)) < 0)) {
+	if ((m >> k) != n || (k && (rc = rf_cubemap_create(&tmp, m, k + 1)) < 0)) {
 		free(img);
 		if (rc < 0)
 			return rc;
@@ -378,7 +378,7 @@ rf_envmap_from_pixels(rf_cubemap *c, const float *px, size_t w, size_t h, size_t
 					memcpy(rf_cubemap_texel(c, 0, (enum rf_face)f, i, j),
 					       rf_cubemap_texel_const(tmp, k, (enum rf_face)f, i, j),
 					       3 * sizeof(float));
-		rf_cubemap_free(tmp);
+		rf_cubemap_destroy(tmp);
 	}
 	rf_cubemap_seal_level(c, 0);
 	return 0;

@@ -50,7 +50,7 @@ cube_new(struct load *ld, rf_cubemap **c, size_t size, size_t levels)
 
 	if ((rc = rf_cubemap_check_size(size, levels, ld->err, ld->errlen)) < 0)
 		return rc;
-	if ((rc = rf_cubemap_new(c, size, levels)) == RF_EINVAL)
+	if ((rc = rf_cubemap_create(c, size, levels)) == RF_EINVAL)
 		rf__format(ld->err, ld->errlen, "a cube of %zu texels cannot have %zu levels",
 		           size, levels);
 	return rc;
@@ -94,7 +94,7 @@ read_face(struct load *ld, const char *path, size_t *n, rf_image **img)
 		*n = rf_image_width(*img);
 		return 0;
 	}
-	rf_image_free(*img);
+	rf_image_destroy(*img);
 	*img = NULL;
 	return RF_EINVAL;
 }
@@ -159,7 +159,7 @@ load_pixels(struct load *ld, const char *path, const float *px, size_t w, size_t
 		rc = count_nonfinite(ld, path, bad);
 	}
 	if (rc < 0) {
-		rf_cubemap_free(*c);
+		rf_cubemap_destroy(*c);
 		*c = NULL;
 	}
 	return rc;
@@ -202,7 +202,7 @@ load_faces(struct load *ld, const char *pattern, rf_cubemap **c)
 		srgb = is_srgb(ld->o, faces[0]);
 	}
 	for (f = 0; f < 6; f++)
-		rf_image_free(faces[f]);
+		rf_image_destroy(faces[f]);
 	if (rc == 0)
 		rc = load_pixels(ld, pattern, px, n, 6 * n, nch, RF_LAYOUT_CUBE, srgb, c);
 	free(px);
@@ -268,7 +268,7 @@ load_level_files(struct load *ld, const char *pattern, rf_cubemap **c,
 			           "not half the %zu of level %zu", path, n,
 			           rf_cubemap_size(levels[n]), rf_cubemap_size(levels[n - 1]),
 			           n - 1);
-			rf_cubemap_free(levels[n]);
+			rf_cubemap_destroy(levels[n]);
 			rc = RF_EINVAL;
 			break;
 		}
@@ -279,7 +279,7 @@ load_level_files(struct load *ld, const char *pattern, rf_cubemap **c,
 	for (k = 0; k < n; k++) {
 		if (rc == 0)
 			copy_level(*c, k, levels[k], 0);
-		rf_cubemap_free(levels[k]);
+		rf_cubemap_destroy(levels[k]);
 	}
 	if (rc < 0)
 		return rc;
@@ -325,7 +325,7 @@ load_chain_file(struct load *ld, const char *path, rf_cubemap **c,
 		return 1; /* not a cube chain: an ordinary image */
 	}
 	if (!ours && !ld->o->prefiltered) {
-		rf_cubemap_free(*c);
+		rf_cubemap_destroy(*c);
 		*c = NULL;
 		memset(info, 0, sizeof(*info));
 		info->mapping = RF_MAPPING_DEFAULT;
@@ -353,14 +353,14 @@ load_dds(struct load *ld, const char *path, rf_cubemap **c, struct rf_chain_info
 	if ((rc = count_nonfinite(ld, path, bad)) < 0 ||
 	    ld->o->prefiltered || rf_cubemap_levels(chain) == 1) {
 		if (rc < 0)
-			rf_cubemap_free(chain);
+			rf_cubemap_destroy(chain);
 		else
 			*c = chain;
 		return rc;
 	}
 	if ((rc = cube_new(ld, c, rf_cubemap_size(chain), 1)) == 0)
 		copy_level(*c, 0, chain, 0);
-	rf_cubemap_free(chain);
+	rf_cubemap_destroy(chain);
 	info->prefiltered = 0;
 	return rc;
 }
@@ -431,7 +431,7 @@ load_image(struct load *ld, const char *path, rf_cubemap **c, struct rf_chain_in
 		                 rf_image_height(img), rf_image_nchannels(img), layout,
 		                 is_srgb(ld->o, img), c);
 	}
-	rf_image_free(img);
+	rf_image_destroy(img);
 	if (rc == 0 && ld->o->prefiltered)
 		info->prefiltered = 1;
 	return rc;
@@ -497,7 +497,7 @@ rf_envmap_load(rf_cubemap **c, struct rf_chain_info *info, const char *path,
 	if (nonfinite)
 		*nonfinite = ld.nonfinite;
 	if (rc < 0 && *c) {
-		rf_cubemap_free(*c);
+		rf_cubemap_destroy(*c);
 		*c = NULL;
 	}
 	return rc;

@@ -249,7 +249,7 @@ source_tables(const rf_cubemap *src, size_t sub, float **dirs, float **omega,
 }
 
 int
-rf_prefilter_brute_texels(const rf_cubemap *src, const float *dirs, size_t count,
+rf__prefilter_brute_texels(const rf_cubemap *src, const float *dirs, size_t count,
                           float roughness, float *rgb)
 {
 	float *pts, *omega, *radiance;
@@ -273,10 +273,10 @@ rf_prefilter_brute_texels(const rf_cubemap *src, const float *dirs, size_t count
 }
 
 void
-rf_prefilter_brute_texel(const rf_cubemap *src, const float n[3], float roughness,
+rf__prefilter_brute_texel(const rf_cubemap *src, const float n[3], float roughness,
                          float rgb[3])
 {
-	if (rf_prefilter_brute_texels(src, n, 1, roughness, rgb) < 0)
+	if (rf__prefilter_brute_texels(src, n, 1, roughness, rgb) < 0)
 		rgb[0] = rgb[1] = rgb[2] = NAN;
 }
 
@@ -375,7 +375,7 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 		return RF_EINVAL;
 	}
 	/* The source as a full box chain, read by filtered samples. */
-	if ((rc = rf_cubemap_new(&chain, n0, 0)) < 0)
+	if ((rc = rf_cubemap_create(&chain, n0, 0)) < 0)
 		return rc;
 	copy_level(src, 0, chain, 0);
 	rf_cubemap_box_chain(chain, 0);
@@ -406,7 +406,7 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 		total += 6 * rf_cubemap_level_size(out, k);
 	/* One pool for every level; without one, the caller filters alone. */
 	if (o->nthreads > 1)
-		rf__pool_new(&pool, o->nthreads > RF__THREADS_MAX ? RF__THREADS_MAX : o->nthreads);
+		rf__pool_create(&pool, o->nthreads > RF__THREADS_MAX ? RF__THREADS_MAX : o->nthreads);
 	for (k = 1; k < levels; k++) {
 		struct job jb;
 		size_t n = rf_cubemap_level_size(out, k), row;
@@ -466,13 +466,13 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 			o->progress(o->progress_arg, (double)done, (double)total);
 	}
 out:
-	rf__pool_free(pool);
+	rf__pool_destroy(pool);
 	free(samples);
-	rf__lobe_table_free(&table);
+	rf__lobe_table_destroy(&table);
 	free(dirs);
 	free(omega);
 	free(radiance);
-	rf__rgba_levels_free(&rgba);
-	rf_cubemap_free(chain);
+	rf__rgba_levels_destroy(&rgba);
+	rf_cubemap_destroy(chain);
 	return rc;
 }

@@ -44,7 +44,7 @@ rf__rgba_levels_from_cube(struct rf__rgba_levels *p, const rf_cubemap *c)
 }
 
 void
-rf__rgba_levels_free(struct rf__rgba_levels *p)
+rf__rgba_levels_destroy(struct rf__rgba_levels *p)
 {
 	free(p->data);
 	p->data = NULL;

@@ -39,7 +39,7 @@ struct rf__lod {
 };
 
 int rf__rgba_levels_from_cube(struct rf__rgba_levels *p, const rf_cubemap *c);
-void rf__rgba_levels_free(struct rf__rgba_levels *p);
+void rf__rgba_levels_destroy(struct rf__rgba_levels *p);
 
 /* Where a read at this lod goes (clamped to the levels); inline, as the
  * shading pass asks once a pixel. */

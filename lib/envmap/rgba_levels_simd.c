@@ -49,7 +49,7 @@ rf__lobe_table_alloc(struct rf__lobe_table *t, size_t n)
 }
 
 void
-rf__lobe_table_free(struct rf__lobe_table *t)
+rf__lobe_table_destroy(struct rf__lobe_table *t)
 {
 	free(t->block);
 	memset(t, 0, sizeof(*t));

@@ -31,7 +31,7 @@ struct rf__lobe_table {
 int rf__rgba_levels_simd_usable(const struct rf__rgba_levels *p);
 
 int rf__lobe_table_alloc(struct rf__lobe_table *t, size_t n);
-void rf__lobe_table_free(struct rf__lobe_table *t);
+void rf__lobe_table_destroy(struct rf__lobe_table *t);
 void rf__lobe_table_set(struct rf__lobe_table *t, size_t i, const float l[3],
                         const struct rf__lod *lod, const struct rf__rgba_levels *p);
 

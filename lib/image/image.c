@@ -139,7 +139,7 @@ rf_image_count_levels(const char *path, size_t *nlevels, char *err, size_t errle
 
 /* An image exists only if the module made it, so it is loaded here. */
 void
-rf_image_free(rf_image *img)
+rf_image_destroy(rf_image *img)
 {
 	if (img)
 		api->free_image(img);
@@ -199,6 +199,7 @@ struct rf_image_writer {
 		struct rf__exr_writer *exr;
 	} u;
 	size_t height, next_row;
+	char error[1024];         /* the last write's, for rf_image_writer_error */
 	char *temp;               /* written here, renamed to path at close */
 	struct rf_image_writer *next_temp;
 	char path[];
@@ -382,8 +383,10 @@ rf_image_writer_open(rf_image_writer **wp, const char *path, size_t width,
 
 int
 rf_image_writer_write_rows(rf_image_writer *w, size_t y, size_t nrows,
-                           const float *pixels, char *err, size_t errlen)
+                           const float *pixels)
 {
+	char *err = w->error;
+	size_t errlen = sizeof(w->error);
 	int rc;
 
 	if (y != w->next_row || nrows > w->height - y) {
@@ -405,6 +408,12 @@ rf_image_writer_write_rows(rf_image_writer *w, size_t y, size_t nrows,
 	else
 		name_path(w, err, errlen);
 	return rc;
+}
+
+const char *
+rf_image_writer_error(const rf_image_writer *w)
+{
+	return w->error;
 }
 
 int

@@ -93,7 +93,7 @@ rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
 	s->out_runs = calloc(s->nout + 1, sizeof(struct rf__run));
 	s->workers = calloc((size_t)nthreads, sizeof(struct worker));
 	if (!s->in_map || !s->out_map || !s->in_runs || !s->out_runs || !s->workers ||
-	    rf__pool_new(&s->pool, nthreads) < 0) {
+	    rf__pool_create(&s->pool, nthreads) < 0) {
 		rf_stage_destroy(s);
 		return RF_ENOMEM;
 	}
@@ -120,7 +120,7 @@ rf_stage_destroy(rf_stage *s)
 
 	if (!s)
 		return;
-	rf__pool_free(s->pool);
+	rf__pool_destroy(s->pool);
 	for (i = 0; s->workers && i < s->nthreads; i++) {
 		if (s->workers[i].state)
 			s->p->destroy(s->workers[i].state);
@@ -133,7 +133,7 @@ rf_stage_destroy(rf_stage *s)
 	free(s->out_map);
 	free(s->in_runs);
 	free(s->out_runs);
-	rf_header_free(s->out_h);
+	rf_header_destroy(s->out_h);
 	free(s);
 }
 
@@ -164,8 +164,8 @@ rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
 	int c, t;
 
 	*out = NULL;
-	rf_header_free(s->out_h);
-	if (!(s->out_h = rf_header_dup(in)))
+	rf_header_destroy(s->out_h);
+	if (rf_header_dup(&s->out_h, in) < 0)
 		return RF_ENOMEM;
 	for (i = 0; i < s->nin; i++) {
 		if ((c = rf_header_find_channel(in, s->p->inputs[i])) < 0) {

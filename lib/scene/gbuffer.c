@@ -162,7 +162,7 @@ rf_gbuffer_create(rf_gbuffer **gp, const rf_scene *s, size_t width, size_t heigh
 		return RF_ENOMEM;
 	}
 	if (g->nthreads > 1)
-		rf__pool_new(&g->pool, g->nthreads);
+		rf__pool_create(&g->pool, g->nthreads);
 	rf_gbuffer_set_camera(g, &s->camera, NULL, 0);
 	*gp = g;
 	return 0;
@@ -173,7 +173,7 @@ rf_gbuffer_destroy(rf_gbuffer *g)
 {
 	if (!g)
 		return;
-	rf__pool_free(g->pool);
+	rf__pool_destroy(g->pool);
 	free(g->k);
 	free(g->bounds);
 	free(g->scratch);

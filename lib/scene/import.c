@@ -170,7 +170,7 @@ map_input(rf_import *im, const rf_image *const *images, struct input *in, size_t
 }
 
 int
-rf_import_new(rf_import **imp, const rf_image *const *images,
+rf_import_create(rf_import **imp, const rf_image *const *images,
               const char *const *paths, size_t n, const struct rf_import_options *o,
               char *err, size_t errlen)
 {
@@ -193,7 +193,7 @@ rf_import_new(rf_import **imp, const rf_image *const *images,
 			           rf_image_height(images[0]));
 			return RF_EINVAL;
 		}
-	if (!(im = calloc(1, sizeof(*im))) || !(im->h = rf_header_new())) {
+	if (!(im = calloc(1, sizeof(*im))) || rf_header_create(&im->h) < 0) {
 		free(im);
 		return RF_ENOMEM;
 	}
@@ -345,16 +345,16 @@ rf_import_new(rf_import **imp, const rf_image *const *images,
 	return 0;
 fail:
 	free(in);
-	rf_import_free(im);
+	rf_import_destroy(im);
 	return rc;
 }
 
 void
-rf_import_free(rf_import *im)
+rf_import_destroy(rf_import *im)
 {
 	if (!im)
 		return;
-	rf_header_free(im->h);
+	rf_header_destroy(im->h);
 	free(im->src);
 	free(im);
 }

@@ -184,7 +184,7 @@ rf__lexer_next(struct rf__lexer *lx)
 }
 
 void
-rf__lexer_free(struct rf__lexer *lx)
+rf__lexer_destroy(struct rf__lexer *lx)
 {
 	free_tokens(lx);
 	free(lx->tok);

@@ -33,6 +33,6 @@ int rf__lexer_next(struct rf__lexer *lx);
 /* RF_EFORMAT, with "name:line:col: message" in err. */
 int rf__lexer_fail(const struct rf__lexer *lx, size_t line, size_t col, const char *fmt,
                    ...) RF__PRINTF(4, 5);
-void rf__lexer_free(struct rf__lexer *lx);
+void rf__lexer_destroy(struct rf__lexer *lx);
 
 #endif

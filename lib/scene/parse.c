@@ -819,13 +819,13 @@ rf_scene_parse(rf_scene **sp, const char *text, size_t len, const char *name,
 	memset(&p, 0, sizeof(p));
 	p.name = name ? name : "<scene>";
 	rf__lexer_init(&p.lx, text, len, p.name, err, errlen);
-	if (!(p.s = rf__scene_new()))
+	if (!(p.s = rf__scene_create()))
 		return RF_ENOMEM;
 	if (name && (slash = strrchr(name, '/'))) {
 		size_t n = (size_t)(slash - name);
 
 		if (!(p.dir = malloc(n + 2))) {
-			rf_scene_free(p.s);
+			rf_scene_destroy(p.s);
 			return RF_ENOMEM;
 		}
 		/* "/x.scene" lives in "/": its files are "//file", still right. */
@@ -835,7 +835,7 @@ rf_scene_parse(rf_scene **sp, const char *text, size_t len, const char *name,
 	while ((rc = next_statement(&p)) > 0)
 		if ((rc = statement(&p)) < 0)
 			break;
-	rf__lexer_free(&p.lx);
+	rf__lexer_destroy(&p.lx);
 	free(p.dir);
 	if (rc == 0 && !p.s->nprobes)
 		rc = fail_at(&p, p.lx.line, 1, "expected a 'probe' line (the room's box and "
@@ -864,7 +864,7 @@ rf_scene_parse(rf_scene **sp, const char *text, size_t len, const char *name,
 				*c = '?';
 	}
 	if (rc < 0) {
-		rf_scene_free(p.s);
+		rf_scene_destroy(p.s);
 		return rc;
 	}
 	*sp = p.s;

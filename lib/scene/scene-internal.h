@@ -63,7 +63,7 @@ struct rf_scene {
 };
 
 /* scene.c */
-rf_scene *rf__scene_new(void);
+rf_scene *rf__scene_create(void);
 /* A material with the defaults of an object (or of the room). */
 void rf__material_default(struct material *m, int room);
 /* An image loaded once for the whole scene; err says why it cannot be. */

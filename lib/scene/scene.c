@@ -9,7 +9,7 @@
 static const double pi = 3.14159265358979323846;
 
 rf_scene *
-rf__scene_new(void)
+rf__scene_create(void)
 {
 	rf_scene *s = calloc(1, sizeof(*s));
 
@@ -37,7 +37,7 @@ rf__material_default(struct material *m, int room)
 }
 
 void
-rf_scene_free(rf_scene *s)
+rf_scene_destroy(rf_scene *s)
 {
 	size_t i;
 
@@ -46,7 +46,7 @@ rf_scene_free(rf_scene *s)
 	for (i = 0; i < s->nprobes; i++)
 		free((char *)s->probes[i].env);
 	for (i = 0; i < s->nimages; i++) {
-		rf_image_free(s->images[i]);
+		rf_image_destroy(s->images[i]);
 		free(s->image_paths[i]);
 	}
 	free(s->images);
@@ -76,7 +76,7 @@ rf__scene_image(rf_scene *s, const char *path, const rf_image **imgp, char *err,
 	if (rf_image_nchannels(img) < 2) {
 		rf__format(err, errlen, "normal map '%s' has 1 channel, expected at "
 		           "least 2 (R G)", path);
-		rf_image_free(img);
+		rf_image_destroy(img);
 		return RF_EIMAGE;
 	}
 	images = realloc(s->images, (s->nimages + 1) * sizeof(*images));
@@ -86,7 +86,7 @@ rf__scene_image(rf_scene *s, const char *path, const rf_image **imgp, char *err,
 	if (paths)
 		s->image_paths = paths;
 	if (!images || !paths || !(copy = strdup(path))) {
-		rf_image_free(img);
+		rf_image_destroy(img);
 		return RF_ENOMEM;
 	}
 	s->images[s->nimages] = img;

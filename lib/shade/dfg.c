@@ -188,9 +188,9 @@ build(void)
 	for (k = 0; k < DFG_SAMPLES; k++)
 		disc_point(k, DFG_SAMPLES, disc + 3 * k);
 	/* Without a pool, the caller integrates every row. */
-	if (rf__pool_new(&pool, BUILD_THREADS) == 0) {
+	if (rf__pool_create(&pool, BUILD_THREADS) == 0) {
 		rf__pool_run(pool, RF_DFG_SIZE, build_row, NULL);
-		rf__pool_free(pool);
+		rf__pool_destroy(pool);
 	} else {
 		for (k = 0; k < RF_DFG_SIZE; k++)
 			build_row(NULL, k, 0);

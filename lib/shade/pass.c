@@ -99,7 +99,7 @@ rf_shade_create(rf_shade **sp, const struct rf_shade_options *o)
 	if (s->nthreads > RF__THREADS_MAX)
 		s->nthreads = RF__THREADS_MAX;
 	s->nout = s->final ? OUT_COUNT : OUT_R;
-	if (rf__pool_new(&s->pool, s->nthreads) < 0) {
+	if (rf__pool_create(&s->pool, s->nthreads) < 0) {
 		free(s);
 		return RF_ENOMEM;
 	}
@@ -168,10 +168,10 @@ rf_shade_destroy(rf_shade *s)
 {
 	if (!s)
 		return;
-	rf__pool_free(s->pool);
+	rf__pool_destroy(s->pool);
 	free_reads(s);
-	rf_header_free(s->out_h);
-	rf__rgba_levels_free(&s->levels);
+	rf_header_destroy(s->out_h);
+	rf__rgba_levels_destroy(&s->levels);
 	free(s);
 }
 
@@ -187,7 +187,7 @@ rf_shade_set_environment(rf_shade *s, const rf_cubemap *env, enum rf_mapping map
 {
 	int rc;
 
-	rf__rgba_levels_free(&s->levels);
+	rf__rgba_levels_destroy(&s->levels);
 	s->env = NULL;
 	if ((rc = rf__rgba_levels_from_cube(&s->levels, env)) < 0)
 		return rc;
@@ -273,8 +273,8 @@ rf_shade_begin_frame(rf_shade *s, const rf_header *in, const float center[3],
 	    (rc = require(s, in, IN_ROUGH, IN_VZ, "the final colour's environment "
 	                  "BRDF reads roughness, N and V", err, errlen)) < 0)
 		return rc;
-	rf_header_free(s->out_h);
-	if (!(s->out_h = rf_header_dup(in)))
+	rf_header_destroy(s->out_h);
+	if (rf_header_dup(&s->out_h, in) < 0)
 		return RF_ENOMEM;
 	for (i = 0; i < s->nout; i++) {
 		if ((c = rf_header_find_channel(s->out_h, out_names[i])) < 0 &&

@@ -45,14 +45,14 @@ key_length(const char *line)
 	return line[i] == '=' ? i : 0;
 }
 
-rf_header *
-rf_header_new(void)
+int
+rf_header_create(rf_header **h)
 {
-	return calloc(1, sizeof(rf_header));
+	return (*h = calloc(1, sizeof(rf_header))) ? 0 : RF_ENOMEM;
 }
 
 void
-rf_header_free(rf_header *h)
+rf_header_destroy(rf_header *h)
 {
 	size_t i;
 
@@ -67,14 +67,15 @@ rf_header_free(rf_header *h)
 	free(h);
 }
 
-rf_header *
-rf_header_dup(const rf_header *h)
+int
+rf_header_dup(rf_header **copy, const rf_header *h)
 {
 	rf_header *d;
 	size_t i;
 
-	if (!(d = rf_header_new()))
-		return NULL;
+	*copy = NULL;
+	if (rf_header_create(&d) < 0)
+		return RF_ENOMEM;
 	d->ncols = h->ncols;
 	d->nrows = h->nrows;
 	d->format = h->format;
@@ -85,10 +86,11 @@ rf_header_dup(const rf_header *h)
 	for (i = 0; i < h->nlines; i++)
 		if (rf__header_push_line(d, h->lines[i]) < 0)
 			goto fail;
-	return d;
+	*copy = d;
+	return 0;
 fail:
-	rf_header_free(d);
-	return NULL;
+	rf_header_destroy(d);
+	return RF_ENOMEM;
 }
 
 size_t
@@ -200,7 +202,7 @@ rf_header_set_channels(rf_header *h, const char *names)
 	int rc = 0;
 
 	/* Built aside, so that a bad list leaves the header as it was. */
-	if (!(t = rf_header_new()))
+	if (rf_header_create(&t) < 0)
 		return RF_ENOMEM;
 	while (*p) {
 		while (*p == ' ' || *p == ',' || *p == '\t')
@@ -230,7 +232,7 @@ rf_header_set_channels(rf_header *h, const char *names)
 		t->chan = NULL;
 		t->nchan = 0;
 	}
-	rf_header_free(t);
+	rf_header_destroy(t);
 	return rc;
 }
 

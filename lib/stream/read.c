@@ -116,7 +116,7 @@ rf_reader_close(rf_reader *r)
 		return;
 	if (r->map)
 		munmap(r->map, r->map_len);
-	rf_header_free(r->h);
+	rf_header_destroy(r->h);
 	free(r->name);
 	free(r->raw_channels);
 	free(r);
@@ -636,15 +636,15 @@ rf_reader_next_frame(rf_reader *r, const rf_header **hp)
 		return r->status;
 	if ((rc = skip_rest(r)) < 0)
 		return rc;
-	rf_header_free(r->h);
+	rf_header_destroy(r->h);
 	r->row = 0;
-	if (!(r->h = rf_header_new()))
+	if (rf_header_create(&r->h) < 0)
 		return fail(r, RF_ENOMEM, "out of memory");
 	do
 		c = getc(r->fp);
 	while (frame_gap(r, c));
 	if (c == EOF) {
-		rf_header_free(r->h);
+		rf_header_destroy(r->h);
 		r->h = NULL;
 		if (ferror(r->fp))
 			return fail_read(r);
@@ -675,7 +675,7 @@ rf_reader_next_frame(rf_reader *r, const rf_header **hp)
 	return 1;
 bad:
 	/* A frame that failed has no rows to read or skip. */
-	rf_header_free(r->h);
+	rf_header_destroy(r->h);
 	r->h = NULL;
 	return rc;
 }

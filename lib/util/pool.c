@@ -69,7 +69,7 @@ worker(void *arg)
 }
 
 int
-rf__pool_new(struct rf__pool **pp, int nthreads)
+rf__pool_create(struct rf__pool **pp, int nthreads)
 {
 	struct rf__pool *p;
 
@@ -149,7 +149,7 @@ rf__pool_run(struct rf__pool *p, size_t ntasks, rf__pool_fn *fn, void *arg)
 }
 
 void
-rf__pool_free(struct rf__pool *p)
+rf__pool_destroy(struct rf__pool *p)
 {
 	int i;
 

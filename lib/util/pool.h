@@ -16,11 +16,11 @@ typedef void rf__pool_fn(void *arg, size_t task, int thread);
 
 /* nthreads counting the caller's (at most RF__THREADS_MAX), started by
  * the first rf__pool_run; fewer start if the system refuses. */
-int rf__pool_new(struct rf__pool **p, int nthreads);
+int rf__pool_create(struct rf__pool **p, int nthreads);
 int rf__pool_threads(const struct rf__pool *p);
 /* Runs tasks 0..ntasks-1, each once, on whichever thread is free, the
  * caller's included; returns when all are done.  One batch at a time. */
 void rf__pool_run(struct rf__pool *p, size_t ntasks, rf__pool_fn *fn, void *arg);
-void rf__pool_free(struct rf__pool *p);
+void rf__pool_destroy(struct rf__pool *p);
 
 #endif

@@ -65,7 +65,7 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 					      "a texel that is not finite");
 				}
 	}
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 	close(fd);
 	return 0;
 }

@@ -95,16 +95,16 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		return 0;
 	}
 	while ((rc = rf_reader_next_frame(r, &h)) == 1) {
-		rf_header *d = rf_header_dup(h);
+		rf_header *d;
 
-		check(d != NULL, "header_dup");
+		check(rf_header_dup(&d, h) == 0, "header_dup");
 		/* The lookups must agree with the list. */
 		for (i = 0; i < rf_header_nchannels(h); i++)
 			check(rf_header_find_channel(h, rf_header_channel(h, i)) == (int)i,
 			      "find_channel");
 		(void)rf_header_get(h, "PROBE_CENTER");
 		round_trip(d);
-		rf_header_free(d);
+		rf_header_destroy(d);
 		bytes = rf_header_ncols(h) * rf_header_nchannels(h) * sizeof(float);
 		if (bytes > ROW_BYTES_CAP)
 			continue; /* the next frame skips it without a row buffer */

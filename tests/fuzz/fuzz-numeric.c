@@ -62,7 +62,7 @@ environment(void)
 
 	if (c)
 		return c;
-	check(rf_cubemap_new(&c, 8, 4) == 0, "cubemap_new");
+	check(rf_cubemap_create(&c, 8, 4) == 0, "cubemap_new");
 	for (k = 0; k < 4; k++) {
 		n = rf_cubemap_level_size(c, k);
 		for (f = 0; f < 6; f++)
@@ -130,7 +130,7 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		ncols = NCOLS_MAX;
 	check((gb = malloc(ncols * IN_FLOATS * sizeof(float))) != NULL, "malloc");
 	memcpy(gb, data, ncols * IN_FLOATS * sizeof(float));
-	check((in = rf_header_new()) != NULL, "header_new");
+	check(rf_header_create(&in) == 0, "header_create");
 	rf_header_set_size(in, ncols, 1);
 	for (c = 0; c < IN_FLOATS; c++)
 		check(rf_header_add_channel(in, gbuffer_channels[c]) >= 0, "add_channel");
@@ -152,8 +152,7 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		check(rf_stage_create(&st, p, values, &host, 1, err, sizeof(err)) == 0,
 		      "stage_create");
 		check(rf_stage_begin_frame(st, in, &proj, err, sizeof(err)) == 0, "begin_frame");
-		proj = rf_header_dup(proj);
-		check(proj != NULL, "header_dup");
+		check(rf_header_dup(&proj, proj) == 0, "header_dup");
 		check((projected = malloc(ncols * rf_header_nchannels(proj) * sizeof(float))) != NULL,
 		      "malloc");
 		/* Refused, with a message, or taken; then clamped, always taken. */
@@ -171,8 +170,8 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		row = projected;
 	} else {
 		/* No plugin: the input's P stands in for D, N for hit.dist. */
-		rf_header_free(in);
-		check((in = rf_header_new()) != NULL, "header_new");
+		rf_header_destroy(in);
+		check(rf_header_create(&in) == 0, "header_create");
 		rf_header_set_size(in, ncols, 1);
 		for (c = 0; c < IN_FLOATS; c++)
 			check(rf_header_add_channel(in, c < 3 ? direction_channels[c]
@@ -183,9 +182,9 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	{
 		rf_header *h = proj ? proj : in;
 		size_t n = rf_header_nchannels(h);
-		rf_header *sh = rf_header_new();
+		rf_header *sh;
 
-		check(sh != NULL, "header_new");
+		check(rf_header_create(&sh) == 0, "header_create");
 		rf_header_set_size(sh, ncols, 1);
 		for (c = 0; c < n; c++)
 			check(rf_header_add_channel(sh, strcmp(rf_header_channel(h, c), "roughness")
@@ -209,10 +208,10 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		}
 		free(a);
 		free(b);
-		rf_header_free(sh);
+		rf_header_destroy(sh);
 	}
-	rf_header_free(proj);
-	rf_header_free(in);
+	rf_header_destroy(proj);
+	rf_header_destroy(in);
 	free(projected);
 	free(gb);
 	return 0;

@@ -53,6 +53,6 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 				(void)rf_scene_trace(s, cam.position, dir, &hit);
 				(void)rf_scene_inside(s, cam.position);
 			}
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 	return 0;
 }

@@ -523,8 +523,7 @@ TEST(stage_runs_plugin)
 	host.abi_major = RF_PLUGIN_ABI_MAJOR;
 	host.abi_minor = RF_PLUGIN_ABI_MINOR;
 	ASSERT_EQ(rf_stage_create(&s, p, values, &host, 3, msg, sizeof(msg)), 0);
-	h = rf_header_new();
-	ASSERT(h != NULL);
+	ASSERT_EQ(rf_header_create(&h), 0);
 	ASSERT_EQ(rf_header_set_size(h, 3, 4), 0);
 	ASSERT_EQ(rf_header_set_channels(h, "extra N.X echo.count"), 0);
 	ASSERT_EQ(rf_header_set(h, "FRAME", "6"), 0);
@@ -563,7 +562,7 @@ TEST(stage_runs_plugin)
 			ASSERT_NEAR(px[9], 6, 0);                 /* echo.frame */
 		}
 	rf_stage_destroy(s);
-	rf_header_free(h);
+	rf_header_destroy(h);
 
 	/* create() fails: its two-line message arrives as one line */
 	ASSERT_EQ(rf_plugin_parse_params(p, "shape=fail", values, msg, sizeof(msg)), 0);

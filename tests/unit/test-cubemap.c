@@ -59,7 +59,7 @@ labelled(size_t n)
 	size_t i, j;
 	int f;
 
-	if (rf_cubemap_new(&c, n, 1) < 0)
+	if (rf_cubemap_create(&c, n, 1) < 0)
 		return NULL;
 	for (f = 0; f < 6; f++)
 		for (j = 0; j < n; j++)
@@ -123,7 +123,7 @@ TEST(orientation_matches_openexr)
 			}
 		}
 	}
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 }
 
 /* The lat-long axes: image centre +Z, right turns to -X, top looks up. */
@@ -196,7 +196,7 @@ smooth_cube(size_t n)
 	size_t i, j;
 	int f;
 
-	if (rf_cubemap_new(&c, n, 0) < 0)
+	if (rf_cubemap_create(&c, n, 0) < 0)
 		return NULL;
 	for (f = 0; f < 6; f++)
 		for (j = 0; j < n; j++)
@@ -260,7 +260,7 @@ TEST(seamless_across_all_edges)
 			}
 	ASSERT_EQ(edges, 12);
 	printf("# worst difference across an edge: %g\n", worst);
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 }
 
 /* The three faces meeting at a corner agree there too. */
@@ -288,7 +288,7 @@ TEST(seamless_at_corners)
 					ASSERT_NEAR(a[0], d[0], 2e-3);
 					ASSERT_NEAR(a[2], d[2], 2e-3);
 				}
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 }
 
 TEST(trilinear_between_levels)
@@ -311,7 +311,7 @@ TEST(trilinear_between_levels)
 	rf_cubemap_sample(c, d, NAN, lo);
 	rf_cubemap_sample_level(c, 0, d, a);
 	ASSERT_NEAR(lo[0], a[0], 1e-6);
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 }
 
 TEST(box_chain_keeps_the_mean)
@@ -329,21 +329,21 @@ TEST(box_chain_keeps_the_mean)
 		ASSERT_NEAR(mk[0], m0[0], 2e-2);
 		ASSERT_NEAR(mk[2], m0[2], 2e-2);
 	}
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 }
 
 TEST(bad_sizes_refused)
 {
 	rf_cubemap *c;
 
-	ASSERT(rf_cubemap_new(&c, 0, 1) < 0);
-	ASSERT(rf_cubemap_new(&c, 12, 4) < 0); /* 12 6 3: three levels at most */
-	ASSERT_EQ(rf_cubemap_new(&c, 12, 3), 0);
+	ASSERT(rf_cubemap_create(&c, 0, 1) < 0);
+	ASSERT(rf_cubemap_create(&c, 12, 4) < 0); /* 12 6 3: three levels at most */
+	ASSERT_EQ(rf_cubemap_create(&c, 12, 3), 0);
 	ASSERT_EQ(rf_cubemap_level_size(c, 2), 3);
-	rf_cubemap_free(c);
-	ASSERT_EQ(rf_cubemap_new(&c, 256, 0), 0);
+	rf_cubemap_destroy(c);
+	ASSERT_EQ(rf_cubemap_create(&c, 256, 0), 0);
 	ASSERT_EQ(rf_cubemap_levels(c), 9);
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 }
 
 TEST(mapping_values)

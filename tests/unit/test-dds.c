@@ -443,7 +443,7 @@ check_labelled(const struct format *fmt, uint32_t n, uint32_t mips, size_t want_
 						}
 				}
 	}
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 	return failures;
 }
 
@@ -492,7 +492,7 @@ TEST(mirroring_matches_both_tables)
 				ASSERT_NEAR(a[1], b[1], 1e-6);
 				ASSERT_NEAR(a[2], b[2], 1e-6);
 			}
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 }
 
 /* 12 texels with levels 12 6 3 1: reflect keeps 12 6 3 (the chain halves
@@ -580,7 +580,7 @@ TEST(half_floats)
 	ASSERT_NEAR(texel(c, 3, 1), 0.0, 0);
 	ASSERT_NEAR(texel(c, 3, 2), 1.0, 0);
 	ASSERT_NEAR(texel(c, 4, 0), 0.0, 0);
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 }
 
 TEST(r11g11b10_floats)
@@ -617,7 +617,7 @@ TEST(r11g11b10_floats)
 	ASSERT_NEAR(texel(c, 4, 2), 6.0, 0);
 	ASSERT_EQ(bad, 3);
 	ASSERT_NEAR(texel(c, 3, 0), 0.0, 0);
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 }
 
 TEST(rgb9e5_shared_exponent)
@@ -654,7 +654,7 @@ TEST(rgb9e5_shared_exponent)
 	ASSERT_NEAR(texel(c, 4, 0), 3.0, 0);
 	ASSERT_NEAR(texel(c, 4, 1), 5.0, 0);
 	ASSERT_NEAR(texel(c, 4, 2), 7.0, 0);
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 }
 
 /* 8-bit sRGB decodes to linear (the linear segment below 0.04045 too);
@@ -690,9 +690,9 @@ TEST(srgb_8bit)
 	/* spot values: sRGB 128 is 0.2158605 linear, 10 is 10/255/12.92 */
 	ASSERT_NEAR(texel(s, 0, 2), 0.2158605, 1e-6);
 	ASSERT_NEAR(texel(s, 0, 1), 10.0 / 255.0 / 12.92, 1e-8);
-	rf_cubemap_free(s);
-	rf_cubemap_free(u);
-	rf_cubemap_free(b);
+	rf_cubemap_destroy(s);
+	rf_cubemap_destroy(u);
+	rf_cubemap_destroy(b);
 }
 
 TEST(nonfinite_float_texels)
@@ -713,7 +713,7 @@ TEST(nonfinite_float_texels)
 	ASSERT_NEAR(texel(c, 1, 1), 0.0, 0);
 	ASSERT_NEAR(texel(c, 5, 2), 0.0, 0);
 	ASSERT_NEAR(texel(c, 5, 1), 2.0, 0);
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 }
 
 /* ---- refusals ---------------------------------------------------------------- */
@@ -734,7 +734,7 @@ refused(const struct fixture *fx, int want_rc, const char *want_fmt)
 		printf("# status %d (want %d), cube %p\n#  got:  %s\n#  want: %s\n", rc,
 		       want_rc, (void *)c, rc < 0 ? err : "(read)", want);
 		if (rc == 0)
-			rf_cubemap_free(c);
+			rf_cubemap_destroy(c);
 		return 1;
 	}
 	return 0;
@@ -785,7 +785,7 @@ TEST(refuses_non_cubes)
 	fx = labelled_cube(&formats[0], 4, 1);
 	fx.caps2 = 0;
 	ASSERT_EQ(read_fixture(&fx, &c, &info, NULL, path, err, sizeof(err)), 0);
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 	fx = labelled_cube(&formats[0], 4, 1);
 	fx.array = 2;
 	ASSERT_EQ(refused(&fx, RF_EFORMAT, "'%s': an array of 2 cubes; reflect reads one "

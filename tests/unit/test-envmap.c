@@ -40,7 +40,7 @@ check_layout(enum rf_layout layout, const int slots[6][3])
 	char err[256];
 	int f, failures = 0;
 
-	if (rf_cubemap_new(&c, n, 1) < 0 ||
+	if (rf_cubemap_create(&c, n, 1) < 0 ||
 	    rf_envmap_from_pixels(c, px, w, h, 3, layout, NULL, &bad, err, sizeof(err)) < 0) {
 		printf("# %s\n", err);
 		return 1;
@@ -64,7 +64,7 @@ check_layout(enum rf_layout layout, const int slots[6][3])
 		failures++;
 	free(back);
 	free(px);
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 	return failures;
 }
 
@@ -112,7 +112,7 @@ TEST(cross_slots_touch_on_the_cube)
 	size_t x, y;
 	int f, ch;
 
-	ASSERT_EQ(rf_cubemap_new(&c, n, 1), 0);
+	ASSERT_EQ(rf_cubemap_create(&c, n, 1), 0);
 	/* Fill the cube with each texel's own unit direction. */
 	for (f = 0; f < 6; f++)
 		for (y = 0; y < n; y++)
@@ -149,7 +149,7 @@ TEST(cross_slots_touch_on_the_cube)
 			}
 	ASSERT(pairs > 6 * 2 * n * (n - 1));
 	free(dir_img);
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 }
 
 /* A lat-long holding each pixel's own direction gives every cube texel
@@ -167,7 +167,7 @@ TEST(latlong_axes_match_cube)
 	for (j = 0; j < h; j++)
 		for (i = 0; i < w; i++)
 			rf_latlong_direction((i + 0.5f) / w, (j + 0.5f) / h, px + (j * w + i) * 3);
-	ASSERT_EQ(rf_cubemap_new(&c, n, 1), 0);
+	ASSERT_EQ(rf_cubemap_create(&c, n, 1), 0);
 	ASSERT_EQ(rf_envmap_from_pixels(c, px, w, h, 3, RF_LAYOUT_LATLONG, NULL, &bad, err,
 	                                sizeof(err)), 0);
 	for (f = 0; f < 6; f++)
@@ -187,7 +187,7 @@ TEST(latlong_axes_match_cube)
 	printf("# worst cosine between a texel and its lat-long reading: %.6f\n", worst);
 	ASSERT(worst > cos(1.0 * M_PI / 180.0));
 	free(px);
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 }
 
 /* Area filtering: a lat-long of fine stripes near a pole averages to the
@@ -206,7 +206,7 @@ TEST(latlong_filtered_at_poles)
 
 			px[(j * w + i) * 3] = px[(j * w + i) * 3 + 1] = px[(j * w + i) * 3 + 2] = v;
 		}
-	ASSERT_EQ(rf_cubemap_new(&c, n, 1), 0);
+	ASSERT_EQ(rf_cubemap_create(&c, n, 1), 0);
 	ASSERT_EQ(rf_envmap_from_pixels(c, px, w, h, 3, RF_LAYOUT_LATLONG, NULL, &bad, err,
 	                                sizeof(err)), 0);
 	for (j = 0; j < n; j++)
@@ -215,7 +215,7 @@ TEST(latlong_filtered_at_poles)
 			ASSERT_NEAR(rf_cubemap_texel_const(c, 0, RF_FACE_POS_Z, i, j)[0], 1.0, 0.08);
 		}
 	free(px);
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 }
 
 TEST(layout_detection_and_checks)
@@ -266,7 +266,7 @@ TEST(decoding)
 	}
 	px[3 * 4 + 1] = NAN;
 	px[4 * 4 + 2] = INFINITY;
-	ASSERT_EQ(rf_cubemap_new(&c, 1, 1), 0);
+	ASSERT_EQ(rf_cubemap_create(&c, 1, 1), 0);
 	ASSERT_EQ(rf_envmap_from_pixels(c, px, 1, 6, 4, RF_LAYOUT_CUBE, &dc, &bad, err,
 	                                sizeof(err)), 0);
 	ASSERT_EQ(bad, 2);
@@ -277,7 +277,7 @@ TEST(decoding)
 	ASSERT_NEAR(t[2], 0.0, 1e-7);
 	ASSERT_NEAR(rf_cubemap_texel_const(c, 0, RF_FACE_NEG_Y, 0, 0)[1], 0.0, 0.0);
 	ASSERT_NEAR(rf_cubemap_texel_const(c, 0, RF_FACE_POS_Z, 0, 0)[2], 0.0, 0.0);
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 }
 
 static rf_cubemap *
@@ -287,12 +287,12 @@ small_chain(struct rf_chain_info *info)
 	rf_cubemap *src, *out;
 	char err[256];
 
-	rf_cubemap_new(&src, 16, 1);
+	rf_cubemap_create(&src, 16, 1);
 	rf_default_environment_cube(src);
-	rf_cubemap_new(&out, 16, 4);
+	rf_cubemap_create(&out, 16, 4);
 	rf_prefilter_defaults(&o);
 	rf_prefilter(src, out, &o, err, sizeof(err));
-	rf_cubemap_free(src);
+	rf_cubemap_destroy(src);
 	memset(info, 0, sizeof(*info));
 	info->prefiltered = 1;
 	info->mapping = RF_MAPPING_EXACT;
@@ -347,8 +347,8 @@ TEST(chain_stream_roundtrip)
 	ASSERT(max_difference(c, back) == 0.0);
 	rf_reader_close(r);
 	fclose(fp);
-	rf_cubemap_free(back);
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(back);
+	rf_cubemap_destroy(c);
 }
 
 TEST(chain_exr_roundtrip)
@@ -373,8 +373,8 @@ TEST(chain_exr_roundtrip)
 	/* half floats: 3 significant digits on values up to ~18 */
 	ASSERT(max_difference(c, back) < 0.02);
 	unlink(path);
-	rf_cubemap_free(back);
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(back);
+	rf_cubemap_destroy(c);
 }
 
 /* After the edge fixup, the two texels on either side of every edge (and
@@ -387,8 +387,8 @@ TEST(edge_fixup_makes_edges_equal)
 	size_t i, j;
 	int f, a, b, ch;
 
-	ASSERT_EQ(rf_cubemap_new(&c, n, 1), 0);
-	ASSERT_EQ(rf_cubemap_new(&orig, n, 1), 0);
+	ASSERT_EQ(rf_cubemap_create(&c, n, 1), 0);
+	ASSERT_EQ(rf_cubemap_create(&orig, n, 1), 0);
 	rf_default_environment_cube(c);
 	rf_default_environment_cube(orig);
 	rf_cubemap_average_edges(c, 0);
@@ -425,8 +425,8 @@ TEST(edge_fixup_makes_edges_equal)
 				for (b = 0; b < 3; b++)
 					ASSERT(rf_cubemap_texel_const(c, 0, (enum rf_face)f, i, j)[b] ==
 					       rf_cubemap_texel_const(orig, 0, (enum rf_face)f, i, j)[b]);
-	rf_cubemap_free(c);
-	rf_cubemap_free(orig);
+	rf_cubemap_destroy(c);
+	rf_cubemap_destroy(orig);
 }
 
 /* The embedded room renders to the same bytes on 1 and 3 threads, and a
@@ -438,8 +438,8 @@ TEST(default_room_threads)
 	int f;
 	const float *t;
 
-	ASSERT_EQ(rf_cubemap_new(&a, n, 1), 0);
-	ASSERT_EQ(rf_cubemap_new(&b, n, 1), 0);
+	ASSERT_EQ(rf_cubemap_create(&a, n, 1), 0);
+	ASSERT_EQ(rf_cubemap_create(&b, n, 1), 0);
 	rf_default_environment_cube(a);
 	rf_default_environment_cube_threads(b, 3);
 	for (f = 0; f < 6; f++)
@@ -468,8 +468,8 @@ TEST(default_room_threads)
 		for (k = 0; k < 3; k++)
 			ASSERT_NEAR(t[k], want[k], 1e-5 * want[k] + 1e-6);
 	}
-	rf_cubemap_free(a);
-	rf_cubemap_free(b);
+	rf_cubemap_destroy(a);
+	rf_cubemap_destroy(b);
 }
 
 /* The loader is a library call: every failure is a status and a message
@@ -501,7 +501,7 @@ TEST(load_reports_instead_of_exiting)
 	ASSERT_EQ(back_info.prefiltered, 1);
 	ASSERT_EQ(back_info.mapping, RF_MAPPING_EXACT);
 	ASSERT(max_difference(c, back) == 0.0);
-	rf_cubemap_free(back);
+	rf_cubemap_destroy(back);
 	unlink(path);
 
 	/* Gone: RF_ENOTFOUND, the path and the reason. */
@@ -531,7 +531,7 @@ TEST(load_reports_instead_of_exiting)
 	ASSERT_EQ(rf_cubemap_size(back), 8);
 	ASSERT_EQ(rf_cubemap_levels(back), 1);
 	ASSERT_EQ(back_info.prefiltered, 0);
-	rf_cubemap_free(back);
+	rf_cubemap_destroy(back);
 
 	/* Chain lengths: 256 gives Unity's 7 levels, 6 cannot halve twice. */
 	ASSERT_EQ(rf_chain_levels(256, 0, 1, &levels, err, sizeof(err)), 0);
@@ -540,7 +540,7 @@ TEST(load_reports_instead_of_exiting)
 	ASSERT_EQ(levels, 3);
 	ASSERT_EQ(rf_chain_levels(6, 3, 1, &levels, err, sizeof(err)), RF_EINVAL);
 	ASSERT(strstr(err, "a 6-texel cube has no 3 levels (it halves to 3)"));
-	rf_cubemap_free(c);
+	rf_cubemap_destroy(c);
 }
 
 int

@@ -7,11 +7,11 @@ TEST(table_follows_the_settings)
 	rf_plugin_host *h;
 	const struct rf_host *t;
 	struct rf_probe probe = { { 1, 2, 3 }, { -1, -2, -3 }, { 4, 5, 6 }, 0 };
-	rf_header *frame = rf_header_new();
+	rf_header *frame;
 	rf_cubemap *c;
 	float dir[3] = { 0.3f, -0.2f, 0.9f }, got[3], want[3];
 
-	ASSERT(frame);
+	ASSERT_EQ(rf_header_create(&frame), 0);
 	ASSERT_EQ(rf_header_set(frame, "SCENE", "room"), 0);
 	ASSERT_EQ(rf_plugin_host_create(&h), 0);
 	t = rf_plugin_host_table(h);
@@ -37,7 +37,7 @@ TEST(table_follows_the_settings)
 	ASSERT(t->probe == NULL);
 
 	/* Sampling is rf_cubemap_sample, the mapping rf_roughness_to_lod. */
-	ASSERT_EQ(rf_cubemap_new(&c, 8, 4), 0);
+	ASSERT_EQ(rf_cubemap_create(&c, 8, 4), 0);
 	rf_default_environment_cube(c);
 	rf_cubemap_box_chain(c, 1);
 	rf_plugin_host_set_environment(h, c, RF_MAPPING_EXACT, 3);
@@ -55,8 +55,8 @@ TEST(table_follows_the_settings)
 	ASSERT(t->sample == NULL && t->lod_steps == 0.0f);
 
 	rf_plugin_host_destroy(h);
-	rf_cubemap_free(c);
-	rf_header_free(frame);
+	rf_cubemap_destroy(c);
+	rf_header_destroy(frame);
 }
 
 int

@@ -32,9 +32,9 @@ write_image(const char *path, size_t w, size_t h, size_t nch,
 	if ((rc = rf_image_writer_open(&wr, path, w, h, nch, names, type, err,
 	                               errlen)) < 0)
 		return rc;
-	if ((rc = rf_image_writer_write_rows(wr, 0, 1, px, err, errlen)) < 0 ||
-	    (h > 1 && (rc = rf_image_writer_write_rows(wr, 1, h - 1, px + w * nch,
-	                                               err, errlen)) < 0)) {
+	if ((rc = rf_image_writer_write_rows(wr, 0, 1, px)) < 0 ||
+	    (h > 1 && (rc = rf_image_writer_write_rows(wr, 1, h - 1, px + w * nch)) < 0)) {
+		snprintf(err, errlen, "%s", rf_image_writer_error(wr));
 		rf_image_writer_close(wr, NULL, 0);
 		return rc;
 	}
@@ -90,7 +90,7 @@ TEST(exr_float_roundtrip)
 				         (double)rf_image_pixels(img)[i * 4 + (size_t)k],
 				         (double)exr_px[i * 4 + c]);
 	}
-	rf_image_free(img);
+	rf_image_destroy(img);
 }
 
 TEST(exr_half_roundtrip)
@@ -123,7 +123,7 @@ TEST(exr_half_roundtrip)
 	k = channel_index(img, "spec.R");
 	ASSERT(k >= 0);
 	ASSERT(rf_image_pixels(img)[k] == 0.0999755859375f);
-	rf_image_free(img);
+	rf_image_destroy(img);
 }
 
 /* round(clamp(v) * 255) / 255 */
@@ -164,7 +164,7 @@ TEST(png_8bit_roundtrip)
 	ASSERT_NEAR(rf_image_pixels(img)[2], 51 / 255.0, 1e-6);
 	ASSERT_NEAR(rf_image_pixels(img)[3], 64 / 255.0, 1e-6);
 	ASSERT_NEAR(rf_image_pixels(img)[4], 191 / 255.0, 1e-6);
-	rf_image_free(img);
+	rf_image_destroy(img);
 }
 
 TEST(png_alpha_is_kept_straight)
@@ -184,7 +184,7 @@ TEST(png_alpha_is_kept_straight)
 	/* Neither divided by alpha when written nor multiplied when read. */
 	for (i = 0; i < 8; i++)
 		ASSERT_NEAR(rf_image_pixels(img)[i], quantise(px[i], 255), 1e-6);
-	rf_image_free(img);
+	rf_image_destroy(img);
 }
 
 TEST(png_16bit_roundtrip)
@@ -205,7 +205,7 @@ TEST(png_16bit_roundtrip)
 		ASSERT_NEAR(rf_image_pixels(img)[i], quantise(px[i], 65535), 1e-7);
 	/* 1/3 * 65535 = 21845 exactly. */
 	ASSERT_NEAR(rf_image_pixels(img)[2], 21845 / 65535.0, 1e-7);
-	rf_image_free(img);
+	rf_image_destroy(img);
 }
 
 /* Rows in blocks of 1, 15, 16 and 5 (and the rest), across the OpenEXR
@@ -226,8 +226,8 @@ write_in_odd_blocks(const char *path, size_t w, size_t h, size_t nch,
 	for (; y < h; y += n, k++) {
 		n = k < 4 ? blocks[k] : h - y;
 		n = n < h - y ? n : h - y;
-		if ((rc = rf_image_writer_write_rows(wr, y, n, px + y * w * nch, err,
-		                                     errlen)) < 0) {
+		if ((rc = rf_image_writer_write_rows(wr, y, n, px + y * w * nch)) < 0) {
+			snprintf(err, errlen, "%s", rf_image_writer_error(wr));
 			rf_image_writer_close(wr, NULL, 0);
 			return rc;
 		}
@@ -267,14 +267,14 @@ TEST(exr_odd_blocks_and_default_names)
 					         (double)rf_image_pixels(img)[i * N + (size_t)k],
 					         (double)px[i * N + c]);
 		}
-		rf_image_free(img);
+		rf_image_destroy(img);
 	}
 	/* One channel without a name is Y. */
 	ASSERT_EQ(write_image(path, 2, 1, 1, NULL, RF_PIXEL_FLOAT, px, err,
 	                      sizeof(err)), 0);
 	ASSERT_EQ(rf_image_read(&img, path, err, sizeof(err)), 0);
 	ASSERT_STR_EQ(rf_image_channel(img, 0), "Y");
-	rf_image_free(img);
+	rf_image_destroy(img);
 }
 
 TEST(png_odd_blocks_grey_alpha)
@@ -295,7 +295,7 @@ TEST(png_odd_blocks_grey_alpha)
 	ASSERT_EQ(rf_image_nchannels(img), N);
 	for (i = 0; i < W * H * N; i++)
 		ASSERT_NEAR(rf_image_pixels(img)[i] * 255.0f, (double)(i * 7 % 256), 1e-4);
-	rf_image_free(img);
+	rf_image_destroy(img);
 }
 
 TEST(writer_errors_png_exr)
@@ -308,9 +308,9 @@ TEST(writer_errors_png_exr)
 	/* PNG: rows in order, all of them; the writer is freed all the same. */
 	ASSERT_EQ(rf_image_writer_open(&wr, tmp_path("order.png"), 1, 2, 3, NULL,
 	                               RF_PIXEL_UINT16, err, sizeof(err)), 0);
-	ASSERT_EQ(rf_image_writer_write_rows(wr, 0, 3, px, err, sizeof(err)), RF_EINVAL);
-	ASSERT(strstr(err, "rows out of order") != NULL);
-	ASSERT_EQ(rf_image_writer_write_rows(wr, 0, 1, px, err, sizeof(err)), 0);
+	ASSERT_EQ(rf_image_writer_write_rows(wr, 0, 3, px), RF_EINVAL);
+	ASSERT(strstr(rf_image_writer_error(wr), "rows out of order") != NULL);
+	ASSERT_EQ(rf_image_writer_write_rows(wr, 0, 1, px), 0);
 	ASSERT_EQ(rf_image_writer_close(wr, err, sizeof(err)), RF_EINVAL);
 	ASSERT(strstr(err, "'") && strstr(err, "order.png': image is incomplete"));
 	/* OpenEXR holds each name once. */
@@ -341,9 +341,9 @@ TEST(writer_errors)
 	/* Rows must come in order, and all of them. */
 	ASSERT_EQ(rf_image_writer_open(&wr, tmp_path("order.exr"), 1, 2, 2, NULL,
 	                               RF_PIXEL_FLOAT, err, sizeof(err)), 0);
-	ASSERT_EQ(rf_image_writer_write_rows(wr, 1, 1, px, err, sizeof(err)), RF_EINVAL);
-	ASSERT(strstr(err, "rows out of order") != NULL);
-	ASSERT_EQ(rf_image_writer_write_rows(wr, 0, 1, px, err, sizeof(err)), 0);
+	ASSERT_EQ(rf_image_writer_write_rows(wr, 1, 1, px), RF_EINVAL);
+	ASSERT(strstr(rf_image_writer_error(wr), "rows out of order") != NULL);
+	ASSERT_EQ(rf_image_writer_write_rows(wr, 0, 1, px), 0);
 	ASSERT_EQ(rf_image_writer_close(wr, err, sizeof(err)), RF_EINVAL);
 	ASSERT(strstr(err, "image is incomplete") != NULL);
 	ASSERT(strstr(err, "order.exr") != NULL);

@@ -42,7 +42,7 @@ TEST(sphere_head_on)
 	ASSERT(h.Ng[2] == 1.0);
 	ASSERT_NEAR(h.roughness, 0.3, 1e-7);
 	ASSERT(h.mask == 1.0f && h.metallic == 1.0f && h.albedo[1] == 1.0f);
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 }
 
 TEST(sphere_offset_ray)
@@ -59,7 +59,7 @@ TEST(sphere_offset_ray)
 	ASSERT_NEAR(h.P[2], 0.8, 1e-12);
 	ASSERT_NEAR(h.N[1], 0.6, 1e-12);
 	ASSERT_NEAR(h.N[2], 0.8, 1e-12);
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 }
 
 TEST(inside_sphere_faces_the_eye)
@@ -76,7 +76,7 @@ TEST(inside_sphere_faces_the_eye)
 	ASSERT_EQ(rf_scene_trace(s, o, d, &h), 1);
 	ASSERT(h.t == 2.0);
 	ASSERT(h.N[0] == -1.0);
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 }
 
 TEST(room_walls)
@@ -111,7 +111,7 @@ TEST(room_walls)
 		ASSERT(h.metallic == 0.0f);
 		ASSERT_STR_EQ(rf_scene_object_kind(s, walls[i].objid), "wall");
 	}
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 }
 
 TEST(room_from_outside_and_miss)
@@ -136,7 +136,7 @@ TEST(room_from_outside_and_miss)
 		ASSERT(h.N[k] == -away[k]);
 	}
 	ASSERT(h.P[2] > 1e29);
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 }
 
 TEST(box_outside_and_inside)
@@ -155,7 +155,7 @@ TEST(box_outside_and_inside)
 	ASSERT_EQ(rf_scene_inside(s, c), 1);
 	ASSERT_EQ(rf_scene_trace(s, c, up, &h), 1);
 	ASSERT(h.t == 1.0 && h.P[1] == 2.0 && h.N[1] == -1.0);
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 }
 
 TEST(rect_axis_and_general)
@@ -180,7 +180,7 @@ TEST(rect_axis_and_general)
 	ASSERT_EQ(rf_scene_trace(s, o3, back, &h), RF_WALL_ZMIN); /* beside it */
 	ASSERT_EQ(rf_scene_trace(s, below, up, &h), 1);            /* from below */
 	ASSERT(h.N[1] == -1.0);
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 }
 
 TEST(nearest_object_wins)
@@ -194,7 +194,7 @@ TEST(nearest_object_wins)
 	ASSERT(s);
 	ASSERT_EQ(rf_scene_trace(s, o, d, &h), 2);
 	ASSERT(h.t == 4.0);
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 }
 
 static const char *
@@ -213,9 +213,16 @@ write_flat_map(float r, float g)
 		px[3 * i + 2] = 1.0f;
 	}
 	if (rf_image_writer_open(&w, path, 4, 4, 3, names, RF_PIXEL_FLOAT, err,
-	                         sizeof(err)) < 0 ||
-	    rf_image_writer_write_rows(w, 0, 4, px, err, sizeof(err)) < 0 ||
-	    rf_image_writer_close(w, err, sizeof(err)) < 0) {
+	                         sizeof(err)) < 0) {
+		printf("# %s\n", err);
+		return NULL;
+	}
+	if (rf_image_writer_write_rows(w, 0, 4, px) < 0) {
+		printf("# %s\n", rf_image_writer_error(w));
+		rf_image_writer_close(w, NULL, 0);
+		return NULL;
+	}
+	if (rf_image_writer_close(w, err, sizeof(err)) < 0) {
 		printf("# %s\n", err);
 		return NULL;
 	}
@@ -242,7 +249,7 @@ TEST(flat_normal_map_changes_nothing)
 	ASSERT(h.N[0] == h.Ng[0] && h.N[1] == h.Ng[1] && h.N[2] == h.Ng[2]);
 	ASSERT_EQ(rf_scene_trace(s, o2, down, &h), 2);
 	ASSERT(h.N[0] == 0.0 && h.N[1] == 1.0 && h.N[2] == 0.0);
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 	remove(path);
 }
 
@@ -267,7 +274,7 @@ TEST(tilted_normal_map_follows_the_tangent_frame)
 	ASSERT_NEAR(h.N[1], sqrt(0.75), 1e-12);
 	ASSERT_NEAR(h.N[2], 0.0, 1e-12);
 	ASSERT(h.Ng[1] == 1.0);
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 	remove(path);
 }
 
@@ -309,7 +316,7 @@ TEST(procedural_maps_perturb_and_stay_unit)
 			ASSERT_EQ(rf_scene_trace(s, o, dz, &h), 2);
 			ASSERT(is_unit(h.N, 1e-12));
 		}
-		rf_scene_free(s);
+		rf_scene_destroy(s);
 	}
 }
 
@@ -323,7 +330,7 @@ TEST(strength_zero_is_flat)
 	ASSERT(s);
 	ASSERT_EQ(rf_scene_trace(s, o, d, &h), 1);
 	ASSERT(h.N[0] == 0.0 && h.N[1] == 1.0 && h.N[2] == 0.0);
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 }
 
 TEST(camera_fov_edges)
@@ -447,7 +454,7 @@ TEST(gbuffer_bounds_never_drop_a_hit)
 	near.target[1] = 0.3;
 	near.target[2] = -3.0;
 	ASSERT_EQ(gbuffer_matches_trace(s, &near, 64, 48, 1), 0);
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 }
 
 TEST(gbuffer_same_bytes_any_threads)
@@ -469,7 +476,7 @@ TEST(gbuffer_same_bytes_any_threads)
 	ASSERT_EQ(rf_gbuffer_render(g3, b, 30, 2), RF_EINVAL);
 	rf_gbuffer_destroy(g1);
 	rf_gbuffer_destroy(g3);
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 	free(a);
 	free(b);
 }
@@ -493,7 +500,7 @@ TEST(gbuffer_channels)
 	ASSERT(strstr(err, "'Q'"));
 	ASSERT_EQ(rf_gbuffer_create(&g, s, 4, 4, "P P.X", 1, err, sizeof(err)),
 	          RF_ECHANNEL);
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 }
 
 TEST(default_scene)
@@ -520,7 +527,7 @@ TEST(default_scene)
 	ASSERT_STR_EQ(rf_scene_object_kind(s, 1), "rect");
 	ASSERT_STR_EQ(rf_scene_object_kind(s, 2), "sphere");
 	ASSERT_STR_EQ(rf_scene_object_kind(s, 9), "box");
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 }
 
 TEST(parse_errors_name_the_place)
@@ -586,7 +593,7 @@ TEST(format_details)
 	ASSERT(c.position[0] == 0.5 && c.position[1] == 1.6 && c.position[2] == 1.5);
 	ASSERT(c.target[0] == 0.5 && c.target[1] == 1.6 && c.target[2] == 0.5);
 	ASSERT(c.up[1] == 1 && c.fov == 45);
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 }
 
 TEST(relative_paths_follow_the_scene_file)
@@ -599,7 +606,7 @@ TEST(relative_paths_follow_the_scene_file)
 	                         sizeof(err)), 0);
 	ASSERT_STR_EQ(rf_scene_probe(s, 0)->env, "scenes/room.exr");
 	ASSERT_STR_EQ(rf_scene_name(s), "a");
-	rf_scene_free(s);
+	rf_scene_destroy(s);
 }
 
 int

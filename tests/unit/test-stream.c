@@ -8,9 +8,9 @@
 static rf_header *
 make_header(size_t w, size_t h, const char *channels)
 {
-	rf_header *hd = rf_header_new();
+	rf_header *hd;
 
-	if (!hd || rf_header_set_size(hd, w, h) < 0 ||
+	if (rf_header_create(&hd) < 0 || rf_header_set_size(hd, w, h) < 0 ||
 	    rf_header_set_channels(hd, channels) < 0)
 		return NULL;
 	return hd;
@@ -40,7 +40,7 @@ write_frames(size_t w, size_t h, const char *channels, size_t nframes,
 		rf_writer_end_frame(wr);
 	}
 	rf_writer_close(wr);
-	rf_header_free(hd);
+	rf_header_destroy(hd);
 	free(buf);
 	rewind(fp);
 	return fp;
@@ -262,14 +262,13 @@ TEST(header_keys)
 	ASSERT(rf_header_add_channel(h, "has space") < 0);
 	ASSERT(rf_header_add_channel(h, "x=y") < 0);
 	ASSERT_EQ(rf_header_add_channel(h, "b"), 1);
-	d = rf_header_dup(h);
-	ASSERT(d);
+	ASSERT_EQ(rf_header_dup(&d, h), 0);
 	ASSERT_STR_EQ(rf_header_get(d, "KEY"), "2");
 	ASSERT_STR_EQ(rf_header_channel(d, 1), "b");
 	ASSERT_EQ(rf_header_unset(d, "KEY"), 0);
 	ASSERT(rf_header_get(d, "KEY") == NULL);
-	rf_header_free(d);
-	rf_header_free(h);
+	rf_header_destroy(d);
+	rf_header_destroy(h);
 }
 
 TEST(command_line_quoting)
@@ -281,17 +280,18 @@ TEST(command_line_quoting)
 	ASSERT_EQ(rf_header_add_command(h, 5, argv), 0);
 	ASSERT_STR_EQ(rf_header_line(h, 0),
 	              "reflect-shade -m approx:clamp=0 'it'\\''s here' a?b");
-	rf_header_free(h);
+	rf_header_destroy(h);
 }
 
 TEST(size_overflow_refused)
 {
-	rf_header *h = rf_header_new();
+	rf_header *h;
 
+	ASSERT_EQ(rf_header_create(&h), 0);
 	ASSERT(rf_header_set_size(h, SIZE_MAX / 2, 3) < 0);
 	ASSERT(rf_header_set_size(h, 0, 3) < 0);
 	ASSERT_EQ(rf_header_set_size(h, 3, 3), 0);
-	rf_header_free(h);
+	rf_header_destroy(h);
 }
 
 TEST(block_rows)
@@ -473,12 +473,13 @@ TEST(ascii_errors_name_the_place)
 TEST(writer_refuses_long_channels_line)
 {
 	struct rf_writer_options opt = { RF_FORMAT_FLOAT, 0 };
-	rf_header *h = rf_header_new();
+	rf_header *h;
 	FILE *fp = tmpfile();
 	rf_writer *w;
 	char name[32];
 	int i;
 
+	ASSERT_EQ(rf_header_create(&h), 0);
 	ASSERT_EQ(rf_header_set_size(h, 1, 1), 0);
 	for (i = 0; i < 200; i++) {
 		snprintf(name, sizeof(name), "channel_%03d", i);
@@ -496,7 +497,7 @@ TEST(writer_refuses_long_channels_line)
 	ASSERT_EQ(rf_writer_open(&w, fp, "out", &opt), 0);
 	ASSERT_EQ(rf_writer_begin_frame(w, h), 0);
 	rf_writer_close(w);
-	rf_header_free(h);
+	rf_header_destroy(h);
 	fclose(fp);
 }
 
@@ -540,7 +541,7 @@ TEST(every_frame_aligned)
 	}
 	ASSERT_EQ(rf_reader_next_frame(r, &rh), 0);
 	rf_reader_close(r);
-	rf_header_free(h);
+	rf_header_destroy(h);
 	fclose(fp);
 }
 
@@ -556,7 +557,7 @@ TEST(set_channels_keeps_the_old_list_on_error)
 	ASSERT_EQ(rf_header_set_channels(h, "x,y z"), 0);
 	ASSERT_EQ(rf_header_nchannels(h), 3);
 	ASSERT_STR_EQ(rf_header_channel(h, 2), "z");
-	rf_header_free(h);
+	rf_header_destroy(h);
 }
 
 /* A command line too long for one header line ends in " ..." and no word
@@ -611,7 +612,7 @@ TEST(command_line_too_long)
 		ASSERT_EQ(strlen(line), RF_HEADER_LINE_MAX);
 		ASSERT_STR_EQ(line + RF_HEADER_LINE_MAX - 6, " a ...");
 	}
-	rf_header_free(h);
+	rf_header_destroy(h);
 	h = make_header(1, 1, "a");
 	/* One argument longer than a line: never cut, " ..." instead. */
 	memset(huge, 'y', sizeof(huge) - 1);
@@ -619,7 +620,7 @@ TEST(command_line_too_long)
 	argv[2] = "z";
 	ASSERT_EQ(rf_header_add_command(h, 3, argv), 0);
 	ASSERT_STR_EQ(rf_header_line(h, 0), "reflect-tool ...");
-	rf_header_free(h);
+	rf_header_destroy(h);
 }
 
 /* A message never holds a control character, whatever the input held. */
