@@ -107,6 +107,15 @@ test_expect_success 'a MIP-mapped EXR cube round-trips and is recognised' '
 	test_cmp_numbers d0 a0 0.02
 '
 
+test_expect_success 'a MIP-mapped EXR chain is the same bytes run after run' '
+	reflect-prefilter --size=16 -o first.exr &&
+	sleep 1 &&
+	reflect-prefilter --size=16 -o second.exr &&
+	cmp first.exr second.exr &&
+	SOURCE_DATE_EPOCH=86400 reflect-prefilter --size=16 -o dated.exr &&
+	! cmp -s first.exr dated.exr
+'
+
 test_expect_success 'a chain as one file per level (--prefiltered, %d numbers levels)' '
 	mkdir levels && (
 		cd levels &&
