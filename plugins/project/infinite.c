@@ -3,7 +3,7 @@
 
 #include "reflect/plugin.h"
 
-#include "reflection.h"
+#include "projection.h"
 
 static const char *const inputs[] = {
 	"N.X", "N.Y", "N.Z", "V.X", "V.Y", "V.Z", NULL

@@ -1,7 +1,8 @@
-/* Geometry shared by the projection modes (header-only: each plugin is
- * one self-contained shared object). */
-#ifndef REFLECT_PLUGINS_REFLECTION_H
-#define REFLECT_PLUGINS_REFLECTION_H
+/* The geometry of the projection modes: the reflection vector, and the
+ * exit of a ray from the probe box (box projection).  Header-only: each
+ * plugin is one self-contained shared object. */
+#ifndef REFLECT_PLUGINS_PROJECTION_H
+#define REFLECT_PLUGINS_PROJECTION_H
 
 #include <math.h>
 #include <stdio.h>
