@@ -90,83 +90,47 @@ progress(void *arg, double done, double total)
 		fputc('\n', stderr);
 }
 
-/* A raw environment (or a chain of plain box-filtered levels) becomes a
- * GGX chain with the options' mapping and steps. */
-static rf_cubemap *
-prefilter(const struct shade_opts *o, const char *name, rf_cubemap *src,
-          struct environment *e)
-{
-	struct rf_prefilter_options pf;
-	size_t size = rf_cubemap_size(src), levels = envmap_chain_levels(size, 0, 1);
-	char err[1024], what[4200] = "";
-	rf_cubemap *out;
-	int rc;
-
-	if (strcmp(name, "default"))
-		snprintf(what, sizeof(what), " '%s'", name);
-	if (levels < 2)
-		die("the environment%s is %zu texels a face: too small to prefilter "
-		    "into levels", what, size);
-	rf_prefilter_defaults(&pf);
-	pf.mapping = e->mapping;
-	pf.steps = o->steps > 0.0f ? o->steps : (float)(levels - 1);
-	if (o->samples)
-		pf.samples = o->samples;
-	pf.nthreads = o->nthreads;
-	if (isatty(STDERR_FILENO))
-		pf.progress = progress;
-	/* Worth a line: it is the slow part of a short pipeline. */
-	fprintf(stderr, "%s: prefiltering the environment%s (%zux%zu per face, %zu "
-	        "levels)\n", argv0, what, size, size, levels);
-	out = envmap_cube_new(size, levels);
-	if ((rc = rf_prefilter(src, out, &pf, err, sizeof(err))) < 0)
-		die_status(rc, err);
-	e->steps = pf.steps;
-	return out;
-}
-
 static void
 load_environment(const struct shade_opts *o, const char *name, struct environment *e)
 {
 	struct envmap_opts eo = o->env;
+	struct rf_shade_env_options so = { 0 };
 	struct rf_chain_info info;
+	char err[1024];
 	rf_cubemap *c;
-	size_t levels;
+	int rc;
 
 	rf_cubemap_destroy(e->cube);
+	e->cube = NULL;
 	free(e->name);
 	e->name = estrdup(name);
 	eo.path = name;
 	eo.load.from_header = !o->env.path;
 	c = envmap_load(&eo, &info);
-	levels = rf_cubemap_levels(c);
-	e->mapping = o->mapping_set ? o->mapping : RF_MAPPING_DEFAULT;
 	if (!info.prefiltered) {
-		if (levels > 1 && o->verbose)
+		size_t size = rf_cubemap_size(c), levels;
+		char what[4200] = "";
+
+		if (strcmp(name, "default"))
+			snprintf(what, sizeof(what), " '%s'", name);
+		if (rf_cubemap_levels(c) > 1 && o->verbose)
 			warn("'%s' has box-filtered levels, not GGX ones: prefiltering its "
 			     "level 0 (--prefiltered takes them as they are)", name);
-		e->cube = prefilter(o, name, c, e);
-		rf_cubemap_destroy(c);
-	} else {
-		float steps = info.steps > 0.0f ? info.steps : (float)(levels - 1);
-
-		/* The chain was made with one mapping; sampling it with another
-		 * would pick the wrong levels.  --prefiltered says the options
-		 * describe a chain another tool made. */
-		if (!o->env.load.prefiltered &&
-		    ((o->mapping_set && o->mapping != info.mapping) ||
-		     (o->steps > 0.0f && o->steps != steps))) {
-			rf_cubemap_destroy(c);
-			die("'%s' was prefiltered with mapping %s and steps %g; "
-			    "--mapping and --steps must agree (or give --prefiltered to "
-			    "override them)", name, rf_mapping_name(info.mapping),
-			    (double)steps);
-		}
-		e->mapping = o->env.load.prefiltered && o->mapping_set ? o->mapping
-		                                                  : info.mapping;
-		e->steps = o->env.load.prefiltered && o->steps > 0.0f ? o->steps : steps;
-		e->cube = c;
+		/* Worth a line: it is the slow part of a short pipeline. */
+		if (rf_chain_levels(size, 0, 1, &levels, err, sizeof(err)) == 0 && levels > 1)
+			fprintf(stderr, "%s: prefiltering the environment%s (%zux%zu per face, "
+			        "%zu levels)\n", argv0, what, size, size, levels);
 	}
+	so.mapping_set = o->mapping_set;
+	so.mapping = o->mapping;
+	so.steps = o->steps;
+	so.samples = o->samples;
+	so.as_given = o->env.load.prefiltered;
+	so.nthreads = o->nthreads;
+	so.progress = isatty(STDERR_FILENO) ? progress : NULL;
+	if ((rc = rf_shade_environment(&e->cube, &e->mapping, &e->steps, c, &info, name, &so,
+	                               err, sizeof(err))) < 0)
+		die_status(rc, err);
 	e->fresh = 1;
 	if (o->verbose)
 		warn("environment '%s': %zu texels, %zu levels, mapping %s, steps %g", name,

@@ -63,6 +63,32 @@ RF_EXTERN void rf_dfg_integrate(double n_dot_v, double roughness, unsigned sampl
  * kept; channels of the same names are overwritten.  Rows are spread
  * over threads; the bytes do not depend on their number.
  */
+/* What reflect-shade(1) asks of its environment: --mapping, --steps,
+ * --samples for a prefilter on the fly, --prefiltered (as_given). */
+struct rf_shade_env_options {
+	int mapping_set;         /* 1: `mapping` was asked for */
+	enum rf_mapping mapping;
+	float steps;             /* 0: the chain's, or its last level */
+	unsigned samples;        /* GGX samples when prefiltering; 0: default */
+	int as_given;            /* a chain's levels with the options' mapping
+	                            and steps, whatever it says it was made with */
+	int nthreads;
+	void (*progress)(void *arg, double done, double total); /* may be NULL */
+	void *progress_arg;
+};
+/* Takes what rf_envmap_load gave (loaded, info; named `name` in
+ * messages, NULL for the embedded room) and makes the chain a shading
+ * pass samples: *env is loaded itself when it is a GGX chain, whose
+ * mapping and steps must agree with the options unless as_given; else a
+ * chain prefiltered from loaded's level 0 with the options' mapping
+ * and steps.  Either way loaded is the callee's (destroyed on failure or
+ * when a new chain replaces it). */
+RF_EXTERN int rf_shade_environment(rf_cubemap **env, enum rf_mapping *mapping,
+                                   float *steps, rf_cubemap *loaded,
+                                   const struct rf_chain_info *info, const char *name,
+                                   const struct rf_shade_env_options *o, char *err,
+                                   size_t errlen);
+
 typedef struct rf_shade rf_shade;
 
 struct rf_shade_options {
