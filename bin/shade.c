@@ -231,6 +231,10 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	rf_plugin_host_set_frame(host, in);
 	rf_plugin_host_set_probe(host, prc == 0 ? &probe : NULL);
 	rf_plugin_host_set_environment(host, env->cube, env->mapping, env->steps);
+	/* A mode tracing rays reads the plain levels, made once per environment. */
+	if (env->fresh && rf_plugin_writes_radiance(o->mode.plugin) &&
+	    (rc = rf_plugin_host_set_radiance(host, env->cube)) < 0)
+		die_status(rc, NULL);
 	rf_plugin_host_set_seed(host, o->seed);
 	if ((rc = rf_stage_create(&stage, o->mode.plugin, o->mode.values,
 	                          rf_plugin_host_table(host), o->nthreads, err,

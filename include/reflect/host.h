@@ -29,6 +29,10 @@ RF_EXTERN void rf_plugin_host_set_probe(rf_plugin_host *h, const struct rf_probe
  * and its mapping; NULL takes the sampling services away. */
 RF_EXTERN void rf_plugin_host_set_environment(rf_plugin_host *h, const rf_cubemap *env,
                                               enum rf_mapping mapping, float steps);
+/* For modes that write radiance themselves: sample_radiance reads
+ * env's level 0 and plain box-filtered levels made from it here (the
+ * host's copy: env may go); NULL takes the service away. */
+RF_EXTERN int rf_plugin_host_set_radiance(rf_plugin_host *h, const rf_cubemap *env);
 RF_EXTERN void rf_plugin_host_set_seed(rf_plugin_host *h, uint32_t seed);
 /* The table for rf_stage_create, as the settings are when a plugin
  * reads it; valid until rf_plugin_host_destroy.  Change the settings

@@ -15,7 +15,9 @@
  * History of the ABI version:
  *   1.0  first version (reflect 0.1.0).
  *   1.1  the descriptor flag RF_PLUGIN_RADIANCE: a shade mode says that
- *        it writes radiance itself (a 1.0 mode's outputs still tell).
+ *        it writes radiance itself (a 1.0 mode's outputs still tell);
+ *        host services for such modes: project_rays, sample_radiance,
+ *        env_size, env_levels, dfg.
  * A minor bump only appends fields at the end of a struct, or defines new
  * flag bits or kinds; a major bump is anything else.  The host accepts a
  * plugin when its major equals the host's and its minor is not newer, and
@@ -111,6 +113,30 @@ struct rf_host {
 	float (*lod_to_roughness)(void *ctx, float lod);
 	float lod_steps; /* index of the environment's last level */
 	uint32_t seed;   /* --seed */
+
+	/* ABI 1.1: for modes that trace the lobe themselves. */
+	/* n rays from the shading point p along unit directions dirs
+	 * (3 n floats), each taken to where it leaves the probe's projection
+	 * shape as reflect-project's box mode does: lookup (3 n) the unit
+	 * direction from the capture point to that exit, dist (n) the
+	 * distance from p to it, and jacobian (n) the solid angle at the
+	 * capture point per solid angle at p there (dw_C / dw_P).  A ray with
+	 * no exit (p outside the box, box projection off) keeps its
+	 * direction, with dist +inf and jacobian 1.  NULL without a probe. */
+	void (*project_rays)(void *ctx, uint32_t n, const float p[3], const float *dirs,
+	                     float *lookup, float *dist, float *jacobian);
+	/* n reads of the environment's radiance, box-filtered (not GGX
+	 * convolved: a mode doing filtered importance sampling picks the
+	 * lod, 0 the source texels): directions x, y, z (need not be unit)
+	 * and lods (n floats each) in, rgba (4 n floats, a undefined) out.
+	 * Several at a time go through the vector path of the host. */
+	void (*sample_radiance)(void *ctx, uint32_t n, const float *x, const float *y,
+	                        const float *z, const float *lod, float *rgba);
+	uint32_t env_size;   /* texels across a face of level 0 */
+	uint32_t env_levels; /* levels sample_radiance has, env_size down to 1 */
+	/* The split-sum's directional albedo terms of GGX (white: A + B), as
+	 * the host's --final multiplies spec by F0 A + B. */
+	void (*dfg)(void *ctx, float n_dot_v, float roughness, float *a, float *b);
 };
 
 /* A span of pixels along one row, channels interleaved in the order the

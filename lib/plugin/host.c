@@ -3,11 +3,18 @@
  * and reflect-shade, and every tool that runs plugins after them, give
  * their modes the same table with the same meanings.
  */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "envmap/envmap-internal.h"
+#include "envmap/rgba_levels.h"
+#include "envmap/rgba_levels_simd.h"
 #include "util/util.h"
 #include "reflect/host.h"
+#include "reflect/shading.h"
+/* The box's geometry as the projection plugins have it, to the bit. */
+#include "project/projection.h"
 
 struct rf_plugin_host {
 	struct rf_host table; /* its ctx is this host */
@@ -16,6 +23,12 @@ struct rf_plugin_host {
 	const rf_cubemap *env;
 	enum rf_mapping mapping;
 	float steps;
+	/* For sample_radiance: level 0 of the environment and its plain
+	 * box-filtered levels, as RGBA vectors. */
+	rf_cubemap *plain;
+	struct rf__rgba_levels levels;
+	int vector;
+	struct box box;
 };
 
 static const char *
@@ -48,6 +61,67 @@ lod_to_roughness(void *ctx, float lod)
 	return rf_lod_to_roughness(h->mapping, h->steps, lod);
 }
 
+static void
+project_rays(void *ctx, uint32_t n, const float p[3], const float *dirs, float *lookup,
+             float *dist, float *jacobian)
+{
+	const rf_plugin_host *h = ctx;
+	const struct box *b = &h->box;
+	uint32_t i;
+
+	for (i = 0; i < n; i++) {
+		const float *dir = dirs + 3 * i;
+		float *d = lookup + 3 * i, t, reach, x[3], best = INFINITY;
+		int k, axis = 0;
+
+		if (!h->probe.box_projection || box_exit(b, p, dir, &t) < 0) {
+			d[0] = dir[0];
+			d[1] = dir[1];
+			d[2] = dir[2];
+			dist[i] = INFINITY;
+			jacobian[i] = 1.0f;
+			continue;
+		}
+		lookup_from_hit(b, p, dir, t, d, &reach);
+		/* The face the ray leaves by: the axis whose wall the exit is
+		 * nearest, relative to the box's size. */
+		for (k = 0; k < 3; k++) {
+			float e = b->hi[k] - b->lo[k], lo, hi;
+
+			x[k] = p[k] + dir[k] * t;
+			lo = fabsf(x[k] - b->lo[k]) / e;
+			hi = fabsf(b->hi[k] - x[k]) / e;
+			if ((lo < hi ? lo : hi) < best) {
+				best = lo < hi ? lo : hi;
+				axis = k;
+			}
+		}
+		dist[i] = t;
+		/* dw_C / dw_P = |x - P|^2 cos_C / (|x - C|^2 cos_P), the cosines to
+		 * the face's normal: a wall patch seen from both points. */
+		if (fabsf(dir[axis]) > 0.0f && reach > 0.0f)
+			jacobian[i] = t * t * fabsf(d[axis]) / (reach * reach * fabsf(dir[axis]));
+		else
+			jacobian[i] = 1.0f;
+	}
+}
+
+static void
+sample_radiance(void *ctx, uint32_t n, const float *x, const float *y, const float *z,
+                const float *lod, float *rgba)
+{
+	const rf_plugin_host *h = ctx;
+
+	rf__rgba_levels_fetch_many(&h->levels, h->vector, n, x, y, z, lod, (rf__v4 *)rgba);
+}
+
+static void
+dfg(void *ctx, float n_dot_v, float roughness, float *a, float *b)
+{
+	(void)ctx;
+	rf_dfg_lookup(n_dot_v, roughness, a, b);
+}
+
 int
 rf_plugin_host_create(rf_plugin_host **hp)
 {
@@ -60,13 +134,28 @@ rf_plugin_host_create(rf_plugin_host **hp)
 	h->table.abi_minor = RF_PLUGIN_ABI_MINOR;
 	h->table.ctx = h;
 	h->table.header_get = header_get;
+	h->table.dfg = dfg;
 	h->mapping = RF_MAPPING_DEFAULT;
 	return 0;
+}
+
+static void
+drop_radiance(rf_plugin_host *h)
+{
+	rf__rgba_levels_destroy(&h->levels);
+	memset(&h->levels, 0, sizeof(h->levels));
+	rf_cubemap_destroy(h->plain);
+	h->plain = NULL;
+	h->table.sample_radiance = NULL;
+	h->table.env_size = h->table.env_levels = 0;
 }
 
 void
 rf_plugin_host_destroy(rf_plugin_host *h)
 {
+	if (!h)
+		return;
+	drop_radiance(h);
 	free(h);
 }
 
@@ -79,9 +168,12 @@ rf_plugin_host_set_frame(rf_plugin_host *h, const rf_header *frame)
 void
 rf_plugin_host_set_probe(rf_plugin_host *h, const struct rf_probe *probe)
 {
-	if (probe)
+	if (probe) {
 		h->probe = *probe;
+		h->box = box_of_probe(probe);
+	}
 	h->table.probe = probe ? &h->probe : NULL;
+	h->table.project_rays = probe ? project_rays : NULL;
 }
 
 void
@@ -95,6 +187,40 @@ rf_plugin_host_set_environment(rf_plugin_host *h, const rf_cubemap *env,
 	h->table.roughness_to_lod = env ? roughness_to_lod : NULL;
 	h->table.lod_to_roughness = env ? lod_to_roughness : NULL;
 	h->table.lod_steps = env ? steps : 0.0f;
+}
+
+int
+rf_plugin_host_set_radiance(rf_plugin_host *h, const rf_cubemap *env)
+{
+	size_t size, levels, f, i, j;
+	int rc;
+
+	drop_radiance(h);
+	if (!env)
+		return 0;
+	/* Level 0 as it is, then halved down to one texel. */
+	size = rf_cubemap_size(env);
+	for (levels = 1; (size >> (levels - 1)) > 1 && !((size >> (levels - 1)) & 1); levels++)
+		;
+	if ((rc = rf_cubemap_create(&h->plain, size, levels)) < 0)
+		return rc;
+	for (f = 0; f < 6; f++)
+		for (j = 0; j < size; j++)
+			for (i = 0; i < size; i++)
+				memcpy(rf_cubemap_texel(h->plain, 0, (enum rf_face)f, i, j),
+				       rf_cubemap_texel_const(env, 0, (enum rf_face)f, i, j),
+				       3 * sizeof(float));
+	rf_cubemap_seal_level(h->plain, 0);
+	rf_cubemap_box_chain(h->plain, 0);
+	if ((rc = rf__rgba_levels_from_cube(&h->levels, h->plain)) < 0) {
+		drop_radiance(h);
+		return rc;
+	}
+	h->vector = rf__rgba_levels_simd_usable(&h->levels);
+	h->table.sample_radiance = sample_radiance;
+	h->table.env_size = (uint32_t)size;
+	h->table.env_levels = (uint32_t)levels;
+	return 0;
 }
 
 void

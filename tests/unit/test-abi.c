@@ -57,7 +57,7 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_param, flags, 40),
 	OFFSET(struct rf_param, choices, 48),
 
-	SIZE(struct rf_host, 72),
+	SIZE(struct rf_host, 104),
 	OFFSET(struct rf_host, size, 0),
 	OFFSET(struct rf_host, abi_major, 4),
 	OFFSET(struct rf_host, abi_minor, 8),
@@ -69,6 +69,12 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_host, lod_to_roughness, 56),
 	OFFSET(struct rf_host, lod_steps, 64),
 	OFFSET(struct rf_host, seed, 68),
+	/* ABI 1.1 */
+	OFFSET(struct rf_host, project_rays, 72),
+	OFFSET(struct rf_host, sample_radiance, 80),
+	OFFSET(struct rf_host, env_size, 88),
+	OFFSET(struct rf_host, env_levels, 92),
+	OFFSET(struct rf_host, dfg, 96),
 
 	SIZE(struct rf_span, 48),
 	OFFSET(struct rf_span, size, 0),

@@ -59,9 +59,93 @@ TEST(table_follows_the_settings)
 	rf_header_destroy(frame);
 }
 
+/* Hand-derived exits from the box [-3,0,-2]..[3,3,2], centre (0,1.5,0). */
+TEST(rays_leave_the_box)
+{
+	struct rf_probe probe = { { 0, 1.5f, 0 }, { -3, 0, -2 }, { 3, 3, 2 }, 1 };
+	rf_plugin_host *h;
+	const struct rf_host *t;
+	const float at_c[3] = { 0, 1.5f, 0 }, off[3] = { 1, 1.5f, 0 }, low[3] = { 0, 0.5f, 0 };
+	const float outside[3] = { 9, 1, 0 };
+	float diag[3] = { 0.48f, 0.6f, 0.64f }, dirs[6] = { 1, 0, 0, 0, 1, 0 };
+	float look[6], dist[2], jac[2];
+
+	ASSERT_EQ(rf_plugin_host_create(&h), 0);
+	t = rf_plugin_host_table(h);
+	ASSERT(t->project_rays == NULL);
+	rf_plugin_host_set_probe(h, &probe);
+	ASSERT(t->project_rays != NULL);
+	/* From the centre: the direction itself, Jacobian 1, whatever the ray. */
+	t->project_rays(t->ctx, 1, at_c, diag, look, dist, jac);
+	ASSERT_NEAR(look[0], 0.48, 1e-6);
+	ASSERT_NEAR(look[1], 0.6, 1e-6);
+	ASSERT_NEAR(look[2], 0.64, 1e-6);
+	ASSERT_NEAR(dist[0], 2.5, 1e-6); /* the ceiling first: 1.5 / 0.6 */
+	ASSERT_NEAR(jac[0], 1, 1e-6);
+	/* 1 m off the centre, along +X: the wall at 2 m, 3 m from C, so
+	 * dw_C / dw_P = 2^2 / 3^2.  Then straight up from 1 m below C: the
+	 * ceiling at 2.5 m, 1.5 m from C: 2.5^2 / 1.5^2. */
+	t->project_rays(t->ctx, 1, off, dirs, look, dist, jac);
+	ASSERT_NEAR(look[0], 1, 1e-6);
+	ASSERT_NEAR(dist[0], 2, 1e-6);
+	ASSERT_NEAR(jac[0], 4.0 / 9.0, 1e-6);
+	t->project_rays(t->ctx, 1, low, dirs + 3, look, dist, jac);
+	ASSERT_NEAR(look[1], 1, 1e-6);
+	ASSERT_NEAR(dist[0], 2.5, 1e-6);
+	ASSERT_NEAR(jac[0], 6.25 / 2.25, 1e-5);
+	/* Outside the box, or with box projection off: the ray as it is. */
+	t->project_rays(t->ctx, 2, outside, dirs, look, dist, jac);
+	ASSERT(look[0] == 1 && look[4] == 1 && !(dist[0] < INFINITY) && jac[1] == 1);
+	probe.box_projection = 0;
+	rf_plugin_host_set_probe(h, &probe);
+	t->project_rays(t->ctx, 1, off, dirs, look, dist, jac);
+	ASSERT(look[0] == 1 && !(dist[0] < INFINITY) && jac[0] == 1);
+	rf_plugin_host_destroy(h);
+}
+
+/* sample_radiance: the plain levels of the environment's level 0. */
+TEST(radiance_reads_plain_levels)
+{
+	rf_plugin_host *h;
+	const struct rf_host *t;
+	rf_cubemap *c, *plain;
+	float x[2] = { 0.3f, 0.3f }, y[2] = { -0.2f, -0.2f }, z[2] = { 0.9f, 0.9f };
+	float lod[2] = { 0.0f, 2.5f }, rgba[8], dir[3] = { 0.3f, -0.2f, 0.9f }, want[3];
+	int k;
+
+	ASSERT_EQ(rf_cubemap_create(&c, 16, 3), 0);
+	rf_default_environment_cube(c);
+	rf_cubemap_box_chain(c, 0);
+	ASSERT_EQ(rf_plugin_host_create(&h), 0);
+	t = rf_plugin_host_table(h);
+	ASSERT(t->sample_radiance == NULL && t->env_size == 0);
+	ASSERT_EQ(rf_plugin_host_set_radiance(h, c), 0);
+	ASSERT(t->sample_radiance != NULL);
+	ASSERT_EQ(t->env_size, 16);
+	ASSERT_EQ(t->env_levels, 5); /* 16 8 4 2 1 */
+	t->sample_radiance(t->ctx, 2, x, y, z, lod, rgba);
+	/* The same plain chain read by the library's own sampler. */
+	ASSERT_EQ(rf_cubemap_create(&plain, 16, 5), 0);
+	rf_default_environment_cube(plain);
+	rf_cubemap_box_chain(plain, 0);
+	rf_cubemap_sample(plain, dir, 0.0f, want);
+	for (k = 0; k < 3; k++)
+		ASSERT_NEAR(rgba[k], want[k], 1e-4 * want[k] + 1e-6);
+	rf_cubemap_sample(plain, dir, 2.5f, want);
+	for (k = 0; k < 3; k++)
+		ASSERT_NEAR(rgba[4 + k], want[k], 1e-4 * want[k] + 1e-6);
+	ASSERT_EQ(rf_plugin_host_set_radiance(h, NULL), 0);
+	ASSERT(t->sample_radiance == NULL && t->env_levels == 0);
+	rf_plugin_host_destroy(h);
+	rf_cubemap_destroy(c);
+	rf_cubemap_destroy(plain);
+}
+
 int
 main(void)
 {
 	RUN(table_follows_the_settings);
+	RUN(rays_leave_the_box);
+	RUN(radiance_reads_plain_levels);
 	TAP_DONE();
 }
