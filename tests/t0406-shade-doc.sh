@@ -37,7 +37,12 @@ test_expect_success 'every mode reflect-shade lists has a page with each of its 
 			/^[a-z]/ { cur = \$1 }
 			cur == m && /^    [a-z_]+=/ { sub(/^ +/, \"\"); sub(/=.*/, \"\"); print }
 		" list) &&
-		documented "$page" $params "$m" roughness.eff &&
+		writes=$(awk -v m="$m" "
+			/^[a-z]/ { cur = \$1 }
+			cur == m && /^  writes: / { sub(/^  writes: /, \"\"); print }
+		" list) &&
+		test -n "$writes" &&
+		documented "$page" $params "$m" $writes &&
 		grep -e "reflect\\\\-mode\\\\-$m" "$srcdir/doc/reflect-shade.1" >/dev/null ||
 		return 1
 	done <modes
