@@ -107,7 +107,9 @@ load_environment(const struct shade_opts *o, const char *name, struct environmen
 	eo.path = name;
 	eo.load.from_header = !o->env.path;
 	c = envmap_load(&eo, &info);
-	if (!info.prefiltered) {
+	/* A mode tracing its own rays reads level 0: nothing to prefilter. */
+	so.raw_ok = rf_plugin_writes_radiance(o->mode.plugin);
+	if (!info.prefiltered && !so.raw_ok) {
 		size_t size = rf_cubemap_size(c), levels;
 		char what[4200] = "";
 

@@ -91,8 +91,8 @@ test_expect_success 'setup: 66 frames of the same view' '
 # original's sliding seed, which hands frame 1 frame 0's second number,
 # or a pattern that ignores FRAME, would show here.
 test_expect_success 'animate=1 (white): frame 1 does not reuse frame 0'"'"'s numbers' '
-	reflect-shade -fa -m raytraced:samples=1:animate=1 --env=room.rfl frames.rfl \
-		>anim.txt &&
+	reflect-shade -fa -m raytraced:samples=1:animate=1:pattern=white --env=room.rfl \
+		frames.rfl >anim.txt &&
 	column anim.txt spec.G >anim &&
 	frames anim 66 &&
 	! cmp -s f0 f1 &&
@@ -103,23 +103,31 @@ test_expect_success 'animate=1 (white): frame 1 does not reuse frame 0'"'"'s num
 	test "$c" = 1.0000
 '
 
-# The deterministic set moves by the R2 step each frame: every pixel's
-# series over frames is itself low-discrepancy, so the mean of 64 frames
-# is far closer to the converged value than one frame (frames=64: each
-# ray's footprint that of 64 rays, as the mean will have them).
-test_expect_success 'animate=1 (deterministic): frames move and average out' '
-	reflect-shade -fa -m raytraced:samples=1:animate=1:pattern=deterministic:frames=64 \
-		--env=room.rfl frames.rfl >anim.txt &&
-	column anim.txt spec.G >anim &&
-	frames anim 66 &&
-	! cmp -s f0 f1 &&
-	one=$(rmse f0 ref) &&
-	many=$(rmse mean ref) &&
-	echo "error of one frame $one, of the mean of 64 $many" &&
-	awk -v a="$one" -v b="$many" "BEGIN { exit !(b < 0.25 * a) }"
-'
+# The Hammersley sets (shifted per pixel by blue noise, or not) move by
+# the R2 step each frame: every pixel's series over frames is itself
+# low-discrepancy, frame 1's error leans against frame 0's rather than
+# repeating it, and the mean of 64 frames is far closer to the converged
+# value than one frame (frames=64: each ray's footprint that of 64 rays,
+# as the mean will have them).
+for p in blue deterministic
+do
+	test_expect_success "animate=1 ($p): frames move and average out" '
+		reflect-shade -fa -m raytraced:samples=1:animate=1:pattern=$p:frames=64 \
+			--env=room.rfl frames.rfl >anim.txt &&
+		column anim.txt spec.G >anim &&
+		frames anim 66 &&
+		! cmp -s f0 f1 &&
+		c=$(corr f0 f1 mean) &&
+		echo "correlation of the noise of frames 0 and 1: $c" &&
+		awk -v c="$c" "BEGIN { exit !(c < 0.1) }" &&
+		one=$(rmse f0 ref) &&
+		many=$(rmse mean ref) &&
+		echo "error of one frame $one, of the mean of 64 $many" &&
+		awk -v a="$one" -v b="$many" "BEGIN { exit !(b < 0.25 * a) }"
+	'
+done
 
-test_expect_success 'the seed changes the white noise, and only the noise' '
+test_expect_success 'the seed changes the noise, and only the noise' '
 	reflect-shade -fa -m raytraced:samples=16:seed=1 --env=room.rfl scene.rfl >s1.txt &&
 	reflect-shade -fa -m raytraced:samples=16 --seed=1 --env=room.rfl scene.rfl >s2.txt &&
 	column s1.txt spec.G | head -n $npix >s1 &&
@@ -137,7 +145,7 @@ test_expect_success 'bad parameters: refused with the name and what is allowed' 
 	test_expect_code 1 reflect-shade -m raytraced:pattern=purple --env=room.rfl \
 		scene.rfl 2>err &&
 	test_grep "purple" err &&
-	test_grep "white|deterministic" err &&
+	test_grep "white|blue|deterministic" err &&
 	test_expect_code 1 reflect-shade -m raytraced:estimator=guess --env=room.rfl \
 		scene.rfl 2>err &&
 	test_grep "exact|original" err &&

@@ -72,6 +72,8 @@ struct rf_shade_env_options {
 	unsigned samples;        /* GGX samples when prefiltering; 0: default */
 	int as_given;            /* a chain's levels with the options' mapping
 	                            and steps, whatever it says it was made with */
+	int raw_ok;              /* a raw environment is sampled as it is (a
+	                            mode tracing its own rays reads level 0) */
 	int nthreads;
 	void (*progress)(void *arg, double done, double total); /* may be NULL */
 	void *progress_arg;
@@ -81,7 +83,8 @@ struct rf_shade_env_options {
  * pass samples: *env is loaded itself when it is a GGX chain, whose
  * mapping and steps must agree with the options unless as_given; else a
  * chain prefiltered from loaded's level 0 with the options' mapping
- * and steps.  Either way loaded is the callee's (destroyed on failure or
+ * and steps (with raw_ok, loaded as it is, steps 0).  Either way loaded
+ * is the callee's (destroyed on failure or
  * when a new chain replaces it). */
 RF_EXTERN int rf_shade_environment(rf_cubemap **env, enum rf_mapping *mapping,
                                    float *steps, rf_cubemap *loaded,

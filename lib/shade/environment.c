@@ -73,6 +73,11 @@ rf_shade_environment(rf_cubemap **env, enum rf_mapping *mapping, float *steps,
 
 	*env = NULL;
 	*mapping = o->mapping_set ? o->mapping : RF_MAPPING_DEFAULT;
+	if (!info->prefiltered && o->raw_ok) {
+		*env = loaded;
+		*steps = (float)(levels - 1);
+		return 0;
+	}
 	if (!info->prefiltered) {
 		rc = prefilter(env, steps, loaded, name, *mapping, o, err, errlen);
 		rf_cubemap_destroy(loaded);

@@ -33,17 +33,21 @@
 
 #include "reflect/plugin.h"
 
+/* Two 64 x 64 blue-noise masks, made at build time by bluenoise-gen.c. */
+#include "bluenoise.h"
+
 enum { SAMPLES, PATTERN, ANIMATE, SAMPLER, ESTIMATOR, MASKING, MIPOFFSET, SEED, FRAMES,
        NPARAMS };
-enum { PATTERN_WHITE, PATTERN_DETERMINISTIC };
+enum { PATTERN_WHITE, PATTERN_BLUE, PATTERN_DETERMINISTIC };
 enum { ESTIMATOR_EXACT, ESTIMATOR_ORIGINAL };
 enum { MASKING_CORRELATED, MASKING_SEPARABLE };
 
 static const struct rf_param params[NPARAMS] = {
 	{ "samples", "rays per pixel", 1, 65536, 64, RF_PARAM_INTEGER, NULL },
 	{ "pattern", "where each ray's two random numbers come from: a hash of "
-	  "pixel, ray and seed, or one Hammersley set for every pixel",
-	  0, 1, 0, RF_PARAM_CHOICE, "white|deterministic" },
+	  "pixel, ray and seed; a Hammersley set shifted per pixel by blue noise; "
+	  "or one Hammersley set for every pixel",
+	  0, 2, 1, RF_PARAM_CHOICE, "white|blue|deterministic" },
 	{ "animate", "the stream's FRAME moves the pattern (frames decorrelated)",
 	  0, 1, 0, RF_PARAM_BOOL, NULL },
 	{ "sampler", "how rays are drawn: GGX visible normals", 0, 0, 0, RF_PARAM_CHOICE,
@@ -128,26 +132,42 @@ fract(float x)
 }
 
 /* Ray i's (u1, u2) at pixel (px, py).  Animated frames are decorrelated:
- * the frame is a key of the hash, and the Hammersley set moves by the R2
- * sequence's step (Roberts 2018), so no frame reuses another's numbers. */
+ * the frame is a key of the hash, and the Hammersley sets move by the R2
+ * sequence's step (Roberts 2018), so no frame reuses another's numbers.
+ * blue shifts the set by the pixel's values of two blue-noise masks
+ * (Cranley-Patterson rotation, Georgiev and Fajardo's dithered sampling):
+ * every pixel converges as fast as Hammersley, without the structured
+ * aliasing of one set for all, and what error is left is spread as blue
+ * noise, fine grained, which the eye and any later blur forgive. */
 static inline void
 random_pair(const struct raytraced *rt, uint32_t px, uint32_t py, uint32_t i, float u[2])
 {
 	uint32_t frame = rt->animate ? rt->frame : 0;
 
-	if (rt->pattern == PATTERN_DETERMINISTIC) {
-		u[0] = ((float)i + 0.5f) / (float)rt->samples;
-		u[1] = radical_inverse(i);
-		if (frame) {
-			u[0] = fract(u[0] + (float)frame * 0.7548776662f);
-			u[1] = fract(u[1] + (float)frame * 0.5698402910f);
-		}
-	} else {
+	if (rt->pattern == PATTERN_WHITE) {
 		uint32_t v[4] = { px, py, i, rt->seed ^ (frame * 0x9E3779B9u) };
 
 		pcg4d(v);
 		u[0] = unit_float(v[0]);
 		u[1] = unit_float(v[1]);
+		return;
+	}
+	u[0] = ((float)i + 0.5f) / (float)rt->samples;
+	u[1] = radical_inverse(i);
+	if (rt->pattern == PATTERN_BLUE) {
+		/* The seed moves the tile, so that seeds give other patterns. */
+		uint32_t sx = (px + rt->seed * 23u) % BLUENOISE_SIZE;
+		uint32_t sy = (py + rt->seed * 41u) % BLUENOISE_SIZE;
+		uint32_t c = sy * BLUENOISE_SIZE + sx;
+
+		u[0] = fract(u[0] + ((float)bluenoise_rank[0][c] + 0.5f) /
+		                        (float)(BLUENOISE_SIZE * BLUENOISE_SIZE));
+		u[1] = fract(u[1] + ((float)bluenoise_rank[1][c] + 0.5f) /
+		                        (float)(BLUENOISE_SIZE * BLUENOISE_SIZE));
+	}
+	if (frame) {
+		u[0] = fract(u[0] + (float)frame * 0.7548776662f);
+		u[1] = fract(u[1] + (float)frame * 0.5698402910f);
 	}
 }
 
