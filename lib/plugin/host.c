@@ -61,20 +61,38 @@ lod_to_roughness(void *ctx, float lod)
 	return rf_lod_to_roughness(h->mapping, h->steps, lod);
 }
 
+/* The rays' exits from the box, as box_exit and lookup_from_hit find
+ * them (the same quotients, so the same bits), with the face each leaves
+ * by, which box_exit does not say: the axis of the nearest wall. */
 static void
 project_rays(void *ctx, uint32_t n, const float p[3], const float *dirs, float *lookup,
              float *dist, float *jacobian)
 {
 	const rf_plugin_host *h = ctx;
 	const struct box *b = &h->box;
+	int inside = h->probe.box_projection, k;
 	uint32_t i;
 
+	for (k = 0; k < 3; k++)
+		if (p[k] < b->outer_lo[k] || p[k] > b->outer_hi[k])
+			inside = 0;
 	for (i = 0; i < n; i++) {
 		const float *dir = dirs + 3 * i;
-		float *d = lookup + 3 * i, t, reach, x[3], best = INFINITY;
-		int k, axis = 0;
+		float *d = lookup + 3 * i, t = INFINITY, reach;
+		int axis = 0;
 
-		if (!h->probe.box_projection || box_exit(b, p, dir, &t) < 0) {
+		for (k = 0; inside && k < 3; k++) {
+			float tk;
+
+			if (!(fabsf(dir[k]) > AXIS_EPSILON))
+				continue;
+			tk = ((dir[k] > 0.0f ? b->hi[k] : b->lo[k]) - p[k]) / dir[k];
+			if (tk < t) {
+				t = tk;
+				axis = k;
+			}
+		}
+		if (!(t < INFINITY)) {
 			d[0] = dir[0];
 			d[1] = dir[1];
 			d[2] = dir[2];
@@ -82,27 +100,14 @@ project_rays(void *ctx, uint32_t n, const float p[3], const float *dirs, float *
 			jacobian[i] = 1.0f;
 			continue;
 		}
+		if (t < 0.0f)
+			t = 0.0f; /* on a face (within the slack), leaving it */
 		lookup_from_hit(b, p, dir, t, d, &reach);
-		/* The face the ray leaves by: the axis whose wall the exit is
-		 * nearest, relative to the box's size. */
-		for (k = 0; k < 3; k++) {
-			float e = b->hi[k] - b->lo[k], lo, hi;
-
-			x[k] = p[k] + dir[k] * t;
-			lo = fabsf(x[k] - b->lo[k]) / e;
-			hi = fabsf(b->hi[k] - x[k]) / e;
-			if ((lo < hi ? lo : hi) < best) {
-				best = lo < hi ? lo : hi;
-				axis = k;
-			}
-		}
 		dist[i] = t;
 		/* dw_C / dw_P = |x - P|^2 cos_C / (|x - C|^2 cos_P), the cosines to
 		 * the face's normal: a wall patch seen from both points. */
-		if (fabsf(dir[axis]) > 0.0f && reach > 0.0f)
-			jacobian[i] = t * t * fabsf(d[axis]) / (reach * reach * fabsf(dir[axis]));
-		else
-			jacobian[i] = 1.0f;
+		jacobian[i] = reach > 0.0f ? t * t * fabsf(d[axis]) / (reach * reach * fabsf(dir[axis]))
+		                           : 1.0f;
 	}
 }
 

@@ -124,6 +124,12 @@ radical_inverse(uint32_t i)
 }
 
 static inline float
+max0(float x)
+{
+	return x > 0.0f ? x : 0.0f;
+}
+
+static inline float
 fract(float x)
 {
 	float f = x - floorf(x);
@@ -235,17 +241,18 @@ sample_vndf(const float v[3], float alpha, const float u[2], float h[3])
 	t2[2] = vh[0] * t1[1] - vh[1] * t1[0];
 	r = sqrtf(u[0]);
 	phi = 6.28318530718f * u[1];
-	p1 = r * cosf(phi);
-	p2 = r * sinf(phi);
+	sincosf(phi, &p2, &p1);
+	p1 *= r;
+	p2 *= r;
 	w = 0.5f * (1.0f + vh[2]);
-	p2 = (1.0f - w) * sqrtf(fmaxf(0.0f, 1.0f - p1 * p1)) + w * p2;
-	lh = sqrtf(fmaxf(0.0f, 1.0f - p1 * p1 - p2 * p2));
+	p2 = (1.0f - w) * sqrtf(max0(1.0f - p1 * p1)) + w * p2;
+	lh = sqrtf(max0(1.0f - p1 * p1 - p2 * p2));
 	nh[0] = p1 * t1[0] + p2 * t2[0] + lh * vh[0];
 	nh[1] = p1 * t1[1] + p2 * t2[1] + lh * vh[1];
 	nh[2] = p1 * t1[2] + p2 * t2[2] + lh * vh[2];
 	h[0] = alpha * nh[0];
 	h[1] = alpha * nh[1];
-	h[2] = fmaxf(0.0f, nh[2]);
+	h[2] = max0(nh[2]);
 	len = sqrtf(dot3(h, h));
 	h[0] /= len;
 	h[1] /= len;
@@ -276,7 +283,8 @@ ggx_d(float alpha2, float c)
 static inline float
 footprint_lod(const struct rf_host *host, const float d[3], float omega)
 {
-	float m = fmaxf(fabsf(d[0]), fmaxf(fabsf(d[1]), fabsf(d[2]))), texel, lod;
+	float ax = fabsf(d[0]), ay = fabsf(d[1]), az = fabsf(d[2]), texel, lod;
+	float m = ax > ay ? (ax > az ? ax : az) : (ay > az ? ay : az);
 	float top = (float)(host->env_levels - 1);
 
 	texel = 4.0f / ((float)host->env_size * (float)host->env_size) * m * m * m;
@@ -298,20 +306,29 @@ mipoffset_lod(const struct raytraced *rt, const float p[3], const float r[3], fl
 	return lod < top ? lod : top;
 }
 
-/* Reads n rays (rt->dir) from p at rt->lod: rgba. */
+/* Where n rays (rt->dir) from p leave the box: rt->lookup, rt->jac. */
 static void
-read_rays(struct raytraced *rt, const float p[3], uint32_t n)
+project(struct raytraced *rt, const float p[3], uint32_t n)
 {
 	const struct rf_host *host = rt->host;
 	uint32_t i;
 
 	if (host->project_rays) {
 		host->project_rays(host->ctx, n, p, rt->dir, rt->lookup, rt->dist, rt->jac);
-	} else {
-		memcpy(rt->lookup, rt->dir, 3 * n * sizeof(float));
-		for (i = 0; i < n; i++)
-			rt->jac[i] = 1.0f;
+		return;
 	}
+	memcpy(rt->lookup, rt->dir, 3 * n * sizeof(float));
+	for (i = 0; i < n; i++)
+		rt->jac[i] = 1.0f;
+}
+
+/* Reads the n projected rays at rt->lod: rgba. */
+static void
+read_rays(struct raytraced *rt, uint32_t n)
+{
+	const struct rf_host *host = rt->host;
+	uint32_t i;
+
 	for (i = 0; i < n; i++) {
 		rt->x[i] = rt->lookup[3 * i];
 		rt->y[i] = rt->lookup[3 * i + 1];
@@ -361,7 +378,8 @@ shade_pixel(struct raytraced *rt, const float *in, uint32_t px, uint32_t py, flo
 			return;
 		memcpy(rt->dir, r, sizeof(r));
 		rt->lod[0] = fixed_lod;
-		read_rays(rt, p, 1);
+		project(rt, p, 1);
+		read_rays(rt, 1);
 		host->dfg(host->ctx, nv, pr, &a, &b);
 		if (a + b > 1e-6f)
 			for (i = 0; i < 3; i++)
@@ -406,31 +424,26 @@ shade_pixel(struct raytraced *rt, const float *in, uint32_t px, uint32_t py, flo
 		/* No valid ray: the mirror direction (spec Part A #3). */
 		memcpy(rt->dir, r, sizeof(r));
 		rt->lod[0] = fixed_lod;
-		read_rays(rt, p, 1);
+		project(rt, p, 1);
+		read_rays(rt, 1);
 		for (i = 0; i < 3; i++)
 			out[i] = rt->rgba[i];
 		return;
 	}
 	if (!count)
 		return;
+	project(rt, p, count);
 	if (!original && !rt->mipoffset) {
-		/* The lods need the exits: project first, then read. */
 		const float k = rt->rays;
 
-		if (host->project_rays)
-			host->project_rays(host->ctx, count, p, rt->dir, rt->lookup, rt->dist,
-			                   rt->jac);
-		for (i = 0; i < count; i++) {
-			const float *d = host->project_rays ? rt->lookup + 3 * i : rt->dir + 3 * i;
-			float jac = host->project_rays ? rt->jac[i] : 1.0f;
-
-			rt->lod[i] = footprint_lod(host, d, jac / (k * rt->pdf[i]));
-		}
+		for (i = 0; i < count; i++)
+			rt->lod[i] = footprint_lod(host, rt->lookup + 3 * i,
+			                           rt->jac[i] / (k * rt->pdf[i]));
 	} else if (!original) {
 		for (i = 0; i < count; i++)
 			rt->lod[i] = fixed_lod;
 	}
-	read_rays(rt, p, count);
+	read_rays(rt, count);
 	for (i = 0; i < count; i++) {
 		const float *c = rt->rgba + 4 * i;
 		float w = rt->weight[i];
