@@ -39,7 +39,7 @@ test_expect_success 'setup: versions and a G-buffer' '
 
 test_expect_success 'the test plugins were built' '
 	for p in bad_major bad_minor bad_size no_entry bad_name \
-		bad_param_flags bad_flags no_summary shade_kind echo_params
+		bad_param_flags bad_flags no_summary shade_kind echo_params bad_optional
 	do
 		test -f "$P/$p.so" || return 1
 	done
@@ -83,6 +83,10 @@ test_expect_success 'unknown parameter flag bits: the bits, versions, allowed fl
 test_expect_success 'unknown descriptor flags: the bits, versions, set them to 0' '
 	rel=$(cat release) &&
 	refused bad_flags "built for plugin ABI 1\.1, its descriptor sets flags 0x4 that ABI 1\.1 does not define (this reflect ($rel) supports ABI 1\.1); clear them and rebuild it"
+'
+
+test_expect_success 'an optional input that is also an input: which list, fix it' '
+	refused bad_optional "its descriptor has no valid optional input list (NULL-terminated, names unique, none of them an input); fill it in and rebuild the plugin"
 '
 
 test_expect_success 'missing summary: which field, fill it in' '

@@ -17,7 +17,7 @@
  *   1.1  the descriptor flag RF_PLUGIN_RADIANCE: a shade mode says that
  *        it writes radiance itself (a 1.0 mode's outputs still tell);
  *        host services for such modes: project_rays, sample_radiance,
- *        env_size, env_levels, dfg.
+ *        env_size, env_levels, dfg; optional_inputs in the descriptor.
  * A minor bump only appends fields at the end of a struct, or defines new
  * flag bits or kinds; a major bump is anything else.  The host accepts a
  * plugin when its major equals the host's and its minor is not newer, and
@@ -177,7 +177,23 @@ struct rf_plugin {
 	              void **state, char *err, size_t errlen);
 	void (*run)(void *state, const struct rf_span *span);
 	void (*destroy)(void *state);
+
+	/* ABI 1.1: channels read when the stream has them, NULL-terminated
+	 * (or NULL), after the inputs in each pixel; one the stream lacks
+	 * reads as NaN, and is not checked. */
+	const char *const *optional_inputs;
 };
+
+/* The optional inputs of a descriptor of any minor version: NULL when it
+ * has none, or predates them. */
+static inline const char *const *
+rf_plugin_optional_inputs(const struct rf_plugin *p)
+{
+	return p->size >= offsetof(struct rf_plugin, optional_inputs) +
+	                          sizeof(p->optional_inputs)
+	           ? p->optional_inputs
+	           : NULL;
+}
 
 typedef const struct rf_plugin *(*rf_plugin_entry_fn)(void);
 

@@ -33,7 +33,8 @@ struct rf_module {
  * entry is the end of the last field of that version, never sizeof, so
  * that appending fields for 1.1 leaves the 1.0 entry as it was. */
 static const size_t descriptor_size[RF_PLUGIN_ABI_MINOR + 1] = {
-	END_OF(struct rf_plugin, destroy), /* 1.0 */
+	END_OF(struct rf_plugin, destroy),         /* 1.0 */
+	END_OF(struct rf_plugin, optional_inputs), /* 1.1 */
 };
 
 /* The tool that loads each kind, for the advice in messages. */
@@ -107,6 +108,22 @@ channel_list_valid(const char *const *list)
 			if (!strcmp(list[i], list[j]))
 				return 0; /* two columns of one name */
 	}
+	return 1;
+}
+
+/* Optional inputs: a channel list whose names are no required input. */
+static int
+optional_list_valid(const struct rf_plugin *p)
+{
+	const char *const *opt = rf_plugin_optional_inputs(p);
+	size_t i, j;
+
+	if (!channel_list_valid(opt))
+		return 0;
+	for (i = 0; opt[i]; i++)
+		for (j = 0; p->inputs[j]; j++)
+			if (!strcmp(opt[i], p->inputs[j]))
+				return 0;
 	return 1;
 }
 
@@ -301,6 +318,9 @@ check_descriptor(const struct rf_plugin *p, const char *path, unsigned kind,
 	else if (!channel_list_valid(p->outputs) || !p->outputs[0])
 		missing = "valid output channel list (NULL-terminated, names unique, "
 		          "at least one)";
+	else if (rf_plugin_optional_inputs(p) && !optional_list_valid(p))
+		missing = "valid optional input list (NULL-terminated, names unique, "
+		          "none of them an input)";
 	if (missing) {
 		rf__format(err, errlen, "plugin '%s': its descriptor has no %s; fill "
 		           "it in and rebuild the plugin", path, missing);

@@ -1,5 +1,6 @@
 /* Running a per-pixel plugin over blocks of rows, on several threads. */
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -26,7 +27,10 @@ struct rf_stage {
 	int nthreads;
 	struct worker *workers;
 	size_t nin, nout;
-	int *in_map, *out_map; /* plugin channel -> stream channel */
+	size_t nrequired;      /* inputs; nin adds the optional ones */
+	const char **in_names; /* nin: every input, "" for an absent optional one */
+	size_t *absent, nabsent; /* the optional inputs the stream lacks */
+	int *in_map, *out_map; /* plugin channel -> stream channel, -1 absent */
 	/* The same maps as runs of adjacent channels, copied as blocks. */
 	struct rf__run *in_runs, *out_runs;
 	size_t nin_runs, nout_runs;
@@ -85,14 +89,19 @@ rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
 		return RF_ENOMEM;
 	s->p = p;
 	s->nthreads = nthreads;
-	s->nin = list_length(p->inputs);
+	s->nrequired = list_length(p->inputs);
+	s->nin = s->nrequired + (rf_plugin_optional_inputs(p)
+	                             ? list_length(rf_plugin_optional_inputs(p)) : 0);
 	s->nout = list_length(p->outputs);
+	s->in_names = calloc(s->nin + 1, sizeof(*s->in_names));
+	s->absent = calloc(s->nin + 1, sizeof(*s->absent));
 	s->in_map = calloc(s->nin + 1, sizeof(int));
 	s->out_map = calloc(s->nout + 1, sizeof(int));
 	s->in_runs = calloc(s->nin + 1, sizeof(struct rf__run));
 	s->out_runs = calloc(s->nout + 1, sizeof(struct rf__run));
 	s->workers = calloc((size_t)nthreads, sizeof(struct worker));
-	if (!s->in_map || !s->out_map || !s->in_runs || !s->out_runs || !s->workers ||
+	if (!s->in_names || !s->absent || !s->in_map || !s->out_map || !s->in_runs ||
+	    !s->out_runs || !s->workers ||
 	    rf__pool_create(&s->pool, nthreads) < 0) {
 		rf_stage_destroy(s);
 		return RF_ENOMEM;
@@ -129,6 +138,8 @@ rf_stage_destroy(rf_stage *s)
 		free(s->workers[i].zero);
 	}
 	free(s->workers);
+	free(s->in_names);
+	free(s->absent);
 	free(s->in_map);
 	free(s->out_map);
 	free(s->in_runs);
@@ -156,6 +167,30 @@ frame_number(const rf_header *h, size_t fallback, uint32_t *out)
 	return 0;
 }
 
+/* The runs of the inputs the stream has: absent optional ones are no
+ * part of any run (they read as NaN). */
+static size_t
+gather_runs(rf_stage *s)
+{
+	int map[RF_CHANNELS_MAX];
+	size_t slot[RF_CHANNELS_MAX], i, n = 0, k, r;
+
+	for (i = 0; i < s->nin && n < RF_CHANNELS_MAX; i++)
+		if (s->in_map[i] >= 0) {
+			map[n] = s->in_map[i];
+			slot[n++] = i;
+		}
+	if (n == s->nin)
+		return rf__channel_runs(s->in_map, s->nin, 0, s->in_runs);
+	/* With gaps, one run per input: simple, and only for such streams. */
+	for (k = 0, r = 0; k < n; k++, r++) {
+		s->in_runs[r].src = (unsigned)map[k];
+		s->in_runs[r].dst = (unsigned)slot[k];
+		s->in_runs[r].len = 1;
+	}
+	return r;
+}
+
 int
 rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
                      char *err, size_t errlen)
@@ -167,12 +202,22 @@ rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
 	rf_header_destroy(s->out_h);
 	if (rf_header_dup(&s->out_h, in) < 0)
 		return RF_ENOMEM;
-	for (i = 0; i < s->nin; i++) {
+	s->nabsent = 0;
+	for (i = s->nrequired; i < s->nin; i++) {
+		const char *name = rf_plugin_optional_inputs(s->p)[i - s->nrequired];
+
+		s->in_map[i] = rf_header_find_channel(in, name);
+		s->in_names[i] = s->in_map[i] >= 0 ? name : "";
+		if (s->in_map[i] < 0)
+			s->absent[s->nabsent++] = i;
+	}
+	for (i = 0; i < s->nrequired; i++) {
+		s->in_names[i] = s->p->inputs[i];
 		if ((c = rf_header_find_channel(in, s->p->inputs[i])) < 0) {
 			char list[512] = "";
 			size_t k = 0, j;
 
-			for (j = 0; j < s->nin && k + 2 < sizeof(list); j++)
+			for (j = 0; j < s->nrequired && k + 2 < sizeof(list); j++)
 				k += (size_t)snprintf(list + k, sizeof(list) - k, "%s%s",
 				                      j ? " " : "", s->p->inputs[j]);
 			rf__format(err, errlen, "input has no channel '%s' (mode '%s' "
@@ -190,11 +235,11 @@ rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
 		}
 		s->out_map[i] = c;
 	}
-	rf__check_plan(&s->check, s->p->inputs, s->nin);
+	rf__check_plan(&s->check, s->in_names, s->nin);
 	s->mask_col = rf_header_find_channel(in, "mask");
 	s->fixed = 0;
 	s->error[0] = '\0';
-	s->nin_runs = rf__channel_runs(s->in_map, s->nin, 0, s->in_runs);
+	s->nin_runs = gather_runs(s);
 	s->nout_runs = rf__channel_runs(s->out_map, s->nout, 1, s->out_runs);
 	if (frame_number(in, s->frames, &s->frame) < 0) {
 		rf__format(err, errlen, "FRAME='%s' is not a frame number",
@@ -343,6 +388,8 @@ rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int thread)
 		for (i = 0; i < s->nin_runs; i++)
 			rf__copy_run(g + s->in_runs[i].dst, pi + s->in_runs[i].src,
 			             s->in_runs[i].len);
+		for (i = 0; i < s->nabsent; i++)
+			g[s->absent[i]] = NAN;
 	}
 	zeroed = s->check.n ? check_row(s, w, in, y) : 0;
 	s->p->run(w->state, &span);

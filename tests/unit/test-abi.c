@@ -29,7 +29,7 @@ struct abi_entry {
 #define ABI_PLATFORM "LP64"
 /* x86_64, aarch64, ppc64le, riscv64, s390x: 8-byte pointers and doubles. */
 static const struct abi_entry abi_table[] = {
-	SIZE(struct rf_plugin, 120),
+	SIZE(struct rf_plugin, 128),
 	OFFSET(struct rf_plugin, abi_major, 0),
 	OFFSET(struct rf_plugin, abi_minor, 4),
 	OFFSET(struct rf_plugin, size, 8),
@@ -47,6 +47,7 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_plugin, create, 96),
 	OFFSET(struct rf_plugin, run, 104),
 	OFFSET(struct rf_plugin, destroy, 112),
+	OFFSET(struct rf_plugin, optional_inputs, 120), /* ABI 1.1 */
 
 	SIZE(struct rf_param, 56),
 	OFFSET(struct rf_param, name, 0),
@@ -423,7 +424,7 @@ TEST(loader_refusals)
 {
 	static const char *const broken[] = {
 		"bad_major", "bad_minor", "bad_size", "no_entry", "bad_name",
-		"bad_param_flags", "bad_flags", "no_summary",
+		"bad_param_flags", "bad_flags", "no_summary", "bad_optional",
 	};
 	rf_module *m = (rf_module *)&m;
 	size_t i;
