@@ -67,9 +67,10 @@ static const struct rf_param params[NPARAMS] = {
 };
 
 static const char *const inputs[] = {
-	"P.X", "P.Y", "P.Z", "N.X", "N.Y", "N.Z", "Ng.X", "Ng.Y", "Ng.Z",
-	"V.X", "V.Y", "V.Z", "roughness", NULL
+	"P.X", "P.Y", "P.Z", "N.X", "N.Y", "N.Z", "V.X", "V.Y", "V.Z", "roughness", NULL
 };
+/* The geometric normal, when the stream has it: rays below it count 0. */
+static const char *const optional_inputs[] = { "Ng.X", "Ng.Y", "Ng.Z", NULL };
 static const char *const outputs[] = { RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHADE_SPEC_B,
                                        NULL };
 
@@ -342,8 +343,8 @@ shade_pixel(struct raytraced *rt, const float *in, uint32_t px, uint32_t py, flo
 {
 	const struct rf_host *host = rt->host;
 	float p[3] = { in[0], in[1], in[2] }, n[3] = { in[3], in[4], in[5] };
-	float ng[3] = { in[6], in[7], in[8] }, vw[3] = { in[9], in[10], in[11] };
-	float pr = in[12], alpha, alpha2, x[3], y[3], v[3], r[3], nv, fixed_lod = 0.0f;
+	float vw[3] = { in[6], in[7], in[8] }, ng[3] = { in[10], in[11], in[12] };
+	float pr = in[9], alpha, alpha2, x[3], y[3], v[3], r[3], nv, fixed_lod = 0.0f;
 	float sum[3] = { 0, 0, 0 }, g1v = 1.0f, av = 0.0f;
 	int has_ng, original = rt->estimator == ESTIMATOR_ORIGINAL;
 	uint32_t i, count = 0;
@@ -560,6 +561,7 @@ static const struct rf_plugin descriptor = {
 	.params = params,
 	.inputs = inputs,
 	.outputs = outputs,
+	.optional_inputs = optional_inputs,
 	.create = create,
 	.run = run,
 	.destroy = destroy,

@@ -69,13 +69,14 @@ pixel(float in[13], const float p[3], const float n[3], const float v[3], float 
 {
 	int i;
 
+	/* P N V roughness, then the optional Ng */
 	for (i = 0; i < 3; i++) {
 		in[i] = p[i];
 		in[3 + i] = n[i];
-		in[6 + i] = n[i];
-		in[9 + i] = v[i];
+		in[6 + i] = v[i];
+		in[10 + i] = n[i];
 	}
-	in[12] = pr;
+	in[9] = pr;
 }
 
 static void
@@ -130,8 +131,8 @@ static void
 brute_force(const float in[13], int separable, double out[3])
 {
 	const size_t nt = 1200, np = 2400;
-	const float *p = in, *n = in + 3, *v = in + 9;
-	double alpha = (double)in[12] * in[12], a2 = alpha * alpha, nv = 0, sum[3] = { 0 };
+	const float *p = in, *n = in + 3, *v = in + 6;
+	double alpha = (double)in[9] * in[9], a2 = alpha * alpha, nv = 0, sum[3] = { 0 };
 	float tx[3], ty[3], *dirs = malloc(np * 3 * sizeof(float));
 	float *rgb = malloc(np * 3 * sizeof(float));
 	size_t i, j;
@@ -192,10 +193,10 @@ brute_force(const float in[13], int separable, double out[3])
 static void
 final_rgb(const float in[13], const float spec[3], double rgb[3])
 {
-	float a, b, nv = in[3] * in[9] + in[4] * in[10] + in[5] * in[11];
+	float a, b, nv = in[3] * in[6] + in[4] * in[7] + in[5] * in[8];
 	int k;
 
-	rf_dfg_lookup(nv, in[12], &a, &b);
+	rf_dfg_lookup(nv, in[9], &a, &b);
 	for (k = 0; k < 3; k++)
 		rgb[k] = (double)spec[k] * (a + b);
 }
@@ -287,8 +288,8 @@ radinv(uint32_t i)
 static void
 original(const float in[13], unsigned k, double out[3])
 {
-	const float *P = in, *N = in + 3, *V = in + 9;
-	double a = (double)in[12] * in[12], s = N[2] >= 0 ? 1 : -1, aa = 1 / (s + N[2]);
+	const float *P = in, *N = in + 3, *V = in + 6;
+	double a = (double)in[9] * in[9], s = N[2] >= 0 ? 1 : -1, aa = 1 / (s + N[2]);
 	double b = N[0] * N[1] * aa, c = N[0] * s;
 	double X[3] = { c * N[0] * aa - 1, s * b, c }, Y[3] = { b, N[1] * N[1] * aa - s, N[1] };
 	double v[3] = { 0, 0, 0 }, sum[3] = { 0, 0, 0 };
