@@ -216,14 +216,21 @@ local_frame(const float n[3], float x[3], float y[3])
 	y[2] = n[1];
 }
 
-/* Heitz's sampler of the visible normals (spec 7.3) in the local frame:
- * the microfacet normal h for view v (z up) and roughness alpha. */
-static inline void
-sample_vndf(const float v[3], float alpha, const float u[2], float h[3])
-{
-	float vh[3] = { alpha * v[0], alpha * v[1], v[2] }, t1[3], t2[3];
-	float len = sqrtf(dot3(vh, vh)), r, phi, p1, p2, w, nh[3], lh;
+/* What Heitz's sampler (spec 7.3) works out once for a view: the
+ * stretched view vh and its frame t1, t2 in the local frame (z up). */
+struct vndf_view {
+	float vh[3], t1[3], t2[3], w, alpha;
+};
 
+static inline void
+vndf_view(const float v[3], float alpha, struct vndf_view *s)
+{
+	float *vh = s->vh, *t1 = s->t1, *t2 = s->t2, len;
+
+	vh[0] = alpha * v[0];
+	vh[1] = alpha * v[1];
+	vh[2] = v[2];
+	len = sqrtf(dot3(vh, vh));
 	vh[0] /= len;
 	vh[1] /= len;
 	vh[2] /= len;
@@ -240,12 +247,22 @@ sample_vndf(const float v[3], float alpha, const float u[2], float h[3])
 	t2[0] = vh[1] * t1[2] - vh[2] * t1[1];
 	t2[1] = vh[2] * t1[0] - vh[0] * t1[2];
 	t2[2] = vh[0] * t1[1] - vh[1] * t1[0];
+	s->w = 0.5f * (1.0f + vh[2]);
+	s->alpha = alpha;
+}
+
+/* The sampler's microfacet normal h for the numbers u. */
+static inline void
+sample_vndf(const struct vndf_view *s, const float u[2], float h[3])
+{
+	const float *vh = s->vh, *t1 = s->t1, *t2 = s->t2, w = s->w, alpha = s->alpha;
+	float r, phi, p1, p2, nh[3], lh, len;
+
 	r = sqrtf(u[0]);
 	phi = 6.28318530718f * u[1];
 	sincosf(phi, &p2, &p1);
 	p1 *= r;
 	p2 *= r;
-	w = 0.5f * (1.0f + vh[2]);
 	p2 = (1.0f - w) * sqrtf(max0(1.0f - p1 * p1)) + w * p2;
 	lh = sqrtf(max0(1.0f - p1 * p1 - p2 * p2));
 	nh[0] = p1 * t1[0] + p2 * t2[0] + lh * vh[0];
@@ -346,6 +363,7 @@ shade_pixel(struct raytraced *rt, const float *in, uint32_t px, uint32_t py, flo
 	float vw[3] = { in[6], in[7], in[8] }, ng[3] = { in[10], in[11], in[12] };
 	float pr = in[9], alpha, alpha2, x[3], y[3], v[3], r[3], nv, fixed_lod = 0.0f;
 	float sum[3] = { 0, 0, 0 }, g1v = 1.0f, av = 0.0f;
+	struct vndf_view view;
 	int has_ng, original = rt->estimator == ESTIMATOR_ORIGINAL;
 	uint32_t i, count = 0;
 
@@ -367,6 +385,7 @@ shade_pixel(struct raytraced *rt, const float *in, uint32_t px, uint32_t py, flo
 	v[0] = dot3(x, vw);
 	v[1] = dot3(y, vw);
 	v[2] = nv;
+	vndf_view(v, alpha, &view);
 	if (!original) {
 		av = smith_a(alpha2, nv);
 		g1v = 2.0f * nv / (nv + av);
@@ -392,7 +411,7 @@ shade_pixel(struct raytraced *rt, const float *in, uint32_t px, uint32_t py, flo
 		int k;
 
 		random_pair(rt, px, py, i, u);
-		sample_vndf(v, alpha, u, h);
+		sample_vndf(&view, u, h);
 		c = dot3(v, h);
 		c = c > 0.0f ? (c < 1.0f ? c : 1.0f) : 0.0f;
 		for (k = 0; k < 3; k++)
