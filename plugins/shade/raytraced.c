@@ -251,30 +251,57 @@ vndf_view(const float v[3], float alpha, struct vndf_view *s)
 	s->alpha = alpha;
 }
 
-/* The sampler's microfacet normal h for the numbers u. */
+/* sin and cos of 2 pi t for t in [0, 1), to 2e-7: t folded onto
+ * [-1/4, 1/4] of a turn about the nearest half turn, then odd and even
+ * Taylor polynomials.  Written without calls or branches, so that the
+ * batch loop below becomes vector code. */
 static inline void
-sample_vndf(const struct vndf_view *s, const float u[2], float h[3])
+sincos_turn(float t, float *s, float *c)
 {
-	const float *vh = s->vh, *t1 = s->t1, *t2 = s->t2, w = s->w, alpha = s->alpha;
-	float r, phi, p1, p2, nh[3], lh, len;
+	int m = (int)(t * 2.0f + 0.5f);               /* nearest half turn */
+	float x = (t - 0.5f * (float)m) * 6.28318530718f; /* in [-pi/2, pi/2] */
+	float x2 = x * x, sign = (float)(1 - 2 * (m & 1));
+	float sn = x * (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 +
+	           x2 * (1.0f / 362880 - x2 * (1.0f / 39916800))))));
+	float cs = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 +
+	           x2 * (1.0f / 40320 + x2 * (-1.0f / 3628800 + x2 * (1.0f / 479001600))))));
 
-	r = sqrtf(u[0]);
-	phi = 6.28318530718f * u[1];
-	sincosf(phi, &p2, &p1);
-	p1 *= r;
-	p2 *= r;
-	p2 = (1.0f - w) * sqrtf(max0(1.0f - p1 * p1)) + w * p2;
-	lh = sqrtf(max0(1.0f - p1 * p1 - p2 * p2));
-	nh[0] = p1 * t1[0] + p2 * t2[0] + lh * vh[0];
-	nh[1] = p1 * t1[1] + p2 * t2[1] + lh * vh[1];
-	nh[2] = p1 * t1[2] + p2 * t2[2] + lh * vh[2];
-	h[0] = alpha * nh[0];
-	h[1] = alpha * nh[1];
-	h[2] = max0(nh[2]);
-	len = sqrtf(dot3(h, h));
-	h[0] /= len;
-	h[1] /= len;
-	h[2] /= len;
+	*s = sign * sn;
+	*c = sign * cs;
+}
+
+/* Heitz's sampler for n rays at once: the microfacet normals of the
+ * numbers u0, u1, in one loop of plain arithmetic over arrays (the
+ * form a vector path will take). */
+static void
+sample_vndf_batch(const struct vndf_view *s, size_t n, const float *restrict u0,
+                  const float *restrict u1, float *restrict hx, float *restrict hy,
+                  float *restrict hz)
+{
+	const float vx = s->vh[0], vy = s->vh[1], vz = s->vh[2], w = s->w, alpha = s->alpha;
+	const float ax = s->t1[0], ay = s->t1[1], az = s->t1[2];
+	const float bx = s->t2[0], by = s->t2[1], bz = s->t2[2];
+	size_t i;
+
+	for (i = 0; i < n; i++) {
+		float r = sqrtf(u0[i]), sn, cs, p1, p2, lh, nx, ny, nz, len, q;
+
+		sincos_turn(u1[i], &sn, &cs);
+		p1 = r * cs;
+		p2 = r * sn;
+		q = 1.0f - p1 * p1;
+		p2 = (1.0f - w) * sqrtf(fmaxf(q, 0.0f)) + w * p2;
+		q = 1.0f - p1 * p1 - p2 * p2;
+		lh = sqrtf(fmaxf(q, 0.0f));
+		nx = alpha * (p1 * ax + p2 * bx + lh * vx);
+		ny = alpha * (p1 * ay + p2 * by + lh * vy);
+		nz = p1 * az + p2 * bz + lh * vz;
+		nz = fmaxf(nz, 0.0f);
+		len = 1.0f / sqrtf(nx * nx + ny * ny + nz * nz);
+		hx[i] = nx * len;
+		hy[i] = ny * len;
+		hz[i] = nz * len;
+	}
 }
 
 /* sqrt(alpha^2 + (1 - alpha^2) c^2): with it 1 + 2 Lambda = a / c and
@@ -406,12 +433,26 @@ shade_pixel(struct raytraced *rt, const float *in, uint32_t px, uint32_t py, flo
 				out[i] = rt->rgba[i] / (a + b);
 		return;
 	}
+	/* The numbers, then the microfacet normals of all rays at once (into
+	 * scratch that the reads use later). */
+	{
+		float *hx = rt->lookup, *hy = hx + rt->samples, *hz = hy + rt->samples;
+
+		for (i = 0; i < rt->samples; i++) {
+			float u[2];
+
+			random_pair(rt, px, py, i, u);
+			rt->x[i] = u[0];
+			rt->y[i] = u[1];
+		}
+		sample_vndf_batch(&view, rt->samples, rt->x, rt->y, hx, hy, hz);
+	}
 	for (i = 0; i < rt->samples; i++) {
-		float u[2], h[3], l[3], lw[3], c, cl;
+		const float *hx = rt->lookup;
+		float h[3] = { hx[i], hx[rt->samples + i], hx[2 * rt->samples + i] };
+		float l[3], lw[3], c, cl;
 		int k;
 
-		random_pair(rt, px, py, i, u);
-		sample_vndf(&view, u, h);
 		c = dot3(v, h);
 		c = c > 0.0f ? (c < 1.0f ? c : 1.0f) : 0.0f;
 		for (k = 0; k < 3; k++)
