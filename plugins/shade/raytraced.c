@@ -290,13 +290,13 @@ sample_vndf_batch(const struct vndf_view *s, size_t n, const float *restrict u0,
 		p1 = r * cs;
 		p2 = r * sn;
 		q = 1.0f - p1 * p1;
-		p2 = (1.0f - w) * sqrtf(fmaxf(q, 0.0f)) + w * p2;
+		p2 = (1.0f - w) * sqrtf(max0(q)) + w * p2;
 		q = 1.0f - p1 * p1 - p2 * p2;
-		lh = sqrtf(fmaxf(q, 0.0f));
+		lh = sqrtf(max0(q));
 		nx = alpha * (p1 * ax + p2 * bx + lh * vx);
 		ny = alpha * (p1 * ay + p2 * by + lh * vy);
 		nz = p1 * az + p2 * bz + lh * vz;
-		nz = fmaxf(nz, 0.0f);
+		nz = max0(nz);
 		len = 1.0f / sqrtf(nx * nx + ny * ny + nz * nz);
 		hx[i] = nx * len;
 		hy[i] = ny * len;
@@ -322,6 +322,25 @@ ggx_d(float alpha2, float c)
 
 /* ---- a pixel --------------------------------------------------------------- */
 
+/* log2 of a positive x to 2e-5 (a lod needs no more): the exponent,
+ * and for the mantissa m in [1, 2) 2 atanh(t) / ln 2 with
+ * t = (m - 1) / (m + 1) in [0, 1/3], four terms of its series.  0,
+ * below and NaN give a large negative number, +inf a large positive one;
+ * the caller clamps. */
+static inline float
+fast_log2(float x)
+{
+	union { float f; uint32_t u; } v = { x };
+	float e = (float)(int32_t)((v.u >> 23) & 0xFF) - 127.0f, t, t2;
+
+	if (!(x > 0.0f))
+		return -1e30f;
+	v.u = (v.u & 0x007FFFFFu) | 0x3F800000u;
+	t = (v.f - 1.0f) / (v.f + 1.0f);
+	t2 = t * t;
+	return e + 2.88539008f * t * (1.0f + t2 * (1.0f / 3 + t2 * (1.0f / 5 + t2 * (1.0f / 7))));
+}
+
 /* The lod at which a read at unit lookup direction d covers the solid
  * angle omega at the capture point: half the log2 of its ratio to a
  * level-0 texel there, (2 / N)^2 |d_major|^3. */
@@ -333,7 +352,7 @@ footprint_lod(const struct rf_host *host, const float d[3], float omega)
 	float top = (float)(host->env_levels - 1);
 
 	texel = 4.0f / ((float)host->env_size * (float)host->env_size) * m * m * m;
-	lod = 0.5f * log2f(omega / texel);
+	lod = 0.5f * fast_log2(omega / texel);
 	return lod > 0.0f ? (lod < top ? lod : top) : 0.0f; /* NaN: 0 */
 }
 
