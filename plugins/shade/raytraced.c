@@ -533,7 +533,53 @@ shade_pixel(struct raytraced *rt, const float *in, uint32_t px, uint32_t py, flo
 		}
 		sample_vndf_batch(&view, rt->samples, rt->x, rt->y, hx, hy, hz);
 	}
-	for (i = 0; i < rt->samples; i++) {
+	i = 0;
+#if defined(__SSE2__)
+	/* Four rays at a time, as the loop below does one: the same
+	 * operations, so the same bits. */
+	for (; !original && i + 4 <= rt->samples; i += 4) {
+		const float *hxs = rt->lookup, *hys = hxs + rt->samples, *hzs = hys + rt->samples;
+		const v4f zero = { 0, 0, 0, 0 }, one = { 1, 1, 1, 1 };
+		v4f hx, hy, hz, c, lx, ly, lz, wx, wy, wz, cl, gl, al, wt, pd, t;
+		v4i ok;
+		int j;
+
+		memcpy(&hx, hxs + i, sizeof(hx));
+		memcpy(&hy, hys + i, sizeof(hy));
+		memcpy(&hz, hzs + i, sizeof(hz));
+		c = v[0] * hx + v[1] * hy + v[2] * hz;
+		c = v4_max0(c);
+		ok = c < one; /* as sat(): NaN and below 0 give 0, above 1 gives 1 */
+		c = (v4f)(((v4i)c & ok) | ((v4i)one & ~ok));
+		lx = 2.0f * c * hx - v[0];
+		ly = 2.0f * c * hy - v[1];
+		lz = 2.0f * c * hz - v[2];
+		wx = lx * x[0] + ly * y[0] + lz * n[0];
+		wy = lx * x[1] + ly * y[1] + lz * n[1];
+		wz = lx * x[2] + ly * y[2] + lz * n[2];
+		cl = n[0] * wx + n[1] * wy + n[2] * wz;
+		gl = ng[0] * wx + ng[1] * wy + ng[2] * wz;
+		ok = cl > zero;
+		if (has_ng)
+			ok &= gl > zero;
+		al = v4_sqrt(alpha2 + (1.0f - alpha2) * cl * cl);
+		wt = rt->masking == MASKING_SEPARABLE ? 2.0f * cl / (cl + al)
+		                                     : cl * (nv + av) / (av * cl + al * nv);
+		t = hz * hz * (alpha2 - 1.0f) + 1.0f;
+		pd = g1v * (alpha2 / (3.14159265359f * t * t)) / (4.0f * nv);
+		for (j = 0; j < 4; j++) {
+			if (!ok[j])
+				continue;
+			rt->weight[count] = wt[j];
+			rt->pdf[count] = pd[j];
+			rt->dir[3 * count] = wx[j];
+			rt->dir[3 * count + 1] = wy[j];
+			rt->dir[3 * count + 2] = wz[j];
+			count++;
+		}
+	}
+#endif
+	for (; i < rt->samples; i++) {
 		const float *hx = rt->lookup;
 		float h[3] = { hx[i], hx[rt->samples + i], hx[2 * rt->samples + i] };
 		float l[3], lw[3], c, cl;
