@@ -80,6 +80,7 @@ struct raytraced {
 	const struct rf_host *host;
 	uint32_t samples, frame, seed;
 	float rays; /* samples x frames: how many rays share the lobe */
+	float *ham0, *ham1; /* the Hammersley set of `samples` points */
 	int pattern, animate, estimator, masking, mipoffset;
 	float *dir, *lookup, *dist, *jac, *x, *y, *z, *lod, *rgba, *weight, *pdf;
 };
@@ -146,35 +147,50 @@ fract(float x)
  * every pixel converges as fast as Hammersley, without the structured
  * aliasing of one set for all, and what error is left is spread as blue
  * noise, fine grained, which the eye and any later blur forgive. */
-static inline void
-random_pair(const struct raytraced *rt, uint32_t px, uint32_t py, uint32_t i, float u[2])
+static void
+random_pairs(const struct raytraced *rt, uint32_t px, uint32_t py, uint32_t n,
+             float *restrict u0, float *restrict u1)
 {
-	uint32_t frame = rt->animate ? rt->frame : 0;
+	uint32_t frame = rt->animate ? rt->frame : 0, i;
+	float b0 = 0.0f, b1 = 0.0f, f0 = 0.0f, f1 = 0.0f;
 
 	if (rt->pattern == PATTERN_WHITE) {
-		uint32_t v[4] = { px, py, i, rt->seed ^ (frame * 0x9E3779B9u) };
+		for (i = 0; i < n; i++) {
+			uint32_t v[4] = { px, py, i, rt->seed ^ (frame * 0x9E3779B9u) };
 
-		pcg4d(v);
-		u[0] = unit_float(v[0]);
-		u[1] = unit_float(v[1]);
+			pcg4d(v);
+			u0[i] = unit_float(v[0]);
+			u1[i] = unit_float(v[1]);
+		}
 		return;
 	}
-	u[0] = ((float)i + 0.5f) / (float)rt->samples;
-	u[1] = radical_inverse(i);
 	if (rt->pattern == PATTERN_BLUE) {
-		/* The seed moves the tile, so that seeds give other patterns. */
 		uint32_t sx = (px + rt->seed * 23u) % BLUENOISE_SIZE;
 		uint32_t sy = (py + rt->seed * 41u) % BLUENOISE_SIZE;
 		uint32_t c = sy * BLUENOISE_SIZE + sx;
 
-		u[0] = fract(u[0] + ((float)bluenoise_rank[0][c] + 0.5f) /
-		                        (float)(BLUENOISE_SIZE * BLUENOISE_SIZE));
-		u[1] = fract(u[1] + ((float)bluenoise_rank[1][c] + 0.5f) /
-		                        (float)(BLUENOISE_SIZE * BLUENOISE_SIZE));
+		b0 = ((float)bluenoise_rank[0][c] + 0.5f) / (float)(BLUENOISE_SIZE * BLUENOISE_SIZE);
+		b1 = ((float)bluenoise_rank[1][c] + 0.5f) / (float)(BLUENOISE_SIZE * BLUENOISE_SIZE);
 	}
 	if (frame) {
-		u[0] = fract(u[0] + (float)frame * 0.7548776662f);
-		u[1] = fract(u[1] + (float)frame * 0.5698402910f);
+		f0 = (float)frame * 0.7548776662f;
+		f1 = (float)frame * 0.5698402910f;
+	}
+	/* The Hammersley set is the instance's (rt->ham0, rt->ham1); the
+	 * shifts are the pixel's and the frame's. */
+	for (i = 0; i < n; i++) {
+		float a = rt->ham0[i], b = rt->ham1[i];
+
+		if (rt->pattern == PATTERN_BLUE) {
+			a = fract(a + b0);
+			b = fract(b + b1);
+		}
+		if (frame) {
+			a = fract(a + f0);
+			b = fract(b + f1);
+		}
+		u0[i] = a;
+		u1[i] = b;
 	}
 }
 
@@ -524,13 +540,7 @@ shade_pixel(struct raytraced *rt, const float *in, uint32_t px, uint32_t py, flo
 	{
 		float *hx = rt->lookup, *hy = hx + rt->samples, *hz = hy + rt->samples;
 
-		for (i = 0; i < rt->samples; i++) {
-			float u[2];
-
-			random_pair(rt, px, py, i, u);
-			rt->x[i] = u[0];
-			rt->y[i] = u[1];
-		}
+		random_pairs(rt, px, py, rt->samples, rt->x, rt->y);
 		sample_vndf_batch(&view, rt->samples, rt->x, rt->y, hx, hy, hz);
 	}
 	i = 0;
@@ -690,7 +700,7 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 {
 	const char *frame;
 	struct raytraced *rt;
-	size_t k;
+	size_t k, i;
 	float *block;
 
 	/* The services of ABI 1.1; a host of 1.0 would have none of them. */
@@ -715,9 +725,9 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	rt->rays = (float)(values[SAMPLES] * values[FRAMES]);
 	if ((frame = host->header_get(host->ctx, "FRAME")))
 		rt->frame = (uint32_t)strtoul(frame, NULL, 10);
-	/* One block: per ray 3 + 3 + 1 + 1 + 3 + 1 + 4 + 1 + 1 floats. */
+	/* One block: per ray 3 + 3 + 1 + 1 + 3 + 1 + 4 + 1 + 1 + 2 floats. */
 	k = rt->samples;
-	if (!(block = malloc(k * 18 * sizeof(float)))) {
+	if (!(block = malloc(k * 20 * sizeof(float)))) {
 		free(rt);
 		snprintf(err, errlen, "out of memory for %zu rays", k);
 		return -1;
@@ -733,6 +743,12 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	rt->rgba = rt->lod + k;
 	rt->weight = rt->rgba + 4 * k;
 	rt->pdf = rt->weight + k;
+	rt->ham0 = rt->pdf + k;
+	rt->ham1 = rt->ham0 + k;
+	for (i = 0; i < k; i++) {
+		rt->ham0[i] = ((float)i + 0.5f) / (float)rt->samples;
+		rt->ham1[i] = radical_inverse((uint32_t)i);
+	}
 	*state = rt;
 	return 0;
 }
