@@ -116,6 +116,24 @@ test_expect_success 'a MIP-mapped EXR chain is the same bytes run after run' '
 	! cmp -s first.exr dated.exr
 '
 
+# A MIP-mapped file is written beside its path and renamed over it, as
+# every image: what fails leaves the old file and no temporary one, and
+# the messages name the path, not the temporary file.
+test_expect_success 'a MIP-mapped chain replaces its file whole, or not at all' '
+	mkdir mip &&
+	echo keep >mip/old.tif &&
+	test_expect_code 1 reflect-prefilter --size=16 -o mip/old.tif 2>err &&
+	test_grep "cannot write .mip/old.tif.: this file type holds no MIP levels" err &&
+	test "$(cat mip/old.tif)" = keep &&
+	reflect-prefilter --size=16 -o mip/p.exr &&
+	chmod 640 mip/p.exr &&
+	reflect-prefilter --size=8 -o mip/p.exr &&
+	test "$(stat -c %a mip/p.exr)" = 640 &&
+	ls -a mip >names &&
+	printf ".\n..\nold.tif\np.exr\n" >expect &&
+	diff -u expect names
+'
+
 test_expect_success 'a chain as one file per level (--prefiltered, %d numbers levels)' '
 	mkdir levels && (
 		cd levels &&

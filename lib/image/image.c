@@ -459,8 +459,37 @@ rf_image_write_levels(const char *path, size_t nlevels, const size_t *w, const s
                       const float *const *pixels, const char *const *attributes,
                       enum rf_pixel_type type, char *err, size_t errlen)
 {
-	return module(err, errlen) ? api->write_levels(path, nlevels, w, h, nchannels,
-	                                               names, pixels, attributes, type,
-	                                               err, errlen)
-	                           : RF_EIMAGE;
+	rf_image_writer *t;
+	int rc;
+
+	if (!module(err, errlen))
+		return RF_EIMAGE;
+	/* Through a temporary file, as every writer: a failure leaves the
+	 * old file as it was. */
+	if (!(t = calloc(1, sizeof(*t) + strlen(path) + 1))) {
+		rf__format(err, errlen, "cannot write '%s': out of memory", path);
+		return RF_ENOMEM;
+	}
+	strcpy(t->path, path);
+	t->kind = WRITER_MODULE;
+	if ((rc = make_temp(t, err, errlen)) < 0) {
+		free(t);
+		return rc;
+	}
+	rc = api->write_levels(t->temp ? t->temp : path, nlevels, w, h, nchannels, names,
+	                       pixels, attributes, type, err, errlen);
+	if (rc < 0)
+		name_path(t, err, errlen);
+	if (rc == 0 && t->temp && rename(t->temp, path) < 0) {
+		rf__format(err, errlen, "cannot write '%s': %s", path, strerror(errno));
+		rc = RF_EIO;
+	}
+	if (rc == 0 && t->temp) {
+		forget_temp(t);
+		free(t->temp);
+		free(t);
+	} else {
+		discard(t);
+	}
+	return rc;
 }
