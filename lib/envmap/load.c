@@ -382,11 +382,9 @@ open_env_file(struct load *ld, const char *path, FILE **fpp, int *piped)
 	if ((fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC)) < 0 || fstat(fd, &st) < 0)
 		goto fail;
 	if (!S_ISREG(st.st_mode) && (!S_ISFIFO(st.st_mode) || ld->o->from_header)) {
-		rf__format(ld->err, ld->errlen, "cannot open '%s': not a regular file (%s)",
-		           path, S_ISDIR(st.st_mode)    ? "a directory"
-		                 : S_ISFIFO(st.st_mode) ? "a FIFO, named by PROBE_ENV"
-		                 : S_ISCHR(st.st_mode)  ? "a character device"
-		                                        : "not a file");
+		rf__format(ld->err, ld->errlen, "cannot open '%s': not a regular file (%s%s)",
+		           path, rf__file_kind(st.st_mode),
+		           S_ISFIFO(st.st_mode) ? ", named by PROBE_ENV" : "");
 		close(fd);
 		return RF_EINVAL;
 	}

@@ -9,8 +9,8 @@
 
 #include "util/util.h"
 
-static const char *
-file_kind(mode_t mode)
+const char *
+rf__file_kind(unsigned mode)
 {
 	if (S_ISDIR(mode))
 		return "a directory";
@@ -33,6 +33,6 @@ rf__regular_file(const char *path, char *err, size_t errlen)
 	if (stat(path, &st) < 0 || S_ISREG(st.st_mode))
 		return 0; /* a missing file: the reader says so in its words */
 	rf__format(err, errlen, "cannot open '%s': not a regular file (%s)", path,
-	           file_kind(st.st_mode));
+	           rf__file_kind(st.st_mode));
 	return RF_EINVAL;
 }

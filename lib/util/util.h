@@ -28,5 +28,7 @@ void *rf__alloc_big(size_t bytes, int zero);
  * path exists and is no regular file; 0 otherwise (lib/util/file.c says
  * why decoders see only files). */
 int rf__regular_file(const char *path, char *err, size_t errlen);
+/* What a file of this st_mode is, for messages: "a directory", "a FIFO"... */
+const char *rf__file_kind(unsigned mode);
 
 #endif
