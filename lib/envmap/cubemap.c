@@ -495,3 +495,18 @@ rf__cubemap_padded_face(const rf_cubemap *c, size_t level, int face)
 {
 	return padded(c, level, face, -1, -1);
 }
+
+void
+rf__cubemap_copy_level(rf_cubemap *dst, size_t to_level, const rf_cubemap *src,
+                       size_t from_level)
+{
+	size_t n = rf_cubemap_level_size(dst, to_level), f, i, j;
+
+	for (f = 0; f < 6; f++)
+		for (j = 0; j < n; j++)
+			for (i = 0; i < n; i++)
+				memcpy(rf_cubemap_texel(dst, to_level, (enum rf_face)f, i, j),
+				       rf_cubemap_texel_const(src, from_level, (enum rf_face)f, i, j),
+				       3 * sizeof(float));
+	rf_cubemap_seal_level(dst, to_level);
+}

@@ -15,6 +15,10 @@ int rf__cube_level_from_pixels(rf_cubemap *c, size_t level, const float *px,
 /* A face of a cube level with its one-texel border: (n + 2)^2 RGB
  * texels, rows top first, starting at border texel (-1, -1). */
 const float *rf__cubemap_padded_face(const rf_cubemap *c, size_t level, int face);
+/* Level `from_level` of src into level `to_level` (of the same face size)
+ * of dst, texel for texel, and sealed. */
+void rf__cubemap_copy_level(rf_cubemap *dst, size_t to_level, const rf_cubemap *src,
+                            size_t from_level);
 
 /* Exported for the test suite and the bench only, never installed: the
  * reference the prefilter is measured against.  One texel of one lobe by

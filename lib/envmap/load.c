@@ -209,21 +209,6 @@ load_faces(struct load *ld, const char *pattern, rf_cubemap **c)
 	return rc;
 }
 
-/* Level `level` of src into level `to` of dst, texel for texel. */
-static void
-copy_level(rf_cubemap *dst, size_t to, const rf_cubemap *src, size_t level)
-{
-	size_t m = rf_cubemap_level_size(dst, to), f, i, j;
-
-	for (f = 0; f < 6; f++)
-		for (j = 0; j < m; j++)
-			for (i = 0; i < m; i++)
-				memcpy(rf_cubemap_texel(dst, to, (enum rf_face)f, i, j),
-				       rf_cubemap_texel_const(src, level, (enum rf_face)f, i, j),
-				       3 * sizeof(float));
-	rf_cubemap_seal_level(dst, to);
-}
-
 /*
  * A chain as one file per level (--prefiltered with %d in the name): %d
  * counts levels from 0 until a file is missing; each file holds one cube
@@ -278,7 +263,7 @@ load_level_files(struct load *ld, const char *pattern, rf_cubemap **c,
 		rc = cube_new(ld, c, rf_cubemap_size(levels[0]), n);
 	for (k = 0; k < n; k++) {
 		if (rc == 0)
-			copy_level(*c, k, levels[k], 0);
+			rf__cubemap_copy_level(*c, k, levels[k], 0);
 		rf_cubemap_destroy(levels[k]);
 	}
 	if (rc < 0)
@@ -359,7 +344,7 @@ load_dds(struct load *ld, const char *path, rf_cubemap **c, struct rf_chain_info
 		return rc;
 	}
 	if ((rc = cube_new(ld, c, rf_cubemap_size(chain), 1)) == 0)
-		copy_level(*c, 0, chain, 0);
+		rf__cubemap_copy_level(*c, 0, chain, 0);
 	rf_cubemap_destroy(chain);
 	info->prefiltered = 0;
 	return rc;

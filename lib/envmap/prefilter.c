@@ -322,21 +322,6 @@ rf_prefilter_level_samples(unsigned base, size_t k)
 	return n;
 }
 
-static void
-copy_level(const rf_cubemap *from, size_t lf, rf_cubemap *to, size_t lt)
-{
-	size_t n = rf_cubemap_level_size(to, lt), i, j;
-	int f;
-
-	for (f = 0; f < 6; f++)
-		for (j = 0; j < n; j++)
-			for (i = 0; i < n; i++)
-				memcpy(rf_cubemap_texel(to, lt, (enum rf_face)f, i, j),
-				       rf_cubemap_texel_const(from, lf, (enum rf_face)f, i, j),
-				       3 * sizeof(float));
-	rf_cubemap_seal_level(to, lt);
-}
-
 int
 rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
              const struct rf_prefilter_options *o, char *err, size_t errlen)
@@ -377,7 +362,7 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 	/* The source as a full box chain, read by filtered samples. */
 	if ((rc = rf_cubemap_create(&chain, n0, 0)) < 0)
 		return rc;
-	copy_level(src, 0, chain, 0);
+	rf__cubemap_copy_level(chain, 0, src, 0);
 	rf_cubemap_box_chain(chain, 0);
 	if (o->method == RF_PREFILTER_FILTERED &&
 	    (rc = rf__rgba_levels_from_cube(&rgba, chain)) < 0)
@@ -390,7 +375,7 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 		rc = RF_EINVAL;
 		goto out;
 	}
-	copy_level(chain, base, out, 0);
+	rf__cubemap_copy_level(out, 0, chain, base);
 	if (o->method == RF_PREFILTER_FILTERED &&
 	    !(samples = malloc(rf_prefilter_level_samples(o->samples, levels - 1) * sizeof(*samples)))) {
 		rc = RF_ENOMEM;

@@ -197,7 +197,7 @@ rf_plugin_host_set_environment(rf_plugin_host *h, const rf_cubemap *env,
 int
 rf_plugin_host_set_radiance(rf_plugin_host *h, const rf_cubemap *env)
 {
-	size_t size, levels, f, i, j;
+	size_t size, levels;
 	int rc;
 
 	drop_radiance(h);
@@ -209,13 +209,7 @@ rf_plugin_host_set_radiance(rf_plugin_host *h, const rf_cubemap *env)
 		;
 	if ((rc = rf_cubemap_create(&h->plain, size, levels)) < 0)
 		return rc;
-	for (f = 0; f < 6; f++)
-		for (j = 0; j < size; j++)
-			for (i = 0; i < size; i++)
-				memcpy(rf_cubemap_texel(h->plain, 0, (enum rf_face)f, i, j),
-				       rf_cubemap_texel_const(env, 0, (enum rf_face)f, i, j),
-				       3 * sizeof(float));
-	rf_cubemap_seal_level(h->plain, 0);
+	rf__cubemap_copy_level(h->plain, 0, env, 0);
 	rf_cubemap_box_chain(h->plain, 0);
 	if ((rc = rf__rgba_levels_from_cube(&h->levels, h->plain)) < 0) {
 		drop_radiance(h);
