@@ -31,7 +31,8 @@ test_expect_success 'setup: two frames of a small scene, a small room' '
 '
 
 for m in raytraced raytraced:pattern=deterministic raytraced:estimator=original \
-	raytraced:mipoffset=1:masking=separable raytraced:samples=3:animate=1:seed=9
+	raytraced:mipoffset=1:masking=separable raytraced:samples=3:animate=1:seed=9 \
+	raytraced:sampler=mis raytraced:sampler=mis:pattern=white:samples=100
 do
 	test_expect_success "$m: the bytes do not depend on the thread count" '
 		reflect-shade -h -j1 -m $m --final --env=room.rfl scene.rfl >j1 &&
@@ -152,6 +153,33 @@ test_expect_success 'bad parameters: refused with the name and what is allowed' 
 	test_expect_code 1 reflect-shade -m raytraced:samples=2.5 --env=room.rfl \
 		scene.rfl 2>err &&
 	test_grep "samples" err
+'
+
+test_expect_success 'sampler=mis: refused with estimator=original, named choices' '
+	test_expect_code 1 reflect-shade -m raytraced:sampler=mis:estimator=original \
+		--env=room.rfl scene.rfl 2>err &&
+	test_one_line_message reflect-shade err &&
+	test_grep "estimator=exact" err &&
+	test_expect_code 1 reflect-shade -m raytraced:sampler=light --env=room.rfl \
+		scene.rfl 2>err &&
+	test_grep "vndf|mis" err
+'
+
+# Below 24 rays the table is too coarse to be read (reflect-mode-raytraced(7)):
+# the lobe alone, the same bytes.  From 24 rays on, the mixture moves the
+# numbers of the pixels that see the windows, and only those.
+test_expect_success 'sampler=mis: the lobe alone below 24 rays, moved above' '
+	reflect-shade -h -m raytraced:samples=23 --env=room.rfl scene.rfl >v23 &&
+	reflect-shade -h -m raytraced:samples=23:sampler=mis --env=room.rfl scene.rfl >m23 &&
+	cmp v23 m23 &&
+	reflect-shade -fa -m raytraced:samples=64 --env=room.rfl scene.rfl >v64.txt &&
+	reflect-shade -fa -m raytraced:samples=64:sampler=mis --env=room.rfl scene.rfl >m64.txt &&
+	column v64.txt spec.G | head -n $npix >v64 &&
+	column m64.txt spec.G | head -n $npix >m64 &&
+	moved=$(paste v64 m64 | awk "\$1 != \$2" | wc -l) &&
+	echo "$moved of $npix pixels moved" &&
+	test $moved -gt 0 &&
+	test $moved -lt $npix
 '
 
 # Ng is optional (plugin ABI 1.1): without it no ray is cut by the

@@ -209,7 +209,7 @@ TEST(exact_converges_to_the_integral)
 		{ -2.9f, 1.2f, 0.4f, 1, 0, 0, 0.7f, 0.2f, -0.5f, 0.3f },
 		{ 2.5f, 0.3f, 1.6f, 0, 1, 0, -0.6f, 0.3f, -0.7f, 0.8f },
 	};
-	double white_error = 0;
+	double white_error = 0, mis_error = 0;
 	size_t c;
 	int sep, k;
 
@@ -246,9 +246,31 @@ TEST(exact_converges_to_the_integral)
 				err += fabs(got[k] - want[k]);
 			ASSERT(err / mag < 0.03);
 			white_error += err / mag;
+			/* The mixture of sampler=mis converges to the same integral
+			 * (its weights undo its density), pattern by pattern. */
+			ASSERT_EQ(shade(sep ? "samples=10000:pattern=deterministic:sampler=mis:"
+			                      "masking=separable"
+			                    : "samples=10000:pattern=deterministic:sampler=mis",
+			                in, 17, 23, spec), 0);
+			final_rgb(in, spec, got);
+			for (k = 0, err = 0; k < 3; k++)
+				err += fabs(got[k] - want[k]);
+			printf("# sampler=mis: relative error %.4f\n", err / mag);
+			ASSERT(err / mag < 0.003);
+			ASSERT_EQ(shade(sep ? "samples=10000:pattern=white:sampler=mis:"
+			                      "masking=separable"
+			                    : "samples=10000:pattern=white:sampler=mis",
+			                in, 17, 23, spec), 0);
+			final_rgb(in, spec, got);
+			for (k = 0, err = 0; k < 3; k++)
+				err += fabs(got[k] - want[k]);
+			ASSERT(err / mag < 0.03);
+			mis_error += err / mag;
 		}
-	printf("# white noise at 10,000 rays: mean relative error %.4f\n", white_error / 6);
+	printf("# white noise at 10,000 rays: mean relative error %.4f, with sampler=mis "
+	       "%.4f\n", white_error / 6, mis_error / 6);
 	ASSERT(white_error / 6 < 0.01);
+	ASSERT(mis_error / 6 < 0.01);
 }
 
 TEST(a_mirror_is_box_projection_at_lod_0)
@@ -270,6 +292,71 @@ TEST(a_mirror_is_box_projection_at_lod_0)
 		for (k = 0; k < 3; k++)
 			ASSERT_NEAR(spec[k] * (a + b), want[k], 2e-3 * want[k] + 1e-6);
 	}
+}
+
+/*
+ * sampler=mis against the lobe alone: the squared error of 64 white-noise
+ * rays against the brute-force integral, over 64 pixels (64 draws) at
+ * each of the three pixels of the test above, the footprint made that of
+ * 10^6 rays (frames) so that both read level 0 as the integral does and
+ * the error is the noise alone.  The room's windows are bright (HDR) and
+ * small: where the mixture is taken (the floor's pixel sees a window) it
+ * must find them; elsewhere the bytes are the lobe's alone.
+ */
+TEST(mis_lowers_the_error_at_equal_rays)
+{
+	static const float cases[][10] = {
+		{ 0.5f, 0.0f, 0.3f, 0, 1, 0, 0.3f, 0.6f, 0.8f, 0.5f },
+		{ -2.9f, 1.2f, 0.4f, 1, 0, 0, 0.7f, 0.2f, -0.5f, 0.3f },
+		{ 2.5f, 0.3f, 1.6f, 0, 1, 0, -0.6f, 0.3f, -0.7f, 0.8f },
+	};
+	size_t c;
+	int mixed = 0;
+
+	for (c = 0; c < sizeof(cases) / sizeof(cases[0]); c++) {
+		float in[13], v[3] = { cases[c][6], cases[c][7], cases[c][8] }, spec[2][3];
+		double want[3], got[3], se[2] = { 0, 0 }, mag = 0;
+		uint32_t x;
+		int s, k, differ = 0;
+
+		unit(v);
+		pixel(in, cases[c], cases[c] + 3, v, cases[c][9]);
+		brute_force(in, 1, want);
+		for (k = 0; k < 3; k++)
+			mag += want[k] / 3;
+		for (x = 0; x < 64; x++) {
+			for (s = 0; s < 2; s++) {
+				ASSERT_EQ(shade(s ? "samples=64:pattern=white:masking=separable:"
+				                    "frames=1000000:sampler=mis"
+				                  : "samples=64:pattern=white:masking=separable:"
+				                    "frames=1000000",
+				                in, x, 7, spec[s]), 0);
+				final_rgb(in, spec[s], got);
+				for (k = 0; k < 3; k++)
+					se[s] += (got[k] - want[k]) * (got[k] - want[k]) / (mag * mag);
+			}
+			differ += memcmp(spec[0], spec[1], sizeof(spec[0])) != 0;
+		}
+		/* Where the mixture is not worth it (the table's judgement) the
+		 * lobe alone gives the same bytes. */
+		printf("# case %zu: relative RMSE of 64 rays, vndf %.4f, mis %.4f%s\n", c,
+		       sqrt(se[0] / 192), sqrt(se[1] / 192), differ ? "" : " (the lobe alone)");
+		ASSERT(differ == 0 || differ == 64);
+		if (differ)
+			ASSERT(se[1] < 0.8 * se[0]);
+		mixed += differ > 0;
+	}
+	ASSERT(mixed > 0);
+}
+
+TEST(mis_refuses_the_original_estimator)
+{
+	float in[13], spec[3];
+	const float p[3] = { 0.5f, 0.0f, 0.3f }, n[3] = { 0, 1, 0 }, v[3] = { 0, 1, 0 };
+
+	pixel(in, p, n, v, 0.5f);
+	ASSERT(shade("sampler=mis:estimator=original", in, 0, 0, spec) < 0);
+	ASSERT(strstr(msg, "estimator=exact") != NULL);
 }
 
 /* ---- the write-up's loop, transcribed (spec 7.2, 7.3) ------------------- */
@@ -392,13 +479,13 @@ TEST(never_nan)
 	const float p[3] = { 0.5f, 0.0f, 0.3f }, n[3] = { 0, 1, 0 }, below[3] = { 0, -1, 0 };
 	const float grazing[3] = { 1, 0, 0 }, zero[3] = { 0, 0, 0 };
 	static const char *const specs[] = { "samples=8", "samples=8:estimator=original",
-	                                     "samples=8:mipoffset=1" };
+	                                     "samples=8:mipoffset=1", "samples=32:sampler=mis" };
 	const float *views[] = { below, grazing, zero, n };
 	float in[13], spec[3];
 	size_t s, i;
 	int k;
 
-	for (s = 0; s < 3; s++)
+	for (s = 0; s < sizeof(specs) / sizeof(specs[0]); s++)
 		for (i = 0; i < 4; i++) {
 			pixel(in, p, n, views[i], i == 3 ? NAN : 0.5f);
 			ASSERT_EQ(shade(specs[s], in, 1, 1, spec), 0);
@@ -584,6 +671,8 @@ main(void)
 	}
 	RUN(exact_converges_to_the_integral);
 	RUN(a_mirror_is_box_projection_at_lod_0);
+	RUN(mis_lowers_the_error_at_equal_rays);
+	RUN(mis_refuses_the_original_estimator);
 	RUN(original_is_the_write_ups_loop);
 	RUN(never_nan);
 	RUN(blue_noise_has_little_low_frequency_error);
