@@ -88,6 +88,9 @@ struct raytraced {
 	float rays; /* samples x frames: how many rays share the lobe */
 	float *ham0, *ham1; /* the Hammersley set of `samples` points */
 	int pattern, animate, estimator, masking, mipoffset;
+	uint32_t frames; /* frames=: how many the output will be averaged over */
+	int split;       /* frames' rays are blocks of one set (random_pairs) */
+	uint32_t *sigma; /* the order of the blocks, frames of them */
 	float *dir, *lookup, *dist, *jac, *x, *y, *z, *lod, *rgba, *weight, *pdf;
 	uint32_t *index; /* of each ray that counts, in the pixel's order */
 	uint32_t grid;   /* sampler=mis: the table's side, or 0 */
@@ -151,7 +154,8 @@ fract(float x)
 
 /* Ray i's (u1, u2) at pixel (px, py).  Animated frames are decorrelated:
  * the frame is a key of the hash, and the Hammersley sets move by the R2
- * sequence's step (Roberts 2018), so no frame reuses another's numbers.
+ * sequence's step (Roberts 2018), or along one Sobol sequence for blue
+ * frames to be averaged (below), so no frame reuses another's numbers.
  * blue shifts the set by the pixel's values of two blue-noise masks
  * (Cranley-Patterson rotation, Georgiev and Fajardo's dithered sampling):
  * every pixel converges as fast as Hammersley, without the structured
@@ -181,6 +185,38 @@ random_pairs(const struct raytraced *rt, uint32_t px, uint32_t py, uint32_t n,
 
 		b0 = ((float)bluenoise_rank[0][c] + 0.5f) / (float)(BLUENOISE_SIZE * BLUENOISE_SIZE);
 		b1 = ((float)bluenoise_rank[1][c] + 0.5f) / (float)(BLUENOISE_SIZE * BLUENOISE_SIZE);
+	}
+	if (rt->split) {
+		/* Frames to be averaged (frames=F): frame f's rays are a block
+		 * of the Hammersley set of K F points, the block sigma(f mod F)
+		 * for a golden-ratio permutation sigma, and each cycle of F
+		 * frames moves by an R2 step.  F frames together are then that
+		 * set itself, shifted per pixel as the frame's set is: they
+		 * average to one frame of K F rays, sum for sum; and
+		 * consecutive frames take blocks far apart.  A block covers a
+		 * sliver of u0 (the lobe's radius): a frame alone is a poor
+		 * picture, which frames=F says nobody looks at.  (The Sobol
+		 * sequence, whose every block of 2^m is a net, tried first:
+		 * 16 one-ray frames came out 1.6x worse than 16 rays, on the
+		 * default scene; so is one frame of Sobol's 16 points, against
+		 * Hammersley's.  The R2 steps below: 1.38x worse.) */
+		uint32_t cycle = frame / rt->frames, block = rt->sigma[frame % rt->frames];
+		float n_all = (float)rt->samples * (float)rt->frames;
+
+		f0 = (float)cycle * 0.7548776662f;
+		f1 = (float)cycle * 0.5698402910f;
+		for (i = 0; i < n; i++) {
+			uint32_t j = block * rt->samples + i;
+			float a = ((float)j + 0.5f) / n_all, b = radical_inverse(j);
+
+			if (rt->pattern == PATTERN_BLUE) {
+				a = fract(a + b0);
+				b = fract(b + b1);
+			}
+			u0[i] = fract(a + f0);
+			u1[i] = fract(b + f1);
+		}
+		return;
 	}
 	if (frame) {
 		f0 = (float)frame * 0.7548776662f;
@@ -1058,6 +1094,7 @@ destroy(void *state)
 	if (!rt)
 		return;
 	free(rt->dir);
+	free(rt->sigma);
 	free(rt);
 }
 
@@ -1090,6 +1127,9 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	rt->mipoffset = values[MIPOFFSET] != 0.0;
 	rt->seed = (uint32_t)values[SEED] + host->seed;
 	rt->rays = (float)(values[SAMPLES] * values[FRAMES]);
+	rt->frames = (uint32_t)values[FRAMES];
+	rt->split = rt->animate && rt->frames > 1 && rt->pattern != PATTERN_WHITE &&
+	            values[SAMPLES] * values[FRAMES] < 2147483648.0;
 	if ((frame = host->header_get(host->ctx, "FRAME")))
 		rt->frame = (uint32_t)strtoul(frame, NULL, 10);
 	if ((int)values[SAMPLER] == SAMPLER_MIS) {
@@ -1137,6 +1177,25 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	for (i = 0; i < rt->samples; i++) {
 		rt->ham0[i] = ((float)i + 0.5f) / (float)rt->samples;
 		rt->ham1[i] = radical_inverse((uint32_t)i);
+	}
+	if (rt->split) {
+		/* sigma(f) = f g mod F, g the step nearest F / golden ratio that
+		 * is prime to F: consecutive frames land far apart. */
+		uint32_t f, g = (uint32_t)((double)rt->frames * 0.6180339887 + 0.5), x, y, t;
+
+		if (!(rt->sigma = malloc(rt->frames * sizeof(*rt->sigma)))) {
+			snprintf(err, errlen, "out of memory for %u frames", rt->frames);
+			destroy(rt);
+			return -1;
+		}
+		for (;; g++) {
+			for (x = g, y = rt->frames; y; t = x % y, x = y, y = t)
+				;
+			if (x == 1)
+				break;
+		}
+		for (f = 0; f < rt->frames; f++)
+			rt->sigma[f] = (uint32_t)(((uint64_t)f * g) % rt->frames);
 	}
 	*state = rt;
 	return 0;
