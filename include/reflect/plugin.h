@@ -17,7 +17,9 @@
  *   1.1  the descriptor flag RF_PLUGIN_RADIANCE: a shade mode says that
  *        it writes radiance itself (a 1.0 mode's outputs still tell);
  *        host services for such modes: project_rays, sample_radiance,
- *        env_size, env_levels, dfg; optional_inputs in the descriptor.
+ *        env_size, env_levels, dfg; optional_inputs in the descriptor;
+ *        the accumulate kind's contract, with nvalues and count appended
+ *        to rf_span.
  * A minor bump only appends fields at the end of a struct, or defines new
  * flag bits or kinds; a major bump is anything else.  The host accepts a
  * plugin when its major equals the host's and its minor is not newer, and
@@ -62,6 +64,21 @@ enum rf_plugin_kind {
 #define RF_SHADE_SPEC_R "spec.R"
 #define RF_SHADE_SPEC_G "spec.G"
 #define RF_SHADE_SPEC_B "spec.B"
+
+/* An accumulate mode (reflect-accumulate) combines frames value by
+ * value, whatever channel a value comes from: its descriptor lists no
+ * inputs, and its outputs name the slots of its state per value, the
+ * first two with a fixed meaning.  run() gets span.in, the frame's
+ * values (span.nvalues a pixel), and span.out, the state (outputs x
+ * nvalues floats a pixel, the slots of value 0 first), to update in
+ * place; span.count is how many frames the state holds with this one
+ * (1: the state is garbage, start afresh).  The host keeps the state
+ * between frames and reads the two slots below; threads share it by
+ * rows, so a mode keeps nothing per pixel of its own. */
+#define RF_ACCUMULATE_VALUE "value"       /* the running result */
+#define RF_ACCUMULATE_VARIANCE "variance" /* the variance of that result (its
+                                             standard error squared); +inf
+                                             when it cannot be told yet */
 
 /* Descriptor flags; a bit the host does not know makes it refuse the
  * plugin. */
@@ -150,6 +167,10 @@ struct rf_span {
 	uint32_t frame;         /* index of the frame in the stream */
 	const float *in;        /* npix * ninputs */
 	float *out;             /* npix * noutputs */
+	/* ABI 1.1, for the accumulate kind (0 for the others): values a
+	 * pixel in `in`, and frames in the state with this one. */
+	uint32_t nvalues;
+	uint32_t count;
 };
 
 struct rf_plugin {

@@ -233,7 +233,9 @@ rf_plugin_writes_radiance(const struct rf_plugin *p)
 }
 
 /* A kind's output contract (plugin.h): a shade mode writes the roughness
- * the host samples with, or with RF_PLUGIN_RADIANCE the radiance. */
+ * the host samples with, or with RF_PLUGIN_RADIANCE the radiance; an
+ * accumulate mode reads values, not channels, into a state that starts
+ * with the value and its variance. */
 static int
 check_outputs(const struct rf_plugin *p, const char *path, char *err, size_t errlen)
 {
@@ -242,6 +244,18 @@ check_outputs(const struct rf_plugin *p, const char *path, char *err, size_t err
 		           "which only a shade mode may; clear it and rebuild the plugin",
 		           path);
 		return RF_EPLUGIN;
+	}
+	if (p->kind == RF_KIND_ACCUMULATE) {
+		if (p->inputs[0] || strcmp(p->outputs[0], RF_ACCUMULATE_VALUE) ||
+		    !p->outputs[1] || strcmp(p->outputs[1], RF_ACCUMULATE_VARIANCE)) {
+			rf__format(err, errlen, "plugin '%s': an accumulate mode reads no "
+			           "channels by name and its state's first slots are '%s' and "
+			           "'%s' (reflect-plugin(7)); fix its inputs and outputs and "
+			           "rebuild the plugin", path, RF_ACCUMULATE_VALUE,
+			           RF_ACCUMULATE_VARIANCE);
+			return RF_EPLUGIN;
+		}
+		return 0;
 	}
 	if (p->kind != RF_KIND_SHADE)
 		return 0;

@@ -77,7 +77,7 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_host, env_levels, 92),
 	OFFSET(struct rf_host, dfg, 96),
 
-	SIZE(struct rf_span, 48),
+	SIZE(struct rf_span, 56),
 	OFFSET(struct rf_span, size, 0),
 	OFFSET(struct rf_span, npix, 4),
 	OFFSET(struct rf_span, x, 8),
@@ -87,6 +87,8 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_span, frame, 24),
 	OFFSET(struct rf_span, in, 32),
 	OFFSET(struct rf_span, out, 40),
+	OFFSET(struct rf_span, nvalues, 48),
+	OFFSET(struct rf_span, count, 52),
 
 	SIZE(struct rf_probe, 40),
 	OFFSET(struct rf_probe, center, 0),
@@ -134,6 +136,8 @@ TEST(constants)
 	ASSERT_STR_EQ(RF_SHADE_SPEC_R, "spec.R");
 	ASSERT_STR_EQ(RF_SHADE_SPEC_G, "spec.G");
 	ASSERT_STR_EQ(RF_SHADE_SPEC_B, "spec.B");
+	ASSERT_STR_EQ(RF_ACCUMULATE_VALUE, "value");
+	ASSERT_STR_EQ(RF_ACCUMULATE_VARIANCE, "variance");
 	/* The three leading fields never move, whatever the platform. */
 	ASSERT_EQ(offsetof(struct rf_plugin, abi_major), 0);
 	ASSERT_EQ(offsetof(struct rf_plugin, abi_minor), 4);
@@ -454,6 +458,9 @@ TEST(loader_refusals)
 	ASSERT(strstr(msg, "(RF_PLUGIN_RADIANCE) must output spec.R spec.G spec.B") != NULL);
 	ASSERT_EQ(load("radiance_projection", RF_KIND_PROJECTION, &m), RF_EPLUGIN);
 	ASSERT(strstr(msg, "which only a shade mode may") != NULL);
+	ASSERT_EQ(load("accumulate_channels", RF_KIND_ACCUMULATE, &m), RF_EPLUGIN);
+	ASSERT(strstr(msg, "an accumulate mode reads no channels by name and its "
+	                   "state's first slots are 'value' and 'variance'") != NULL);
 	ASSERT_EQ(load("flags_abi_1_0", RF_KIND_SHADE, &m), RF_EPLUGIN);
 	ASSERT(strstr(msg, "sets flags 0x1 that ABI 1.0 does not define") != NULL);
 	ASSERT_EQ(load("shade_radiance", RF_KIND_SHADE, &m), 0);
