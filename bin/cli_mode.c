@@ -110,8 +110,13 @@ list_one(void *arg, const char *path, int shadowed)
 	printf("%s\t%s\n", p->name, p->summary);
 	printf("  file: %s (version %s, plugin ABI %u.%u, %s, %s)\n", path,
 	       p->version, p->abi_major, p->abi_minor, p->author, p->license);
-	print_channels("reads", p->inputs);
-	print_channels("writes", p->outputs);
+	if (p->kind == RF_KIND_ACCUMULATE) {
+		/* it combines values of any channel; its outputs are its state */
+		print_channels("state of each value", p->outputs);
+	} else {
+		print_channels("reads", p->inputs);
+		print_channels("writes", p->outputs);
+	}
 	if (p->nparams) {
 		printf("  parameters:\n");
 		for (i = 0; i < p->nparams; i++)

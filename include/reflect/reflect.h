@@ -137,6 +137,8 @@ RF_EXTERN const char *rf_header_line(const rf_header *h, size_t i);
 #define RF_KEY_SHADE "SHADE"           /* reflect-shade's mode */
 #define RF_KEY_ENV_MAPPING "ENV_MAPPING" /* the roughness-to-lod mapping used */
 #define RF_KEY_ENV_STEPS "ENV_STEPS"   /* the lod of its roughest level */
+#define RF_KEY_ACCUMULATE "ACCUMULATE" /* reflect-accumulate's mode */
+#define RF_KEY_ACCUMULATED "ACCUMULATED" /* frames in an accumulated result */
 
 struct rf_probe;
 /* The probe of a frame, from the strings a tool was given for its
@@ -302,6 +304,47 @@ RF_EXTERN void rf_stage_set_invalid(rf_stage *s, enum rf_invalid policy);
 RF_EXTERN const char *rf_stage_error(const rf_stage *s);
 /* Pixels of the current frame clamped or zeroed so far. */
 RF_EXTERN size_t rf_stage_invalid_count(const rf_stage *s);
+
+/*
+ * An accumulator runs an accumulate mode (plugin.h) over the frames of a
+ * stream: it keeps the mode's state for every value of every pixel
+ * between frames, and writes a frame's running result in place of each
+ * accumulated channel (with stats, its standard error as NAME.se, added
+ * or overwritten).  Frames must have frame 0's size and channel list.
+ */
+typedef struct rf_accumulator rf_accumulator;
+
+struct rf_accumulate_options {
+	const char *channels; /* "a,b" ("a b"), or NULL: every spec.* and R G B */
+	const char *reset;    /* header keys ("CAMERA,SCENE") whose change from
+	                         one frame to the next restarts, or NULL */
+	int stats;            /* write NAME.se channels */
+	int keep;             /* keep the last frame for rf_accumulator_result */
+};
+
+RF_EXTERN int rf_accumulator_create(rf_accumulator **a, const struct rf_plugin *p,
+                                    const double *values, const struct rf_host *host,
+                                    int nthreads, const struct rf_accumulate_options *o,
+                                    char *err, size_t errlen);
+RF_EXTERN void rf_accumulator_destroy(rf_accumulator *a);
+/* Takes the next frame's header; the output header (the input's, with
+ * the .se channels and ACCUMULATED) is valid until the next call.  err
+ * names the frame and how it differs from frame 0, or the channel that
+ * is missing. */
+RF_EXTERN int rf_accumulator_begin_frame(rf_accumulator *a, const rf_header *in,
+                                         rf_header **out, char *err, size_t errlen);
+/* Adds nrows rows of the frame from row y; with out (output layout) not
+ * NULL, writes them with the running result.  A value that is not
+ * finite stops it with RF_EINVAL and the first such pixel of the rows in
+ * rf_accumulator_error. */
+RF_EXTERN int rf_accumulator_run(rf_accumulator *a, const float *in, float *out,
+                                 size_t y, size_t nrows);
+/* The result so far, rows y.. of the last frame (options.keep). */
+RF_EXTERN int rf_accumulator_result(rf_accumulator *a, float *out, size_t y,
+                                    size_t nrows);
+/* Frames in the state: since the start, or the last reset. */
+RF_EXTERN size_t rf_accumulator_count(const rf_accumulator *a);
+RF_EXTERN const char *rf_accumulator_error(const rf_accumulator *a);
 
 #ifdef __cplusplus
 }
