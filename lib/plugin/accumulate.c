@@ -134,64 +134,12 @@ rf_accumulator_destroy(rf_accumulator *a)
 	free(a);
 }
 
-/* The default selection: what a shade pass writes. */
-static int
-accumulated_by_default(const char *name)
-{
-	return !strncmp(name, "spec.", 5) || !strcmp(name, "R") || !strcmp(name, "G") ||
-	       !strcmp(name, "B");
-}
-
 /* Frame 0 decides the values: --channels, or the default selection. */
 static int
 choose_values(rf_accumulator *a, const rf_header *in, char *err, size_t errlen)
 {
-	size_t i;
-
-	a->nvalues = 0;
-	if (!a->channels) {
-		for (i = 0; i < rf_header_nchannels(in); i++) {
-			const char *name = rf_header_channel(in, i);
-			size_t len = strlen(name);
-
-			/* an .se channel of an earlier pass is replaced, not averaged */
-			if (accumulated_by_default(name) && !(len > 3 && !strcmp(name + len - 3, ".se")))
-				a->value_col[a->nvalues++] = (int)i;
-		}
-		if (!a->nvalues) {
-			rf__format(err, errlen, "frame 0 has no spec.* or R G B channel to "
-			           "accumulate; name the channels with --channels");
-			return RF_ECHANNEL;
-		}
-		return 0;
-	} else {
-		char *list = strdup(a->channels), *name, *save = NULL;
-
-		if (!list)
-			return RF_ENOMEM;
-		for (name = strtok_r(list, ", ", &save); name; name = strtok_r(NULL, ", ", &save)) {
-			int c = rf_header_find_channel(in, name);
-
-			if (c < 0) {
-				rf__format(err, errlen, "frame 0 has no channel '%.63s' to "
-				           "accumulate (its channels: see reflect-info)", name);
-				free(list);
-				return RF_ECHANNEL;
-			}
-			for (i = 0; i < a->nvalues; i++)
-				if (a->value_col[i] == c)
-					break;
-			if (i < a->nvalues)
-				continue; /* named twice */
-			a->value_col[a->nvalues++] = c;
-		}
-		free(list);
-		if (!a->nvalues) {
-			rf__format(err, errlen, "--channels names no channel");
-			return RF_EINVAL;
-		}
-	}
-	return 0;
+	return rf__choose_values(in, a->channels, "accumulate", a->value_col, &a->nvalues, err,
+	                         errlen);
 }
 
 /* Why frame `in` cannot join frame 0, or 0. */

@@ -16,4 +16,10 @@ void rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int threa
 void rf__stage_block_begin(rf_stage *s);
 int rf__stage_block_end(rf_stage *s);
 
+/* The stream columns a channel-agnostic mode works on: those of list
+ * ("a,b"), or by default every spec.* channel and R G B; err says what
+ * is missing (verb: what the mode does, for the message). */
+int rf__choose_values(const rf_header *in, const char *list, const char *verb, int *cols,
+                      size_t *n, char *err, size_t errlen);
+
 #endif
