@@ -19,7 +19,8 @@
  *        host services for such modes: project_rays, sample_radiance,
  *        env_size, env_levels, dfg; optional_inputs in the descriptor;
  *        the accumulate kind's contract, with nvalues and count appended
- *        to rf_span.
+ *        to rf_span; the filter kind, with band, radius and pass appended
+ *        to rf_span and the host service filter_passes.
  * A minor bump only appends fields at the end of a struct, or defines new
  * flag bits or kinds; a major bump is anything else.  The host accepts a
  * plugin when its major equals the host's and its minor is not newer, and
@@ -53,7 +54,8 @@ enum rf_plugin_kind {
 	RF_KIND_PROJECTION = 1, /* reflect-project: lookup direction and distances */
 	RF_KIND_SHADE = 2,      /* reflect-shade: roughness.eff, or spec.R G B */
 	RF_KIND_OCCLUSION = 3,  /* reflect-occlude: specular occlusion term */
-	RF_KIND_ACCUMULATE = 4  /* reflect-accumulate: combines frames */
+	RF_KIND_ACCUMULATE = 4, /* reflect-accumulate: combines frames */
+	RF_KIND_FILTER = 5      /* reflect-filter: filters across pixels (ABI 1.1) */
 };
 
 /* What a kind writes, named once for hosts and plugins alike.  A shade
@@ -79,6 +81,19 @@ enum rf_plugin_kind {
 #define RF_ACCUMULATE_VARIANCE "variance" /* the variance of that result (its
                                              standard error squared); +inf
                                              when it cannot be told yet */
+
+/* A filter mode (reflect-filter) filters values across pixels, whatever
+ * channel a value comes from, guided by the channels its inputs name:
+ * each pixel of the band is its inputs, then span.nvalues values.  It
+ * runs in passes, each over the output of the one before; create()
+ * declares them through the host's filter_passes (else one pass of
+ * radius 0).  run() gets the rows y - radius .. y + radius of the pass's
+ * input in span.band (NULL for a row outside the frame; each row whole,
+ * from pixel 0), span.in pointing at the pixel (span.x, span.y), and
+ * writes span.nvalues values a pixel to span.out.  Its outputs list is
+ * empty. */
+#define RF_FILTER_PASSES_MAX 16
+#define RF_FILTER_RADIUS_MAX 1024
 
 /* Descriptor flags; a bit the host does not know makes it refuse the
  * plugin. */
@@ -154,6 +169,10 @@ struct rf_host {
 	/* The split-sum's directional albedo terms of GGX (white: A + B), as
 	 * the host's --final multiplies spec by F0 A + B. */
 	void (*dfg)(void *ctx, float n_dot_v, float roughness, float *a, float *b);
+	/* For a filter mode's create(): its passes (1 to RF_FILTER_PASSES_MAX)
+	 * and the band each reads, rows above and below (at most
+	 * RF_FILTER_RADIUS_MAX); 0, or -1 when out of range. */
+	int (*filter_passes)(void *ctx, uint32_t passes, const uint32_t *radius);
 };
 
 /* A span of pixels along one row, channels interleaved in the order the
@@ -167,10 +186,17 @@ struct rf_span {
 	uint32_t frame;         /* index of the frame in the stream */
 	const float *in;        /* npix * ninputs */
 	float *out;             /* npix * noutputs */
-	/* ABI 1.1, for the accumulate kind (0 for the others): values a
-	 * pixel in `in`, and frames in the state with this one. */
+	/* ABI 1.1, for the accumulate and filter kinds (0 for the others):
+	 * values a pixel in `in` (after a filter's inputs), and for the
+	 * accumulate kind frames in the state with this one. */
 	uint32_t nvalues;
 	uint32_t count;
+	/* ABI 1.1, for the filter kind (NULL and 0 for the others): the
+	 * band's rows, 2 radius + 1 of them, row span.y at band[radius]; the
+	 * pass, from 0. */
+	const float *const *band;
+	uint32_t radius;
+	uint32_t pass;
 };
 
 struct rf_plugin {

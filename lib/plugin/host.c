@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "envmap/envmap-internal.h"
+#include "plugin/plugin-internal.h"
 #include "envmap/rgba_levels.h"
 #include "envmap/rgba_levels_simd.h"
 #include "util/util.h"
@@ -30,6 +31,9 @@ struct rf_plugin_host {
 	struct rf__rgba_levels levels;
 	int vector;
 	struct box box;
+	/* What the last filter mode's create() declared (filter_passes). */
+	uint32_t filter_npasses;
+	uint32_t filter_radius[RF_FILTER_PASSES_MAX];
 };
 
 static const char *
@@ -187,6 +191,41 @@ sample_radiance(void *ctx, uint32_t n, const float *x, const float *y, const flo
 	rf__rgba_levels_fetch_many(&h->levels, h->vector, n, x, y, z, lod, (rf__v4 *)rgba);
 }
 
+static int
+filter_passes(void *ctx, uint32_t passes, const uint32_t *radius)
+{
+	rf_plugin_host *h = ctx;
+	uint32_t i;
+
+	if (passes < 1 || passes > RF_FILTER_PASSES_MAX || !radius)
+		return -1;
+	for (i = 0; i < passes; i++)
+		if (radius[i] > RF_FILTER_RADIUS_MAX)
+			return -1;
+	h->filter_npasses = passes;
+	memcpy(h->filter_radius, radius, passes * sizeof(*radius));
+	return 0;
+}
+
+uint32_t
+rf__host_filter_passes(const struct rf_host *table, uint32_t *radius)
+{
+	rf_plugin_host *h = table->ctx;
+
+	if (!h->filter_npasses) {
+		radius[0] = 0;
+		return 1;
+	}
+	memcpy(radius, h->filter_radius, h->filter_npasses * sizeof(*radius));
+	return h->filter_npasses;
+}
+
+void
+rf__host_filter_reset(const struct rf_host *table)
+{
+	((rf_plugin_host *)table->ctx)->filter_npasses = 0;
+}
+
 static void
 dfg(void *ctx, float n_dot_v, float roughness, float *a, float *b)
 {
@@ -207,6 +246,7 @@ rf_plugin_host_create(rf_plugin_host **hp)
 	h->table.ctx = h;
 	h->table.header_get = header_get;
 	h->table.dfg = dfg;
+	h->table.filter_passes = filter_passes;
 	h->mapping = RF_MAPPING_DEFAULT;
 	return 0;
 }

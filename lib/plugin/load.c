@@ -50,6 +50,8 @@ kind_tool(unsigned kind)
 		return "reflect-occlude";
 	case RF_KIND_ACCUMULATE:
 		return "reflect-accumulate";
+	case RF_KIND_FILTER:
+		return "reflect-filter";
 	}
 	return "another tool";
 }
@@ -66,6 +68,8 @@ rf_plugin_kind_name(unsigned kind)
 		return "occlusion";
 	case RF_KIND_ACCUMULATE:
 		return "accumulate";
+	case RF_KIND_FILTER:
+		return "filter";
 	}
 	return NULL;
 }
@@ -257,6 +261,16 @@ check_outputs(const struct rf_plugin *p, const char *path, char *err, size_t err
 		}
 		return 0;
 	}
+	if (p->kind == RF_KIND_FILTER) {
+		if (p->abi_minor < 1 || p->outputs[0]) {
+			rf__format(err, errlen, "plugin '%s': a filter mode (plugin ABI 1.1) "
+			           "writes the values it filters, not channels by name: its "
+			           "outputs list must be empty (reflect-plugin(7)); fix it and "
+			           "rebuild the plugin", path);
+			return RF_EPLUGIN;
+		}
+		return 0;
+	}
 	if (p->kind != RF_KIND_SHADE)
 		return 0;
 	if (rf_plugin_writes_radiance(p)) {
@@ -329,9 +343,10 @@ check_descriptor(const struct rf_plugin *p, const char *path, unsigned kind,
 		missing = "create, run or destroy function";
 	else if (!channel_list_valid(p->inputs))
 		missing = "valid input channel list (NULL-terminated, names unique)";
-	else if (!channel_list_valid(p->outputs) || !p->outputs[0])
+	else if (!channel_list_valid(p->outputs) ||
+	         (!p->outputs[0] && p->kind != RF_KIND_FILTER))
 		missing = "valid output channel list (NULL-terminated, names unique, "
-		          "at least one)";
+		          "at least one but for a filter mode)";
 	else if (rf_plugin_optional_inputs(p) && !optional_list_valid(p))
 		missing = "valid optional input list (NULL-terminated, names unique, "
 		          "none of them an input)";

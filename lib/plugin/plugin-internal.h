@@ -22,4 +22,11 @@ int rf__stage_block_end(rf_stage *s);
 int rf__choose_values(const rf_header *in, const char *list, const char *verb, int *cols,
                       size_t *n, char *err, size_t errlen);
 
+/* The passes and band radii a filter mode's create() declared through
+ * the host's filter_passes (tables of rf_plugin_host only): their count,
+ * 1 with radius 0 when it declared none; and forgetting them. */
+struct rf_host;
+uint32_t rf__host_filter_passes(const struct rf_host *table, uint32_t *radius);
+void rf__host_filter_reset(const struct rf_host *table);
+
 #endif

@@ -58,7 +58,7 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_param, flags, 40),
 	OFFSET(struct rf_param, choices, 48),
 
-	SIZE(struct rf_host, 104),
+	SIZE(struct rf_host, 112),
 	OFFSET(struct rf_host, size, 0),
 	OFFSET(struct rf_host, abi_major, 4),
 	OFFSET(struct rf_host, abi_minor, 8),
@@ -76,8 +76,9 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_host, env_size, 88),
 	OFFSET(struct rf_host, env_levels, 92),
 	OFFSET(struct rf_host, dfg, 96),
+	OFFSET(struct rf_host, filter_passes, 104),
 
-	SIZE(struct rf_span, 56),
+	SIZE(struct rf_span, 72),
 	OFFSET(struct rf_span, size, 0),
 	OFFSET(struct rf_span, npix, 4),
 	OFFSET(struct rf_span, x, 8),
@@ -89,6 +90,9 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_span, out, 40),
 	OFFSET(struct rf_span, nvalues, 48),
 	OFFSET(struct rf_span, count, 52),
+	OFFSET(struct rf_span, band, 56),
+	OFFSET(struct rf_span, radius, 64),
+	OFFSET(struct rf_span, pass, 68),
 
 	SIZE(struct rf_probe, 40),
 	OFFSET(struct rf_probe, center, 0),
@@ -126,6 +130,9 @@ TEST(constants)
 	ASSERT_EQ(RF_KIND_SHADE, 2);
 	ASSERT_EQ(RF_KIND_OCCLUSION, 3);
 	ASSERT_EQ(RF_KIND_ACCUMULATE, 4);
+	ASSERT_EQ(RF_KIND_FILTER, 5);
+	ASSERT_EQ(RF_FILTER_PASSES_MAX, 16);
+	ASSERT_EQ(RF_FILTER_RADIUS_MAX, 1024);
 	ASSERT_EQ(RF_PARAM_INTEGER, 0x1);
 	ASSERT_EQ(RF_PARAM_BOOL, 0x2);
 	ASSERT_EQ(RF_PARAM_CHOICE, 0x4);
@@ -145,7 +152,8 @@ TEST(constants)
 	ASSERT_STR_EQ(rf_plugin_kind_name(RF_KIND_PROJECTION), "projection");
 	ASSERT_STR_EQ(rf_plugin_kind_name(RF_KIND_ACCUMULATE), "accumulate");
 	ASSERT(rf_plugin_kind_name(0) == NULL);
-	ASSERT(rf_plugin_kind_name(5) == NULL);
+	ASSERT_STR_EQ(rf_plugin_kind_name(RF_KIND_FILTER), "filter");
+	ASSERT(rf_plugin_kind_name(6) == NULL);
 }
 
 /* ---- rf_plugin_parse_params ------------------------------------------ */
