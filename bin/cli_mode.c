@@ -110,7 +110,10 @@ list_one(void *arg, const char *path, int shadowed)
 	printf("%s\t%s\n", p->name, p->summary);
 	printf("  file: %s (version %s, plugin ABI %u.%u, %s, %s)\n", path,
 	       p->version, p->abi_major, p->abi_minor, p->author, p->license);
-	if (p->kind == RF_KIND_ACCUMULATE) {
+	if (p->kind == RF_KIND_FILTER) {
+		/* it filters values of any channel, guided by its inputs */
+		print_channels("guided by", p->inputs);
+	} else if (p->kind == RF_KIND_ACCUMULATE) {
 		/* it combines values of any channel; its outputs are its state */
 		print_channels("state of each value", p->outputs);
 	} else {

@@ -139,6 +139,7 @@ RF_EXTERN const char *rf_header_line(const rf_header *h, size_t i);
 #define RF_KEY_ENV_STEPS "ENV_STEPS"   /* the lod of its roughest level */
 #define RF_KEY_ACCUMULATE "ACCUMULATE" /* reflect-accumulate's mode */
 #define RF_KEY_ACCUMULATED "ACCUMULATED" /* frames in an accumulated result */
+#define RF_KEY_FILTER "FILTER"         /* reflect-filter's mode */
 
 struct rf_probe;
 /* The probe of a frame, from the strings a tool was given for its
@@ -345,6 +346,41 @@ RF_EXTERN int rf_accumulator_result(rf_accumulator *a, float *out, size_t y,
 /* Frames in the state: since the start, or the last reset. */
 RF_EXTERN size_t rf_accumulator_count(const rf_accumulator *a);
 RF_EXTERN const char *rf_accumulator_error(const rf_accumulator *a);
+
+/*
+ * A filter runs a filter mode (plugin.h) over a frame in passes, holding
+ * a band of rows per pass, not the frame: it reads the frame's rows
+ * through a callback as its bands have room, and writes each row as soon
+ * as it is filtered, the filtered channels (those named, or by default
+ * every spec.* channel and R G B) in place, every other channel as read.
+ */
+typedef struct rf_filter rf_filter;
+
+struct rf_filter_options {
+	const char *channels; /* "a,b" ("a b"), or NULL: every spec.* and R G B */
+};
+
+/* nrows rows into rows (the frame's layout), in order; 0 or an error. */
+typedef int rf_filter_read_fn(void *arg, float *rows, size_t nrows);
+typedef int rf_filter_write_fn(void *arg, const float *rows, size_t nrows);
+
+RF_EXTERN int rf_filter_create(rf_filter **f, const struct rf_plugin *p,
+                               const double *values, const struct rf_host *host,
+                               int nthreads, const struct rf_filter_options *o,
+                               char *err, size_t errlen);
+RF_EXTERN void rf_filter_destroy(rf_filter *f);
+/* Takes the next frame's header; the output header (the input's) is
+ * valid until the next call.  err names a missing guide channel. */
+RF_EXTERN int rf_filter_begin_frame(rf_filter *f, const rf_header *in, rf_header **out,
+                                    char *err, size_t errlen);
+/* Filters the frame: every row read once, written once, in order.  A
+ * filtered value that is not finite stops it with RF_EINVAL and the
+ * pixel in rf_filter_error; a callback's error is returned as it is. */
+RF_EXTERN int rf_filter_frame(rf_filter *f, rf_filter_read_fn *read_rows,
+                              rf_filter_write_fn *write_rows, void *arg);
+/* The passes the mode declared. */
+RF_EXTERN uint32_t rf_filter_passes(const rf_filter *f);
+RF_EXTERN const char *rf_filter_error(const rf_filter *f);
 
 #ifdef __cplusplus
 }

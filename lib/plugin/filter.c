@@ -1,0 +1,421 @@
+/*
+ * Running a filter mode over the frames of a stream (plugin.h: the filter
+ * kind), a band of rows at a time.
+ *
+ * A mode runs in passes, each over the output of the one before, and a
+ * pass needs the rows radius above and below the row it writes: the
+ * passes form a cascade of ring buffers, level p the input of pass p
+ * (each pixel the mode's inputs, the guides, then the values), level P
+ * the result.  Rows are read as the rings have room, each level computes
+ * what its band allows, and a result row leaves as soon as it is done,
+ * with the other channels of its input row (held in a ring of whole input
+ * rows until then).  Memory is a few bands: at 1920x1080 with 34
+ * channels, a-trous's five passes (radius 2 to 32) run in 45 MB where
+ * the frame is 282 MB, and a frame of any height in the same.  The rows of a step are spread over the
+ * pool's threads; a row depends only on the rows of its band, so the
+ * bytes do not depend on the thread count.
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "plugin/plugin-internal.h"
+#include "util/pool.h"
+#include "reflect/plugin.h"
+
+struct worker {
+	void *state;        /* the mode's instance */
+	const float **band; /* 2 radius + 1 row pointers */
+	float *out;         /* one row of values */
+};
+
+struct level {
+	float *rows; /* cap rows of ncols x (ng + nv) floats, row y at y % cap */
+	size_t cap;
+	size_t avail; /* rows 0 .. avail - 1 have been written */
+	size_t done;  /* rows of the next level computed from this one */
+};
+
+struct rf_filter {
+	const struct rf_plugin *p;
+	int nthreads;
+	struct worker *workers;
+	struct rf__pool *pool;
+	char *channels;
+	size_t ninputs, ng, nv; /* required inputs; guides with the optional */
+	int guide_col[RF_CHANNELS_MAX];
+	int value_col[RF_CHANNELS_MAX];
+	uint32_t npasses, radius[RF_FILTER_PASSES_MAX];
+	rf_header *out_h;
+	size_t ncols, nrows, ncomp, frames;
+	struct level level[RF_FILTER_PASSES_MAX + 1];
+	float *full; /* whole input rows, from the next output row on */
+	size_t full_cap;
+	float *block; /* rows as read or written, block of them */
+	size_t block_rows;
+	/* The step run_rows is running. */
+	uint32_t pass;
+	size_t y0;
+	char error[320];
+};
+
+static size_t
+list_length(const char *const *list)
+{
+	size_t n = 0;
+
+	while (list && list[n])
+		n++;
+	return n;
+}
+
+static const char *
+guide_name(const rf_filter *f, size_t i)
+{
+	return i < f->ninputs ? f->p->inputs[i]
+	                      : rf_plugin_optional_inputs(f->p)[i - f->ninputs];
+}
+
+static void
+free_frame(rf_filter *f)
+{
+	uint32_t p;
+
+	for (p = 0; p <= RF_FILTER_PASSES_MAX; p++) {
+		free(f->level[p].rows);
+		f->level[p].rows = NULL;
+	}
+	free(f->full);
+	free(f->block);
+	f->full = f->block = NULL;
+}
+
+int
+rf_filter_create(rf_filter **fp, const struct rf_plugin *p, const double *values,
+                 const struct rf_host *host, int nthreads,
+                 const struct rf_filter_options *o, char *err, size_t errlen)
+{
+	rf_filter *f;
+	uint32_t rmax = 0, i;
+	int t;
+
+	*fp = NULL;
+	if (nthreads < 1)
+		nthreads = 1;
+	if (nthreads > RF__THREADS_MAX)
+		nthreads = RF__THREADS_MAX;
+	if (p->kind != RF_KIND_FILTER) {
+		rf__format(err, errlen, "mode '%s' is a %s mode, not a filter mode", p->name,
+		           rf_plugin_kind_name(p->kind));
+		return RF_EPLUGIN;
+	}
+	if (!(f = calloc(1, sizeof(*f))))
+		return RF_ENOMEM;
+	f->p = p;
+	f->nthreads = nthreads;
+	f->ninputs = list_length(p->inputs);
+	f->ng = f->ninputs + list_length(rf_plugin_optional_inputs(p));
+	if ((o && o->channels && !(f->channels = strdup(o->channels))) ||
+	    !(f->workers = calloc((size_t)nthreads, sizeof(*f->workers))) ||
+	    rf__pool_create(&f->pool, nthreads) < 0) {
+		rf_filter_destroy(f);
+		return RF_ENOMEM;
+	}
+	rf__host_filter_reset(host);
+	for (t = 0; t < nthreads; t++) {
+		char msg[400] = "";
+
+		if (p->create(host, values, &f->workers[t].state, msg, sizeof(msg))) {
+			msg[sizeof(msg) - 1] = '\0';
+			rf__format(err, errlen, "mode '%s': %s", p->name,
+			           *msg ? msg : "cannot create an instance");
+			f->workers[t].state = NULL;
+			rf_filter_destroy(f);
+			return RF_EPLUGIN;
+		}
+	}
+	f->npasses = rf__host_filter_passes(host, f->radius);
+	for (i = 0; i < f->npasses; i++)
+		rmax = f->radius[i] > rmax ? f->radius[i] : rmax;
+	for (t = 0; t < nthreads; t++)
+		if (!(f->workers[t].band = calloc(2 * (size_t)rmax + 1, sizeof(float *)))) {
+			rf_filter_destroy(f);
+			return RF_ENOMEM;
+		}
+	*fp = f;
+	return 0;
+}
+
+void
+rf_filter_destroy(rf_filter *f)
+{
+	int t;
+
+	if (!f)
+		return;
+	rf__pool_destroy(f->pool);
+	for (t = 0; f->workers && t < f->nthreads; t++) {
+		if (f->workers[t].state)
+			f->p->destroy(f->workers[t].state);
+		free(f->workers[t].band);
+		free(f->workers[t].out);
+	}
+	free(f->workers);
+	free(f->channels);
+	rf_header_destroy(f->out_h);
+	free_frame(f);
+	free(f);
+}
+
+int
+rf_filter_begin_frame(rf_filter *f, const rf_header *in, rf_header **out, char *err,
+                      size_t errlen)
+{
+	size_t i, stride, rsum = 0, nv;
+	uint32_t p;
+	int rc, t;
+
+	for (i = 0; i < f->ng; i++) {
+		f->guide_col[i] = rf_header_find_channel(in, guide_name(f, i));
+		if (f->guide_col[i] < 0 && i < f->ninputs) {
+			rf__format(err, errlen, "frame %zu has no channel '%s', which mode '%s' "
+			           "is guided by", f->frames, guide_name(f, i), f->p->name);
+			return RF_ECHANNEL;
+		}
+	}
+	if ((rc = rf__choose_values(in, f->channels, "filter", f->value_col, &nv, err,
+	                            errlen)) < 0)
+		return rc;
+	free_frame(f);
+	f->nv = nv;
+	f->ncols = rf_header_ncols(in);
+	f->nrows = rf_header_nrows(in);
+	f->ncomp = rf_header_nchannels(in);
+	stride = f->ncols * (f->ng + f->nv);
+	for (p = 0; p < f->npasses; p++)
+		rsum += f->radius[p];
+	/* Rows a step reads and writes: enough for the threads to share, few
+	 * enough that the rings stay bands. */
+	f->block_rows = rf_block_rows(f->ncols, f->ncomp, (size_t)1 << 20);
+	if (f->block_rows > 8)
+		f->block_rows = 8;
+	for (p = 0; p <= f->npasses; p++) {
+		struct level *l = &f->level[p];
+		size_t cap = (p < f->npasses ? 2 * (size_t)f->radius[p] + 1 : 0) + 2 * f->block_rows +
+		             1;
+
+		l->cap = cap < f->nrows ? cap : f->nrows;
+		l->avail = l->done = 0;
+		if (f->nrows && !(l->rows = malloc(l->cap * stride * sizeof(float) + 1)))
+			goto nomem;
+	}
+	f->full_cap = rsum + 2 * f->block_rows + 2;
+	if (f->full_cap > f->nrows)
+		f->full_cap = f->nrows;
+	if (f->nrows && (!(f->full = malloc(f->full_cap * f->ncols * f->ncomp * sizeof(float))) ||
+	                 !(f->block = malloc(f->block_rows * f->ncols * f->ncomp *
+	                                     sizeof(float)))))
+		goto nomem;
+	for (t = 0; t < f->nthreads; t++) {
+		free(f->workers[t].out);
+		if (!(f->workers[t].out = malloc((f->ncols * f->nv + 1) * sizeof(float))))
+			goto nomem;
+	}
+	rf_header_destroy(f->out_h);
+	f->out_h = NULL;
+	if ((rc = rf_header_dup(&f->out_h, in)) < 0)
+		return rc;
+	*out = f->out_h;
+	f->frames++;
+	return 0;
+nomem:
+	rf__format(err, errlen, "out of memory for the bands of %zux%zu pixels", f->ncols,
+	           f->nrows);
+	return RF_ENOMEM;
+}
+
+static float *
+level_row(const rf_filter *f, uint32_t p, size_t y)
+{
+	const struct level *l = &f->level[p];
+
+	return l->rows + (y % l->cap) * f->ncols * (f->ng + f->nv);
+}
+
+static float *
+full_row(const rf_filter *f, size_t y)
+{
+	return f->full + (y % f->full_cap) * f->ncols * f->ncomp;
+}
+
+/* Row y0 + task of pass f->pass, from level pass into level pass + 1. */
+static void
+pass_row(void *arg, size_t task, int thread)
+{
+	rf_filter *f = arg;
+	struct worker *w = &f->workers[thread];
+	const uint32_t p = f->pass, r = f->radius[p];
+	const size_t y = f->y0 + task, px = f->ng + f->nv;
+	struct rf_span span;
+	float *dst = level_row(f, p + 1, y);
+	const float *src;
+	size_t x, k;
+
+	for (k = 0; k <= 2 * (size_t)r; k++) {
+		long yy = (long)y + (long)k - (long)r;
+
+		w->band[k] = yy >= 0 && (size_t)yy < f->nrows ? level_row(f, p, (size_t)yy) : NULL;
+	}
+	src = w->band[r];
+	memset(&span, 0, sizeof(span));
+	span.size = sizeof(span);
+	span.npix = (uint32_t)f->ncols;
+	span.y = (uint32_t)y;
+	span.width = (uint32_t)f->ncols;
+	span.height = (uint32_t)f->nrows;
+	span.frame = (uint32_t)(f->frames - 1);
+	span.in = src;
+	span.out = w->out;
+	span.nvalues = (uint32_t)f->nv;
+	span.band = w->band;
+	span.radius = r;
+	span.pass = p;
+	if (f->ncols)
+		f->p->run(w->state, &span);
+	for (x = 0; x < f->ncols; x++) {
+		memcpy(dst + x * px, src + x * px, f->ng * sizeof(float));
+		memcpy(dst + x * px + f->ng, w->out + x * f->nv, f->nv * sizeof(float));
+	}
+}
+
+/* Copies n rows just read (f->block) into the ring of whole rows and
+ * gathers them into level 0; 0, or RF_EINVAL for a value that is not
+ * finite (rf_filter_error says where). */
+static int
+take_rows(rf_filter *f, size_t y, size_t n)
+{
+	const size_t px = f->ng + f->nv;
+	size_t k, x, i;
+
+	for (k = 0; k < n; k++) {
+		const float *in = f->block + k * f->ncols * f->ncomp;
+		float *g = level_row(f, 0, y + k);
+
+		memcpy(full_row(f, y + k), in, f->ncols * f->ncomp * sizeof(float));
+		for (x = 0; x < f->ncols; x++, in += f->ncomp, g += px) {
+			for (i = 0; i < f->ng; i++)
+				g[i] = f->guide_col[i] >= 0 ? in[f->guide_col[i]] : NAN;
+			for (i = 0; i < f->nv; i++) {
+				float v = in[f->value_col[i]];
+
+				if (!isfinite(v)) {
+					rf__format(f->error, sizeof(f->error), "row %zu, pixel %zu: "
+					           "channel '%s' is %s", y + k + 1, x + 1,
+					           rf_header_channel(f->out_h, (size_t)f->value_col[i]),
+					           isnan(v) ? "nan" : v > 0 ? "inf" : "-inf");
+					return RF_EINVAL;
+				}
+				g[f->ng + i] = v;
+			}
+		}
+	}
+	return 0;
+}
+
+/* The first row a level still needs: the lowest of its next output
+ * row's band, or the next result row. */
+static size_t
+level_low(const rf_filter *f, uint32_t p, size_t out_next)
+{
+	if (p == f->npasses)
+		return out_next;
+	return f->level[p].done > f->radius[p] ? f->level[p].done - f->radius[p] : 0;
+}
+
+int
+rf_filter_frame(rf_filter *f, rf_filter_read_fn *read_rows, rf_filter_write_fn *write_rows,
+                void *arg)
+{
+	size_t read_next = 0, out_next = 0;
+	int rc;
+
+	f->error[0] = '\0';
+	while (out_next < f->nrows) {
+		size_t n = f->nrows - read_next, progress = 0, low;
+		uint32_t p;
+
+		/* Read what the whole-row ring and level 0 have room for. */
+		if (n > f->block_rows)
+			n = f->block_rows;
+		if (n > f->full_cap - (read_next - out_next))
+			n = f->full_cap - (read_next - out_next);
+		low = level_low(f, 0, out_next);
+		if (n > f->level[0].cap - (read_next - low))
+			n = f->level[0].cap - (read_next - low);
+		if (n) {
+			if ((rc = read_rows(arg, f->block, n)) < 0)
+				return rc;
+			if ((rc = take_rows(f, read_next, n)) < 0)
+				return rc;
+			read_next += n;
+			f->level[0].avail = read_next;
+			progress += n;
+		}
+		/* Each pass as far as its band and the next level's room allow. */
+		for (p = 0; p < f->npasses; p++) {
+			struct level *l = &f->level[p], *next = &f->level[p + 1];
+			size_t r = f->radius[p], last, room;
+
+			last = l->avail == f->nrows ? f->nrows : (l->avail > r ? l->avail - r : 0);
+			room = next->cap - (next->avail - level_low(f, p + 1, out_next));
+			if (last > l->done + room)
+				last = l->done + room;
+			if (last <= l->done)
+				continue;
+			f->pass = p;
+			f->y0 = l->done;
+			rf__pool_run(f->pool, last - l->done, pass_row, f);
+			progress += last - l->done;
+			l->done = next->avail = last;
+		}
+		/* The result rows done, with their input rows' other channels. */
+		while (out_next < f->level[f->npasses].avail) {
+			size_t m = f->level[f->npasses].avail - out_next, k, x, i;
+
+			if (m > f->block_rows)
+				m = f->block_rows;
+			for (k = 0; k < m; k++) {
+				const float *res = level_row(f, f->npasses, out_next + k);
+				float *o = f->block + k * f->ncols * f->ncomp;
+
+				memcpy(o, full_row(f, out_next + k), f->ncols * f->ncomp * sizeof(float));
+				for (x = 0; x < f->ncols; x++, o += f->ncomp)
+					for (i = 0; i < f->nv; i++)
+						o[f->value_col[i]] = res[x * (f->ng + f->nv) + f->ng + i];
+			}
+			if ((rc = write_rows(arg, f->block, m)) < 0)
+				return rc;
+			out_next += m;
+			progress += m;
+		}
+		if (!progress) {
+			rf__format(f->error, sizeof(f->error), "the bands stalled at row %zu "
+			           "(a bug: please report it)", out_next);
+			return RF_EINVAL;
+		}
+	}
+	return 0;
+}
+
+uint32_t
+rf_filter_passes(const rf_filter *f)
+{
+	return f->npasses;
+}
+
+const char *
+rf_filter_error(const rf_filter *f)
+{
+	return f->error;
+}
