@@ -83,15 +83,15 @@ enum rf_plugin_kind {
                                              when it cannot be told yet */
 
 /* A filter mode (reflect-filter) filters values across pixels, whatever
- * channel a value comes from, guided by the channels its inputs name:
- * each pixel of the band is its inputs, then span.nvalues values.  It
- * runs in passes, each over the output of the one before; create()
- * declares them through the host's filter_passes (else one pass of
- * radius 0).  run() gets the rows y - radius .. y + radius of the pass's
- * input in span.band (NULL for a row outside the frame; each row whole,
- * from pixel 0), span.in pointing at the pixel (span.x, span.y), and
- * writes span.nvalues values a pixel to span.out.  Its outputs list is
- * empty. */
+ * channel a value comes from, guided by the channels its inputs (and
+ * optional inputs) name.  It runs in passes, each over the output of the
+ * one before; create() declares them through the host's filter_passes
+ * (else one pass of radius 0).  run() gets the rows y - radius .. y +
+ * radius of the pass's input in span.band (NULL for a row outside the
+ * frame), each row whole and planar, for vector code: the row of guide
+ * g is band[k] + g width, then the rows of the span.nvalues values;
+ * span.in is band[radius].  It writes span.out planar too: value v of
+ * pixel span.x + i at out[v npix + i].  Its outputs list is empty. */
 #define RF_FILTER_PASSES_MAX 16
 #define RF_FILTER_RADIUS_MAX 1024
 

@@ -5,8 +5,8 @@
  * A mode runs in passes, each over the output of the one before, and a
  * pass needs the rows radius above and below the row it writes: the
  * passes form a cascade of ring buffers, level p the input of pass p
- * (each pixel the mode's inputs, the guides, then the values), level P
- * the result.  Rows are read as the rings have room, each level computes
+ * (each row planar: an array of the row for each of the mode's inputs,
+ * the guides, then for each value), level P the result.  Rows are read as the rings have room, each level computes
  * what its band allows, and a result row leaves as soon as it is done,
  * with the other channels of its input row (held in a ring of whole input
  * rows until then).  Memory is a few bands: at 1920x1080 with 34
@@ -256,11 +256,11 @@ pass_row(void *arg, size_t task, int thread)
 	rf_filter *f = arg;
 	struct worker *w = &f->workers[thread];
 	const uint32_t p = f->pass, r = f->radius[p];
-	const size_t y = f->y0 + task, px = f->ng + f->nv;
+	const size_t y = f->y0 + task;
 	struct rf_span span;
 	float *dst = level_row(f, p + 1, y);
 	const float *src;
-	size_t x, k;
+	size_t k;
 
 	for (k = 0; k <= 2 * (size_t)r; k++) {
 		long yy = (long)y + (long)k - (long)r;
@@ -283,10 +283,9 @@ pass_row(void *arg, size_t task, int thread)
 	span.pass = p;
 	if (f->ncols)
 		f->p->run(w->state, &span);
-	for (x = 0; x < f->ncols; x++) {
-		memcpy(dst + x * px, src + x * px, f->ng * sizeof(float));
-		memcpy(dst + x * px + f->ng, w->out + x * f->nv, f->nv * sizeof(float));
-	}
+	/* planar: the guides' arrays as they were, then the values' */
+	memcpy(dst, src, f->ng * f->ncols * sizeof(float));
+	memcpy(dst + f->ng * f->ncols, w->out, f->nv * f->ncols * sizeof(float));
 }
 
 /* Copies n rows just read (f->block) into the ring of whole rows and
@@ -295,17 +294,17 @@ pass_row(void *arg, size_t task, int thread)
 static int
 take_rows(rf_filter *f, size_t y, size_t n)
 {
-	const size_t px = f->ng + f->nv;
+	const size_t w = f->ncols;
 	size_t k, x, i;
 
 	for (k = 0; k < n; k++) {
-		const float *in = f->block + k * f->ncols * f->ncomp;
+		const float *in = f->block + k * w * f->ncomp;
 		float *g = level_row(f, 0, y + k);
 
-		memcpy(full_row(f, y + k), in, f->ncols * f->ncomp * sizeof(float));
-		for (x = 0; x < f->ncols; x++, in += f->ncomp, g += px) {
+		memcpy(full_row(f, y + k), in, w * f->ncomp * sizeof(float));
+		for (x = 0; x < w; x++, in += f->ncomp) {
 			for (i = 0; i < f->ng; i++)
-				g[i] = f->guide_col[i] >= 0 ? in[f->guide_col[i]] : NAN;
+				g[i * w + x] = f->guide_col[i] >= 0 ? in[f->guide_col[i]] : NAN;
 			for (i = 0; i < f->nv; i++) {
 				float v = in[f->value_col[i]];
 
@@ -316,7 +315,7 @@ take_rows(rf_filter *f, size_t y, size_t n)
 					           isnan(v) ? "nan" : v > 0 ? "inf" : "-inf");
 					return RF_EINVAL;
 				}
-				g[f->ng + i] = v;
+				g[(f->ng + i) * w + x] = v;
 			}
 		}
 	}
@@ -392,7 +391,7 @@ rf_filter_frame(rf_filter *f, rf_filter_read_fn *read_rows, rf_filter_write_fn *
 				memcpy(o, full_row(f, out_next + k), f->ncols * f->ncomp * sizeof(float));
 				for (x = 0; x < f->ncols; x++, o += f->ncomp)
 					for (i = 0; i < f->nv; i++)
-						o[f->value_col[i]] = res[x * (f->ng + f->nv) + f->ng + i];
+						o[f->value_col[i]] = res[(f->ng + i) * f->ncols + x];
 			}
 			if ((rc = write_rows(arg, f->block, m)) < 0)
 				return rc;

@@ -66,33 +66,101 @@ enum { NX, NY, NZ, PX, PY, PZ, ROUGH, OBJID, MASK, HIT, DEPTH, NGUIDES };
 struct atrous {
 	uint32_t passes, normal;
 	float inv_plane, inv_rough, inv_color, lobe;
-	float *sum; /* nsum values' running sums (grown in run, not per pixel) */
-	uint32_t nsum;
+	float *soa; /* run()'s scratch, ncap floats (grown, not per span) */
+	size_t ncap;
 };
 
-/* e^-x for x >= 0, to 2e-4 relative: 2^(-x log2 e) from the exponent
- * bits and a cubic for the fraction; 0 past 87 and for NaN. */
-static inline float
-exp_neg(float x)
-{
-	union { float f; uint32_t u; } v;
-	float t = x * 1.44269504f, f;
-	int32_t i;
+/* Guide f of pixel x of a planar band row. */
+#define AT(row, f, x) ((row)[(size_t)(f) * w + (x)])
 
-	if (!(t < 126.0f))
-		return 0.0f;
-	i = (int32_t)t;
-	f = t - (float)i;
-	/* 2^-f on [0, 1] */
-	v.f = 1.0f + f * (-0.69314718f + f * (0.24022651f + f * (-0.05550411f)));
-	v.u -= (uint32_t)i << 23;
-	return v.f;
+static inline int
+usable(const float *row, size_t w, size_t x)
+{
+	return isfinite(AT(row, NX, x)) && isfinite(AT(row, NY, x)) && isfinite(AT(row, NZ, x)) &&
+	       isfinite(AT(row, PX, x)) && isfinite(AT(row, PY, x)) && isfinite(AT(row, PZ, x)) &&
+	       isfinite(AT(row, ROUGH, x)) && !(AT(row, MASK, x) < 0.5f);
 }
 
-static inline float
-ipow(float x, uint32_t n)
+/* The pixel's size on its surface: the distance to the nearest usable
+ * neighbour of the same object in the row, or in the rows above and
+ * below; +inf when it has none. */
+static float
+pixel_size(const struct rf_span *span, size_t x)
 {
-	float r = 1.0f;
+	const size_t w = span->width;
+	const float *c = span->band[span->radius];
+	float best = INFINITY;
+	int k;
+
+	for (k = 0; k < 4; k++) {
+		const float *row = span->band[span->radius + (k == 2 ? -1 : k == 3 ? 1 : 0)];
+		long qx = (long)x + (k == 0 ? -1 : k == 1 ? 1 : 0);
+		float dx, dy, dz, d;
+
+		if (!row || qx < 0 || qx >= (long)w)
+			continue;
+		if (AT(row, OBJID, qx) != AT(c, OBJID, x) || !usable(row, w, (size_t)qx))
+			continue;
+		dx = AT(row, PX, qx) - AT(c, PX, x);
+		dy = AT(row, PY, qx) - AT(c, PY, x);
+		dz = AT(row, PZ, qx) - AT(c, PZ, x);
+		d = dx * dx + dy * dy + dz * dz;
+		best = d < best ? d : best;
+	}
+	return sqrtf(best);
+}
+
+/* Four pixels at a time, straight from the planar band rows: every pixel
+ * goes through the same vector code, the same bits wherever it lies.  A
+ * tap off the row's ends reads lanes one by one, an objid of NaN for the
+ * lanes outside (which then weigh nothing). */
+typedef float v4f __attribute__((vector_size(16)));
+typedef int32_t v4i __attribute__((vector_size(16)));
+
+static inline v4f
+v4_splat(float x)
+{
+	v4f v = { x, x, x, x };
+
+	return v;
+}
+
+static inline v4f
+v4_select(v4i m, v4f a, v4f b)
+{
+	return (v4f)(((v4i)a & m) | ((v4i)b & ~m));
+}
+
+static inline v4f
+v4_sqrt(v4f x)
+{
+	v4f r;
+	int i;
+
+	for (i = 0; i < 4; i++)
+		r[i] = sqrtf(x[i]);
+	return r;
+}
+
+/* exp_neg, lane by lane the same operations */
+static inline v4f
+v4_exp_neg(v4f x)
+{
+	const v4f t = x * 1.44269504f;
+	v4i ok = t < v4_splat(126.0f), i;
+	v4f ti = v4_select(ok, t, v4_splat(0.0f)), f, r;
+
+	i = __builtin_convertvector(ti, v4i);
+	f = ti - __builtin_convertvector(i, v4f);
+	r = 1.0f + f * (-0.69314718f + f * (0.24022651f + f * (-0.05550411f)));
+	r = (v4f)((v4i)r - (i << 23));
+	return v4_select(ok, r, v4_splat(0.0f));
+}
+
+static inline v4f
+v4_ipow(v4f x, uint32_t n)
+{
+	v4f r = v4_splat(1.0f);
 
 	while (n) {
 		if (n & 1)
@@ -103,144 +171,171 @@ ipow(float x, uint32_t n)
 	return r;
 }
 
-static inline int
-usable(const float *g)
+/* Field f of pixels x .. x + 3 of a planar row of width w. */
+static inline v4f
+lanes(const float *row, size_t w, size_t f, long x)
 {
-	return isfinite(g[NX]) && isfinite(g[NY]) && isfinite(g[NZ]) && isfinite(g[PX]) &&
-	       isfinite(g[PY]) && isfinite(g[PZ]) && isfinite(g[ROUGH]) && !(g[MASK] < 0.5f);
-}
-
-/* The pixel's size on its surface: the distance to the nearest usable
- * neighbour of the same object in the row, or in the rows above and
- * below; +inf when it has none. */
-static float
-pixel_size(const struct rf_span *span, uint32_t x, size_t stride)
-{
-	const float *c = span->band[span->radius] + (size_t)x * stride;
-	float best = INFINITY;
+	const float *a = row + f * w;
+	v4f v;
 	int k;
 
-	for (k = 0; k < 4; k++) {
-		const float *row = span->band[span->radius + (k == 2 ? -1 : k == 3 ? 1 : 0)];
-		long qx = (long)x + (k == 0 ? -1 : k == 1 ? 1 : 0);
-		const float *q;
-		float dx, dy, dz, d;
-
-		if (!row || qx < 0 || qx >= (long)span->width)
-			continue;
-		q = row + (size_t)qx * stride;
-		if (q[OBJID] != c[OBJID] || !usable(q))
-			continue;
-		dx = q[PX] - c[PX];
-		dy = q[PY] - c[PY];
-		dz = q[PZ] - c[PZ];
-		d = dx * dx + dy * dy + dz * dz;
-		best = d < best ? d : best;
+	if (x >= 0 && x + 4 <= (long)w) {
+		memcpy(&v, a + x, sizeof(v));
+		return v;
 	}
-	return sqrtf(best);
+	for (k = 0; k < 4; k++)
+		v[k] = x + k >= 0 && x + k < (long)w ? a[x + k] : (f == OBJID ? NAN : 0.0f);
+	return v;
+}
+
+/* The 25 taps of pixels x .. x + 3: the sum of their weights, and in
+ * vsum the weighted sums of (v_q - v_p) for values v0 .. v1 - 1. */
+static v4f
+taps(const struct atrous *a, const struct rf_span *span, long x, const float *lp,
+     uint32_t v0, uint32_t v1, v4f *vsum)
+{
+	static const float h[5] = { 1.0f / 16, 1.0f / 4, 3.0f / 8, 1.0f / 4, 1.0f / 16 };
+	const v4i magnitude = { 0x7FFFFFFF, 0x7FFFFFFF, 0x7FFFFFFF, 0x7FFFFFFF };
+	const size_t w = span->width;
+	const uint32_t nv = span->nvalues, step = 1u << span->pass;
+	const float *c = span->band[span->radius];
+	const v4f pr = lanes(c, w, ROUGH, x), po = lanes(c, w, OBJID, x);
+	const v4f inv_r = a->inv_rough / v4_select(pr > 0.05f, pr, v4_splat(0.05f));
+	v4f pn[3], pp[3], pv[64], plp, wsum = v4_splat(0.0f);
+	uint32_t v, k;
+	int dy, dx;
+
+	memcpy(&plp, lp, sizeof(plp));
+	for (k = 0; k < 3; k++) {
+		pn[k] = lanes(c, w, NX + k, x);
+		pp[k] = lanes(c, w, PX + k, x);
+	}
+	for (v = v0; v < v1; v++) {
+		vsum[v - v0] = v4_splat(0.0f);
+		pv[v - v0] = lanes(c, w, NGUIDES + v, x);
+	}
+	for (dy = -2; dy <= 2; dy++) {
+		const float *q = span->band[(long)span->radius + dy * (long)step];
+
+		if (!q)
+			continue;
+		for (dx = -2; dx <= 2; dx++) {
+			const long qx = x + dx * (long)step;
+			v4f nd, e, wt, ddx, ddy, ddz, dist2, plane;
+			v4i keep;
+
+			/* the same object, on the mask (or no mask: NaN) */
+			keep = (lanes(q, w, OBJID, qx) == po) & ~(lanes(q, w, MASK, qx) < 0.5f);
+			nd = pn[0] * lanes(q, w, NX, qx) + pn[1] * lanes(q, w, NY, qx) +
+			     pn[2] * lanes(q, w, NZ, qx);
+			keep &= nd > 0.0f;
+			wt = h[dx + 2] * h[dy + 2] * v4_ipow(nd, a->normal);
+			ddx = lanes(q, w, PX, qx) - pp[0];
+			ddy = lanes(q, w, PY, qx) - pp[1];
+			ddz = lanes(q, w, PZ, qx) - pp[2];
+			dist2 = ddx * ddx + ddy * ddy + ddz * ddz;
+			plane = (v4f)((v4i)(pn[0] * ddx + pn[1] * ddy + pn[2] * ddz) & magnitude);
+			e = v4_select(dist2 > 0.0f, plane / v4_sqrt(dist2) * a->inv_plane,
+			              v4_splat(0.0f));
+			e += (v4f)((v4i)(lanes(q, w, ROUGH, qx) - pr) & magnitude) * inv_r;
+			if (a->inv_color > 0.0f) {
+				v4f lq = v4_splat(0.0f), mean, diff;
+
+				for (v = 0; v < nv; v++)
+					lq += lanes(q, w, NGUIDES + v, qx);
+				lq /= (float)nv;
+				mean = 0.5f * ((v4f)((v4i)plp & magnitude) + (v4f)((v4i)lq & magnitude));
+				diff = (v4f)((v4i)(plp - lq) & magnitude);
+				e += v4_select(mean > 0.0f, diff * a->inv_color / mean, v4_splat(0.0f));
+			}
+			wt *= v4_exp_neg(e);
+			keep &= wt > 0.0f; /* and not NaN, from a guide that is not finite */
+			wt = v4_select(keep, wt, v4_splat(0.0f));
+			wsum += wt;
+			for (v = v0; v < v1; v++)
+				vsum[v - v0] += wt * (lanes(q, w, NGUIDES + v, qx) - pv[v - v0]);
+		}
+	}
+	return wsum;
+}
+
+/* Per-instance scratch, grown in run() (once a size, not per pixel). */
+static int
+reserve(struct atrous *a, size_t floats)
+{
+	if (floats > a->ncap) {
+		float *grown = realloc(a->soa, floats * sizeof(float));
+
+		if (!grown)
+			return -1;
+		a->soa = grown;
+		a->ncap = floats;
+	}
+	return 0;
 }
 
 static void
 run(void *state, const struct rf_span *span)
 {
-	static const float h[5] = { 1.0f / 16, 1.0f / 4, 3.0f / 8, 1.0f / 4, 1.0f / 16 };
 	struct atrous *a = state;
-	const uint32_t nv = span->nvalues, step = 1u << span->pass;
-	const size_t stride = NGUIDES + nv;
+	const uint32_t nv = span->nvalues, step = 1u << span->pass, n = span->npix;
+	const size_t w = span->width;
 	const float *row = span->band[span->radius];
-	float *out = span->out, *sum;
+	float *act, *lp;
 	uint32_t i, v;
 
-	if (nv > a->nsum) {
-		float *grown = realloc(a->sum, nv * sizeof(float));
+	/* the values as they are, for the pixels the pass leaves alone */
+	for (v = 0; v < nv; v++)
+		memcpy(span->out + (size_t)v * n, row + (NGUIDES + v) * w + span->x,
+		       n * sizeof(float));
+	if (reserve(a, 2 * ((size_t)w + 4)) < 0)
+		return; /* no room to filter: the values as they are */
+	act = a->soa;
+	lp = act + w + 4;
+	/* Which pixels this pass touches: reflective, with geometry, and (the
+	 * lobe) whose reach stays within the reflection's own blur. */
+	for (i = 0; i < w + 4; i++)
+		act[i] = lp[i] = 0.0f;
+	for (i = span->x; i < span->x + n; i++) {
+		if (!usable(row, w, i))
+			continue;
+		if (a->lobe > 0.0f && AT(row, HIT, i) == AT(row, HIT, i)) {
+			float r = AT(row, ROUGH, i), hit = AT(row, HIT, i), d = AT(row, DEPTH, i);
+			float blur = 2.0f * r * r * hit;
 
-		if (!grown) {
-			/* no room to filter: the values as they are */
-			for (i = 0; i < span->npix; i++)
-				memcpy(out + (size_t)i * nv, row + (size_t)(span->x + i) * stride + NGUIDES,
-				       nv * sizeof(float));
-			return;
+			if (d > 0.0f && hit < INFINITY)
+				blur *= d / (d + hit);
+			if (!(2.0f * (float)step * pixel_size(span, i) <= a->lobe * blur))
+				continue;
 		}
-		a->sum = grown;
-		a->nsum = nv;
+		act[i] = 1.0f;
+		for (v = 0; v < nv; v++)
+			lp[i] += AT(row, NGUIDES + v, i);
+		lp[i] /= (float)nv;
 	}
-	sum = a->sum;
-	for (i = 0; i < span->npix; i++, out += nv) {
-		const uint32_t x = span->x + i;
-		const float *p = row + (size_t)x * stride, *vp = p + NGUIDES;
-		float wsum = 0.0f, lp = 0.0f, reach, inv_r;
-		int dx, dy;
+	for (i = span->x & ~3u; i < span->x + n; i += 4) {
+		uint32_t v0, k;
+		int any = 0;
 
-		memcpy(out, vp, nv * sizeof(float));
-		if (!usable(p))
-			continue; /* not reflective, or no geometry: as it is */
-		if (a->lobe > 0.0f && p[HIT] == p[HIT]) {
-			/* the reflection's own blur on the surface, against this
-			 * pass's reach */
-			float alpha = p[ROUGH] * p[ROUGH], blur = 2.0f * alpha * p[HIT];
+		for (k = 0; k < 4; k++)
+			any |= i + k < w && act[i + k] != 0.0f;
+		if (!any)
+			continue;
+		/* 64 values at a time (the weights again for each 64 more) */
+		for (v0 = 0; v0 < nv; v0 += 64) {
+			uint32_t v1 = v0 + 64 < nv ? v0 + 64 : nv;
+			v4f vsum[64], wsum = taps(a, span, (long)i, lp + i, v0, v1, vsum);
 
-			if (p[DEPTH] > 0.0f && p[HIT] < INFINITY)
-				blur *= p[DEPTH] / (p[DEPTH] + p[HIT]);
-			reach = 2.0f * (float)step * pixel_size(span, x, stride);
-			if (!(reach <= a->lobe * blur))
-				continue;
-		}
-		inv_r = a->inv_rough / (p[ROUGH] > 0.05f ? p[ROUGH] : 0.05f);
-		for (v = 0; v < nv; v++) {
-			sum[v] = 0.0f;
-			lp += vp[v];
-		}
-		lp /= (float)nv;
-		for (dy = -2; dy <= 2; dy++) {
-			const float *qrow = span->band[(long)span->radius + dy * (long)step];
+			for (k = 0; k < 4; k++) {
+				uint32_t x = i + k;
 
-			if (!qrow)
-				continue;
-			for (dx = -2; dx <= 2; dx++) {
-				long qx = (long)x + dx * (long)step;
-				const float *q, *vq;
-				float w, e, ddx, ddy, ddz, dist2, plane, dr, nd;
-
-				if (qx < 0 || qx >= (long)span->width)
+				if (x < span->x || x >= span->x + n || act[x] == 0.0f || !(wsum[k] > 0.0f))
 					continue;
-				q = qrow + (size_t)qx * stride;
-				vq = q + NGUIDES;
-				/* a guide that is not finite makes w NaN, and the tap is
-				 * dropped below */
-				if (q[OBJID] != p[OBJID] || q[MASK] < 0.5f)
-					continue;
-				nd = p[NX] * q[NX] + p[NY] * q[NY] + p[NZ] * q[NZ];
-				if (!(nd > 0.0f))
-					continue;
-				w = h[dx + 2] * h[dy + 2] * ipow(nd, a->normal);
-				ddx = q[PX] - p[PX];
-				ddy = q[PY] - p[PY];
-				ddz = q[PZ] - p[PZ];
-				dist2 = ddx * ddx + ddy * ddy + ddz * ddz;
-				plane = p[NX] * ddx + p[NY] * ddy + p[NZ] * ddz;
-				e = dist2 > 0.0f ? fabsf(plane) / sqrtf(dist2) * a->inv_plane : 0.0f;
-				dr = fabsf(p[ROUGH] - q[ROUGH]);
-				e += dr * inv_r;
-				if (a->inv_color > 0.0f) {
-					float lq = 0.0f, mean;
-
-					for (v = 0; v < nv; v++)
-						lq += vq[v];
-					lq /= (float)nv;
-					mean = 0.5f * (fabsf(lp) + fabsf(lq));
-					e += mean > 0.0f ? fabsf(lp - lq) * a->inv_color / mean : 0.0f;
-				}
-				w *= exp_neg(e);
-				if (!(w > 0.0f))
-					continue;
-				wsum += w;
-				for (v = 0; v < nv; v++)
-					sum[v] += w * (vq[v] - vp[v]);
+				for (v = v0; v < v1; v++)
+					span->out[(size_t)v * n + (x - span->x)] =
+						AT(row, NGUIDES + v, x) + vsum[v - v0][k] / wsum[k];
 			}
 		}
-		if (wsum > 0.0f)
-			for (v = 0; v < nv; v++)
-				out[v] = vp[v] + sum[v] / wsum;
 	}
 }
 
@@ -284,7 +379,7 @@ destroy(void *state)
 	struct atrous *a = state;
 
 	if (a)
-		free(a->sum);
+		free(a->soa);
 	free(a);
 }
 

@@ -18,27 +18,28 @@ static const char *const none[] = { NULL };
 static void
 run(void *state, const struct rf_span *span)
 {
-	const uint32_t nv = span->nvalues, r = span->radius, y = span->y;
+	const uint32_t nv = span->nvalues, r = span->radius, y = span->y, w = span->width;
 	/* the quad's rows: this one and the one below (even y) or above */
 	const float *rows[2] = { span->band[r - (y & 1)], span->band[r + 1 - (y & 1)] };
-	float *out = span->out;
 	uint32_t i, k, v;
 
 	(void)state;
-	for (i = 0; i < span->npix; i++, out += nv) {
-		uint32_t x0 = (span->x + i) & ~1u, x1 = x0 + 1 < span->width ? x0 + 1 : x0;
-		float count = (float)((x1 > x0 ? 2 : 1) * (rows[1] ? 2 : 1));
+	for (v = 0; v < nv; v++) {
+		float *out = span->out + (size_t)v * span->npix;
 
-		for (v = 0; v < nv; v++) {
-			float sum = 0.0f;
+		for (i = 0; i < span->npix; i++) {
+			uint32_t x0 = (span->x + i) & ~1u, x1 = x0 + 1 < w ? x0 + 1 : x0;
+			float count = (float)((x1 > x0 ? 2 : 1) * (rows[1] ? 2 : 1)), sum = 0.0f;
 
 			for (k = 0; k < 2; k++)
 				if (rows[k]) {
-					sum += rows[k][(size_t)x0 * nv + v];
+					const float *vals = rows[k] + (size_t)v * w;
+
+					sum += vals[x0];
 					if (x1 > x0)
-						sum += rows[k][(size_t)x1 * nv + v];
+						sum += vals[x1];
 				}
-			out[v] = sum / count;
+			out[i] = sum / count;
 		}
 	}
 }
