@@ -94,18 +94,12 @@ rf_accumulator_create(rf_accumulator **ap, const struct rf_plugin *p,
 		rf_accumulator_destroy(a);
 		return RF_ENOMEM;
 	}
-	for (i = 0; i < nthreads; i++) {
-		char msg[400] = "";
-
-		if (p->create(host, values, &a->workers[i].state, msg, sizeof(msg))) {
-			msg[sizeof(msg) - 1] = '\0';
-			rf__format(err, errlen, "mode '%s': %s", p->name,
-			           *msg ? msg : "cannot create an instance");
-			a->workers[i].state = NULL;
+	for (i = 0; i < nthreads; i++)
+		if (rf__plugin_instance(p, host, values, &a->workers[i].state, err,
+		                        errlen) < 0) {
 			rf_accumulator_destroy(a);
 			return RF_EPLUGIN;
 		}
-	}
 	*ap = a;
 	return 0;
 }

@@ -123,18 +123,12 @@ rf_filter_create(rf_filter **fp, const struct rf_plugin *p, const double *values
 		return RF_ENOMEM;
 	}
 	rf__host_filter_reset(host);
-	for (t = 0; t < nthreads; t++) {
-		char msg[400] = "";
-
-		if (p->create(host, values, &f->workers[t].state, msg, sizeof(msg))) {
-			msg[sizeof(msg) - 1] = '\0';
-			rf__format(err, errlen, "mode '%s': %s", p->name,
-			           *msg ? msg : "cannot create an instance");
-			f->workers[t].state = NULL;
+	for (t = 0; t < nthreads; t++)
+		if (rf__plugin_instance(p, host, values, &f->workers[t].state, err,
+		                        errlen) < 0) {
 			rf_filter_destroy(f);
 			return RF_EPLUGIN;
 		}
-	}
 	f->npasses = rf__host_filter_passes(host, f->radius);
 	for (i = 0; i < f->npasses; i++)
 		rmax = f->radius[i] > rmax ? f->radius[i] : rmax;

@@ -16,6 +16,13 @@ void rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int threa
 void rf__stage_block_begin(rf_stage *s);
 int rf__stage_block_end(rf_stage *s);
 
+/* One instance of a mode for one thread; err says "mode 'name': " and
+ * the plugin's message, on one line. */
+struct rf_host;
+struct rf_plugin;
+int rf__plugin_instance(const struct rf_plugin *p, const struct rf_host *host,
+                        const double *values, void **state, char *err, size_t errlen);
+
 /* The stream columns a channel-agnostic mode works on: those of list
  * ("a,b"), or by default every spec.* channel and R G B; err says what
  * is missing (verb: what the mode does, for the message). */

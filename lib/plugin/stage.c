@@ -74,6 +74,22 @@ one_line(char *msg, size_t size)
 }
 
 int
+rf__plugin_instance(const struct rf_plugin *p, const struct rf_host *host,
+                    const double *values, void **state, char *err, size_t errlen)
+{
+	char msg[400] = "";
+
+	if (p->create(host, values, state, msg, sizeof(msg))) {
+		one_line(msg, sizeof(msg));
+		rf__format(err, errlen, "mode '%s': %s", p->name,
+		           *msg ? msg : "cannot create an instance");
+		*state = NULL;
+		return RF_EPLUGIN;
+	}
+	return 0;
+}
+
+int
 rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
                 const struct rf_host *host, int nthreads, char *err, size_t errlen)
 {
@@ -106,18 +122,11 @@ rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
 		rf_stage_destroy(s);
 		return RF_ENOMEM;
 	}
-	for (i = 0; i < nthreads; i++) {
-		char msg[400] = "";
-
-		if (p->create(host, values, &s->workers[i].state, msg, sizeof(msg))) {
-			one_line(msg, sizeof(msg));
-			rf__format(err, errlen, "mode '%s': %s", p->name,
-			           *msg ? msg : "cannot create an instance");
-			s->workers[i].state = NULL;
+	for (i = 0; i < nthreads; i++)
+		if (rf__plugin_instance(p, host, values, &s->workers[i].state, err, errlen) < 0) {
 			rf_stage_destroy(s);
 			return RF_EPLUGIN;
 		}
-	}
 	*sp = s;
 	return 0;
 }
