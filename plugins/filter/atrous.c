@@ -68,6 +68,7 @@ struct atrous {
 	float inv_plane, inv_rough, inv_color, lobe;
 	float *soa; /* run()'s scratch, ncap floats (grown, not per span) */
 	size_t ncap;
+	int wide; /* eight lanes (AVX2) */
 };
 
 /* Guide f of pixel x of a planar band row. */
@@ -83,9 +84,10 @@ usable(const float *row, size_t w, size_t x)
 
 /* The pixel's size on its surface: the distance to the nearest usable
  * neighbour of the same object in the row, or in the rows above and
- * below; +inf when it has none. */
+ * below; +inf when it has none.  ok[k] flags the usable pixels of the
+ * rows y - 1, y, y + 1 (NULL for a row outside the frame). */
 static float
-pixel_size(const struct rf_span *span, size_t x)
+pixel_size(const struct rf_span *span, const unsigned char *const ok[3], size_t x)
 {
 	const size_t w = span->width;
 	const float *c = span->band[span->radius];
@@ -93,171 +95,57 @@ pixel_size(const struct rf_span *span, size_t x)
 	int k;
 
 	for (k = 0; k < 4; k++) {
-		const float *row = span->band[span->radius + (k == 2 ? -1 : k == 3 ? 1 : 0)];
+		const int dy = k == 2 ? -1 : k == 3 ? 1 : 0;
+		const float *row = span->band[span->radius + dy];
 		long qx = (long)x + (k == 0 ? -1 : k == 1 ? 1 : 0);
-		float dx, dy, dz, d;
+		float dx, ddy, dz, d;
 
-		if (!row || qx < 0 || qx >= (long)w)
-			continue;
-		if (AT(row, OBJID, qx) != AT(c, OBJID, x) || !usable(row, w, (size_t)qx))
+		if (!row || qx < 0 || qx >= (long)w || !ok[1 + dy][qx] ||
+		    AT(row, OBJID, qx) != AT(c, OBJID, x))
 			continue;
 		dx = AT(row, PX, qx) - AT(c, PX, x);
-		dy = AT(row, PY, qx) - AT(c, PY, x);
+		ddy = AT(row, PY, qx) - AT(c, PY, x);
 		dz = AT(row, PZ, qx) - AT(c, PZ, x);
-		d = dx * dx + dy * dy + dz * dz;
+		d = dx * dx + ddy * ddy + dz * dz;
 		best = d < best ? d : best;
 	}
 	return sqrtf(best);
 }
 
-/* Four pixels at a time, straight from the planar band rows: every pixel
- * goes through the same vector code, the same bits wherever it lies.  A
+/* Four pixels at a time, or eight where AVX2 is (atrous-taps.h),
+ * straight from the planar band rows: every pixel goes through the same
+ * vector code, the same bits wherever it lies and at either width.  A
  * tap off the row's ends reads lanes one by one, an objid of NaN for the
  * lanes outside (which then weigh nothing). */
 typedef float v4f __attribute__((vector_size(16)));
 typedef int32_t v4i __attribute__((vector_size(16)));
-
-static inline v4f
-v4_splat(float x)
-{
-	v4f v = { x, x, x, x };
-
-	return v;
-}
-
-static inline v4f
-v4_select(v4i m, v4f a, v4f b)
-{
-	return (v4f)(((v4i)a & m) | ((v4i)b & ~m));
-}
-
-static inline v4f
-v4_sqrt(v4f x)
-{
-	v4f r;
-	int i;
-
-	for (i = 0; i < 4; i++)
-		r[i] = sqrtf(x[i]);
-	return r;
-}
-
-/* exp_neg, lane by lane the same operations */
-static inline v4f
-v4_exp_neg(v4f x)
-{
-	const v4f t = x * 1.44269504f;
-	v4i ok = t < v4_splat(126.0f), i;
-	v4f ti = v4_select(ok, t, v4_splat(0.0f)), f, r;
-
-	i = __builtin_convertvector(ti, v4i);
-	f = ti - __builtin_convertvector(i, v4f);
-	r = 1.0f + f * (-0.69314718f + f * (0.24022651f + f * (-0.05550411f)));
-	r = (v4f)((v4i)r - (i << 23));
-	return v4_select(ok, r, v4_splat(0.0f));
-}
-
-static inline v4f
-v4_ipow(v4f x, uint32_t n)
-{
-	v4f r = v4_splat(1.0f);
-
-	while (n) {
-		if (n & 1)
-			r *= x;
-		x *= x;
-		n >>= 1;
-	}
-	return r;
-}
-
-/* Field f of pixels x .. x + 3 of a planar row of width w. */
-static inline v4f
-lanes(const float *row, size_t w, size_t f, long x)
-{
-	const float *a = row + f * w;
-	v4f v;
-	int k;
-
-	if (x >= 0 && x + 4 <= (long)w) {
-		memcpy(&v, a + x, sizeof(v));
-		return v;
-	}
-	for (k = 0; k < 4; k++)
-		v[k] = x + k >= 0 && x + k < (long)w ? a[x + k] : (f == OBJID ? NAN : 0.0f);
-	return v;
-}
-
-/* The 25 taps of pixels x .. x + 3: the sum of their weights, and in
- * vsum the weighted sums of (v_q - v_p) for values v0 .. v1 - 1. */
-static v4f
-taps(const struct atrous *a, const struct rf_span *span, long x, const float *lp,
-     uint32_t v0, uint32_t v1, v4f *vsum)
-{
-	static const float h[5] = { 1.0f / 16, 1.0f / 4, 3.0f / 8, 1.0f / 4, 1.0f / 16 };
-	const v4i magnitude = { 0x7FFFFFFF, 0x7FFFFFFF, 0x7FFFFFFF, 0x7FFFFFFF };
-	const size_t w = span->width;
-	const uint32_t nv = span->nvalues, step = 1u << span->pass;
-	const float *c = span->band[span->radius];
-	const v4f pr = lanes(c, w, ROUGH, x), po = lanes(c, w, OBJID, x);
-	const v4f inv_r = a->inv_rough / v4_select(pr > 0.05f, pr, v4_splat(0.05f));
-	v4f pn[3], pp[3], pv[64], plp, wsum = v4_splat(0.0f);
-	uint32_t v, k;
-	int dy, dx;
-
-	memcpy(&plp, lp, sizeof(plp));
-	for (k = 0; k < 3; k++) {
-		pn[k] = lanes(c, w, NX + k, x);
-		pp[k] = lanes(c, w, PX + k, x);
-	}
-	for (v = v0; v < v1; v++) {
-		vsum[v - v0] = v4_splat(0.0f);
-		pv[v - v0] = lanes(c, w, NGUIDES + v, x);
-	}
-	for (dy = -2; dy <= 2; dy++) {
-		const float *q = span->band[(long)span->radius + dy * (long)step];
-
-		if (!q)
-			continue;
-		for (dx = -2; dx <= 2; dx++) {
-			const long qx = x + dx * (long)step;
-			v4f nd, e, wt, ddx, ddy, ddz, dist2, plane;
-			v4i keep;
-
-			/* the same object, on the mask (or no mask: NaN) */
-			keep = (lanes(q, w, OBJID, qx) == po) & ~(lanes(q, w, MASK, qx) < 0.5f);
-			nd = pn[0] * lanes(q, w, NX, qx) + pn[1] * lanes(q, w, NY, qx) +
-			     pn[2] * lanes(q, w, NZ, qx);
-			keep &= nd > 0.0f;
-			wt = h[dx + 2] * h[dy + 2] * v4_ipow(nd, a->normal);
-			ddx = lanes(q, w, PX, qx) - pp[0];
-			ddy = lanes(q, w, PY, qx) - pp[1];
-			ddz = lanes(q, w, PZ, qx) - pp[2];
-			dist2 = ddx * ddx + ddy * ddy + ddz * ddz;
-			plane = (v4f)((v4i)(pn[0] * ddx + pn[1] * ddy + pn[2] * ddz) & magnitude);
-			e = v4_select(dist2 > 0.0f, plane / v4_sqrt(dist2) * a->inv_plane,
-			              v4_splat(0.0f));
-			e += (v4f)((v4i)(lanes(q, w, ROUGH, qx) - pr) & magnitude) * inv_r;
-			if (a->inv_color > 0.0f) {
-				v4f lq = v4_splat(0.0f), mean, diff;
-
-				for (v = 0; v < nv; v++)
-					lq += lanes(q, w, NGUIDES + v, qx);
-				lq /= (float)nv;
-				mean = 0.5f * ((v4f)((v4i)plp & magnitude) + (v4f)((v4i)lq & magnitude));
-				diff = (v4f)((v4i)(plp - lq) & magnitude);
-				e += v4_select(mean > 0.0f, diff * a->inv_color / mean, v4_splat(0.0f));
-			}
-			wt *= v4_exp_neg(e);
-			keep &= wt > 0.0f; /* and not NaN, from a guide that is not finite */
-			wt = v4_select(keep, wt, v4_splat(0.0f));
-			wsum += wt;
-			for (v = v0; v < v1; v++)
-				vsum[v - v0] += wt * (lanes(q, w, NGUIDES + v, qx) - pv[v - v0]);
-		}
-	}
-	return wsum;
-}
+#define LANES 4
+#define VF v4f
+#define VI v4i
+#define NAME(x) x##_4
+#define TAPS_ATTR
+#include "atrous-taps.h"
+#undef LANES
+#undef VF
+#undef VI
+#undef NAME
+#undef TAPS_ATTR
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define ATROUS_WIDE 1
+typedef float v8f __attribute__((vector_size(32)));
+typedef int32_t v8i __attribute__((vector_size(32)));
+#define LANES 8
+#define VF v8f
+#define VI v8i
+#define NAME(x) x##_8
+#define TAPS_ATTR __attribute__((target("avx2")))
+#include "atrous-taps.h"
+#undef LANES
+#undef VF
+#undef VI
+#undef NAME
+#undef TAPS_ATTR
+#endif
 
 /* Per-instance scratch, grown in run() (once a size, not per pixel). */
 static int
@@ -274,6 +162,9 @@ reserve(struct atrous *a, size_t floats)
 	return 0;
 }
 
+static void group(const struct atrous *a, const struct rf_span *span, uint32_t i,
+                  const float *act, const float *lp);
+
 static void
 run(void *state, const struct rf_span *span)
 {
@@ -281,23 +172,34 @@ run(void *state, const struct rf_span *span)
 	const uint32_t nv = span->nvalues, step = 1u << span->pass, n = span->npix;
 	const size_t w = span->width;
 	const float *row = span->band[span->radius];
+	const unsigned char *ok[3];
+	unsigned char *flags;
 	float *act, *lp;
-	uint32_t i, v;
+	uint32_t i, v, k;
 
 	/* the values as they are, for the pixels the pass leaves alone */
 	for (v = 0; v < nv; v++)
 		memcpy(span->out + (size_t)v * n, row + (NGUIDES + v) * w + span->x,
 		       n * sizeof(float));
-	if (reserve(a, 2 * ((size_t)w + 4)) < 0)
+	if (reserve(a, 2 * ((size_t)w + 8) + (3 * w + 3) / sizeof(float) + 1) < 0)
 		return; /* no room to filter: the values as they are */
 	act = a->soa;
-	lp = act + w + 4;
+	lp = act + w + 8;
+	flags = (unsigned char *)(lp + w + 8);
+	for (k = 0; k < 3; k++) {
+		const float *r = span->band[span->radius + k - 1];
+
+		ok[k] = r ? flags + (size_t)k * w : NULL;
+		if (r)
+			for (i = 0; i < w; i++)
+				flags[(size_t)k * w + i] = (unsigned char)usable(r, w, i);
+	}
 	/* Which pixels this pass touches: reflective, with geometry, and (the
 	 * lobe) whose reach stays within the reflection's own blur. */
-	for (i = 0; i < w + 4; i++)
+	for (i = 0; i < w + 8; i++)
 		act[i] = lp[i] = 0.0f;
 	for (i = span->x; i < span->x + n; i++) {
-		if (!usable(row, w, i))
+		if (!ok[1][i])
 			continue;
 		if (a->lobe > 0.0f && AT(row, HIT, i) == AT(row, HIT, i)) {
 			float r = AT(row, ROUGH, i), hit = AT(row, HIT, i), d = AT(row, DEPTH, i);
@@ -305,7 +207,7 @@ run(void *state, const struct rf_span *span)
 
 			if (d > 0.0f && hit < INFINITY)
 				blur *= d / (d + hit);
-			if (!(2.0f * (float)step * pixel_size(span, i) <= a->lobe * blur))
+			if (!(2.0f * (float)step * pixel_size(span, ok, i) <= a->lobe * blur))
 				continue;
 		}
 		act[i] = 1.0f;
@@ -313,28 +215,53 @@ run(void *state, const struct rf_span *span)
 			lp[i] += AT(row, NGUIDES + v, i);
 		lp[i] /= (float)nv;
 	}
-	for (i = span->x & ~3u; i < span->x + n; i += 4) {
-		uint32_t v0, k;
-		int any = 0;
+	for (i = span->x & ~7u; i < span->x + n; i += 8)
+		group(a, span, i, act, lp);
+}
 
-		for (k = 0; k < 4; k++)
-			any |= i + k < w && act[i + k] != 0.0f;
-		if (!any)
-			continue;
-		/* 64 values at a time (the weights again for each 64 more) */
-		for (v0 = 0; v0 < nv; v0 += 64) {
-			uint32_t v1 = v0 + 64 < nv ? v0 + 64 : nv;
-			v4f vsum[64], wsum = taps(a, span, (long)i, lp + i, v0, v1, vsum);
+/* Pixels i .. i + 7 (two groups of four, or one of eight). */
+static void
+group(const struct atrous *a, const struct rf_span *span, uint32_t i, const float *act,
+      const float *lp)
+{
+	const uint32_t nv = span->nvalues, n = span->npix;
+	const size_t w = span->width;
+	const float *row = span->band[span->radius];
+	float wsum[8], vsum[64][8];
+	uint32_t v0, v, k, half;
+	int any = 0;
 
-			for (k = 0; k < 4; k++) {
-				uint32_t x = i + k;
+	for (k = 0; k < 8; k++)
+		any |= i + k < w && act[i + k] != 0.0f;
+	if (!any)
+		return;
+	/* 64 values at a time (the weights again for each 64 more) */
+	for (v0 = 0; v0 < nv; v0 += 64) {
+		uint32_t v1 = v0 + 64 < nv ? v0 + 64 : nv;
 
-				if (x < span->x || x >= span->x + n || act[x] == 0.0f || !(wsum[k] > 0.0f))
-					continue;
+#if defined(ATROUS_WIDE)
+		if (a->wide) {
+			taps_8(a, span, (long)i, lp + i, v0, v1, wsum, vsum[0]);
+		} else
+#endif
+		{
+			float s4[64][4];
+
+			for (half = 0; half < 8; half += 4) {
+				taps_4(a, span, (long)(i + half), lp + i + half, v0, v1, wsum + half,
+				       s4[0]);
 				for (v = v0; v < v1; v++)
-					span->out[(size_t)v * n + (x - span->x)] =
-						AT(row, NGUIDES + v, x) + vsum[v - v0][k] / wsum[k];
+					memcpy(vsum[v - v0] + half, s4[v - v0], sizeof(s4[0]));
 			}
+		}
+		for (k = 0; k < 8; k++) {
+			uint32_t x = i + k;
+
+			if (x < span->x || x >= span->x + n || act[x] == 0.0f || !(wsum[k] > 0.0f))
+				continue;
+			for (v = v0; v < v1; v++)
+				span->out[(size_t)v * n + (x - span->x)] =
+					AT(row, NGUIDES + v, x) + vsum[v - v0][k] / wsum[k];
 		}
 	}
 }
@@ -362,6 +289,10 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	a->inv_rough = (float)(1.0 / values[ROUGHNESS]);
 	a->inv_color = values[COLOR] > 0.0 ? (float)(1.0 / values[COLOR]) : 0.0f;
 	a->lobe = (float)values[LOBE];
+#if defined(ATROUS_WIDE)
+	/* REFLECT_NO_AVX2 set: the four-lane code, to compare (the same bits) */
+	a->wide = __builtin_cpu_supports("avx2") && !getenv("REFLECT_NO_AVX2");
+#endif
 	for (i = 0; i < a->passes; i++)
 		radius[i] = 2u << i;
 	if (host->filter_passes(host->ctx, a->passes, radius) < 0) {
