@@ -97,6 +97,15 @@ do
 	'
 done
 
+# The four-lane code (forced) and the eight-lane one (where the machine
+# has AVX2): the same operations lane by lane, so the same bytes.
+test_expect_success 'atrous: four lanes and eight give the same bytes' '
+	reflect-filter -h -m atrous:color=1 noisy.rfl >wide &&
+	REFLECT_NO_AVX2=1 reflect-filter -h -m atrous:color=1 noisy.rfl >narrow &&
+	test -s wide &&
+	cmp wide narrow
+'
+
 # err FILE: the squared error of R G B against ref.txt on the reflective
 # pixels, all of them and those on an edge (a neighbour of another
 # object or off the mask), as "all edges".
