@@ -163,6 +163,15 @@ mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose)
 	if (colon) {
 		*colon = '\0';
 		params = colon + 1;
+		if (!*params) {
+			cli_message_start();
+			fputs("mode ", stderr);
+			cli_put_quoted(stderr, name);
+			fprintf(stderr, ": a ':' with no parameter after it; write -m %s or "
+			        "-m %s:KEY=VALUE\n", "MODE", "MODE");
+			free(name);
+			exit(EXIT_BAD_INPUT);
+		}
 	}
 	/* The messages are made before name (params lies in it) is freed. */
 	if ((rc = rf_module_load(&m->module, name, kind, err, sizeof(err))) < 0) {

@@ -62,12 +62,13 @@ test_expect_success '-l warns about every broken plugin and lists the rest' '
 	REFLECT_PLUGIN_PATH="$P:$B" reflect-project -l >out 2>err &&
 	for p in bad_major bad_minor bad_size no_entry bad_name \
 		bad_param_flags bad_flags no_summary radiance_projection flags_abi_1_0 \
-		radiance_no_spec shade_no_roughness bad_optional accumulate_channels
+		radiance_no_spec shade_no_roughness bad_optional accumulate_channels \
+		bad_param_range bad_param_name shade_both
 	do
 		test_grep "^reflect-project: ignoring plugin .$P/$p\.so.: " err ||
 		return 1
 	done &&
-	test_line_count 14 err &&
+	test_line_count 17 err &&
 	test_grep "^box$tab" out &&
 	test_grep "^infinite$tab" out &&
 	test_grep "^echo_params$tab" out

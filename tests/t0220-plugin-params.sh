@@ -91,11 +91,22 @@ test_expect_success 'bounds are inclusive; bools by word; a choice by name' '
 	test_cmp_numbers expect got
 '
 
-test_expect_success 'parameters after a path; empty items are nothing' '
-	reflect-project -fa -m "$P/echo_params.so::count=2:" <gbuf >out &&
+test_expect_success 'parameters after a path' '
+	reflect-project -fa -m "$P/echo_params.so:count=2" <gbuf >out &&
 	data out | sed -n 1p >got &&
 	echo "9 0.5 1 0 2 0 0 0.5 0 0" >expect &&
 	test_cmp_numbers expect got
+'
+
+test_expect_success 'an empty parameter (a stray colon) is refused, not ignored' '
+	for spec in "echo_params:" "echo_params::count=2" "echo_params:count=2:" \
+		"echo_params:count=2::gain=1"
+	do
+		test_expect_code 1 reflect-project -m "$spec" <gbuf >/dev/null 2>err &&
+		test_one_line_message reflect-project err &&
+		test_grep "colon\|:" err &&
+		test_grep "no parameter after it\|empty parameter" err || return 1
+	done
 '
 
 test_expect_success 'threads: every row gets its own values and its row number' '

@@ -151,9 +151,59 @@ file_stem(const char *path, char *out, size_t size)
 /* Every message below reads "plugin 'PATH': what is wrong; the fix", so
  * that a tool can print it as it is (-m) or after "ignoring " (-l). */
 
+/* A name as a message shows it: quoted, control bytes as '?', cut. */
+static void
+shown_name(const char *name, char *out, size_t size)
+{
+	size_t i, n = 0;
+
+	out[n++] = '\'';
+	for (i = 0; name[i] && n + 5 < size; i++)
+		out[n++] = (unsigned char)name[i] < 0x20 || name[i] == 0x7f ? '?' : name[i];
+	if (name[i])
+		out[n++] = '.', out[n++] = '.', out[n++] = '.';
+	out[n++] = '\'';
+	out[n] = '\0';
+}
+
+/* What is wrong with a parameter's range, default or flags, with the
+ * values; NULL when nothing is. */
+static const char *
+param_inconsistency(const struct rf_param *q, int nchoices, char *buf, size_t size)
+{
+	if (isnan(q->min) || isnan(q->max) || isnan(q->def))
+		rf__format(buf, size, "its range [%g, %g] or its default %g is NaN", q->min,
+		           q->max, q->def);
+	else if (q->min > q->max)
+		rf__format(buf, size, "its range [%g, %g] is empty (min above max)", q->min,
+		           q->max);
+	else if (!isfinite(q->def) || q->def < q->min || q->def > q->max)
+		rf__format(buf, size, "its default %g lies outside its range [%g, %g]", q->def,
+		           q->min, q->max);
+	else if ((q->flags & (RF_PARAM_INTEGER | RF_PARAM_CHOICE)) && q->def != floor(q->def))
+		rf__format(buf, size, "its default %g is not a whole number, as %s needs",
+		           q->def, q->flags & RF_PARAM_CHOICE ? "RF_PARAM_CHOICE" : "RF_PARAM_INTEGER");
+	else if ((q->flags & RF_PARAM_BOOL) && (q->flags & RF_PARAM_CHOICE))
+		rf__format(buf, size, "it sets both RF_PARAM_BOOL and RF_PARAM_CHOICE");
+	else if ((q->flags & RF_PARAM_CHOICE) && nchoices == 0)
+		rf__format(buf, size, "it sets RF_PARAM_CHOICE but its choices ('%.60s') name "
+		           "none", q->choices ? q->choices : "");
+	else if ((q->flags & RF_PARAM_CHOICE) && (q->min != 0 || q->max != nchoices - 1))
+		rf__format(buf, size, "its %d choices need the range [0, %d], not [%g, %g]",
+		           nchoices, nchoices - 1, q->min, q->max);
+	else if ((q->flags & RF_PARAM_BOOL) && (q->min != 0 || q->max != 1))
+		rf__format(buf, size, "RF_PARAM_BOOL needs the range [0, 1], not [%g, %g]",
+		           q->min, q->max);
+	else
+		return NULL;
+	return buf;
+}
+
 static int
 check_params(const struct rf_plugin *p, const char *path, char *err, size_t errlen)
 {
+	char problem[200];
+	const char *why;
 	uint32_t i, j;
 
 	if (p->nparams && !p->params) {
@@ -172,10 +222,19 @@ check_params(const struct rf_plugin *p, const char *path, char *err, size_t errl
 		const struct rf_param *q = &p->params[i];
 		int n = count_choices(q->choices);
 
-		if (!param_name_valid(q->name) || !q->help || !*q->help) {
-			rf__format(err, errlen, "plugin '%s': parameter %u has no valid "
-			           "name ([a-z][a-z0-9_]*) or no help text; fix the "
-			           "plugin and rebuild it", path, i + 1);
+		if (!param_name_valid(q->name)) {
+			char shown[48] = "(none)";
+
+			if (q->name)
+				shown_name(q->name, shown, sizeof(shown));
+			rf__format(err, errlen, "plugin '%s': parameter %u is named %s, not "
+			           "a name of [a-z][a-z0-9_]* (at most 63 bytes); rename it "
+			           "and rebuild the plugin", path, i + 1, shown);
+			return RF_EPLUGIN;
+		}
+		if (!q->help || !*q->help) {
+			rf__format(err, errlen, "plugin '%s': parameter '%s' has no help "
+			           "text; write one and rebuild the plugin", path, q->name);
 			return RF_EPLUGIN;
 		}
 		if (q->flags & ~RF_PARAM_KNOWN_FLAGS) {
@@ -189,17 +248,9 @@ check_params(const struct rf_plugin *p, const char *path, char *err, size_t errl
 			           RF_PLUGIN_ABI_MINOR);
 			return RF_EPLUGIN;
 		}
-		if (isnan(q->min) || isnan(q->max) || isnan(q->def) || q->min > q->max ||
-		    q->def < q->min || q->def > q->max || !isfinite(q->def) ||
-		    ((q->flags & (RF_PARAM_INTEGER | RF_PARAM_CHOICE)) &&
-		     q->def != floor(q->def)) ||
-		    ((q->flags & RF_PARAM_BOOL) && (q->flags & RF_PARAM_CHOICE)) ||
-		    ((q->flags & RF_PARAM_CHOICE) &&
-		     (n == 0 || q->min != 0 || q->max != n - 1)) ||
-		    ((q->flags & RF_PARAM_BOOL) && (q->min != 0 || q->max != 1))) {
-			rf__format(err, errlen, "plugin '%s': parameter '%s' has an "
-			           "inconsistent range, default or flags; fix the plugin "
-			           "and rebuild it", path, q->name);
+		if ((why = param_inconsistency(q, n, problem, sizeof(problem)))) {
+			rf__format(err, errlen, "plugin '%s': parameter '%s': %s; fix the "
+			           "plugin and rebuild it", path, q->name, why);
 			return RF_EPLUGIN;
 		}
 		for (j = 0; j < i; j++)
@@ -273,6 +324,16 @@ check_outputs(const struct rf_plugin *p, const char *path, char *err, size_t err
 	}
 	if (p->kind != RF_KIND_SHADE)
 		return 0;
+	if (writes(p, RF_SHADE_ROUGHNESS) &&
+	    (writes(p, RF_SHADE_SPEC_R) || writes(p, RF_SHADE_SPEC_G) ||
+	     writes(p, RF_SHADE_SPEC_B))) {
+		rf__format(err, errlen, "plugin '%s': a shade mode writes %s (the host "
+		           "samples with it) or, with RF_PLUGIN_RADIANCE, %s %s %s, not both: "
+		           "one of them would be dropped; keep one and rebuild the plugin",
+		           path, RF_SHADE_ROUGHNESS, RF_SHADE_SPEC_R, RF_SHADE_SPEC_G,
+		           RF_SHADE_SPEC_B);
+		return RF_EPLUGIN;
+	}
 	if (rf_plugin_writes_radiance(p)) {
 		if (!writes(p, RF_SHADE_SPEC_R) || !writes(p, RF_SHADE_SPEC_G) ||
 		    !writes(p, RF_SHADE_SPEC_B)) {
@@ -422,9 +483,12 @@ rf_module_load_file(rf_module **mp, const char *path, unsigned kind, char *err,
 	if (!(m->handle = dlopen(path, RTLD_NOW | RTLD_LOCAL))) {
 		const char *why = dlerror();
 
-		rf__format(err, errlen, "plugin '%s': cannot load it: %s; if a "
-		           "library is missing, ldd(1) shows which", path,
-		           why ? why : "unknown error");
+		/* dlopen says "cannot open shared object file" for a library the
+		 * plugin needs and cannot find: only then is ldd the way on */
+		rf__format(err, errlen, "plugin '%s': cannot load it: %s%s", path,
+		           why ? why : "unknown error",
+		           why && strstr(why, "cannot open shared object")
+		               ? "; ldd(1) on the plugin shows which library is missing" : "");
 		rc = RF_EPLUGIN;
 		goto fail;
 	}

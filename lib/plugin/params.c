@@ -176,9 +176,13 @@ rf_plugin_parse_params(const struct rf_plugin *p, const char *spec,
 		char *eq;
 		double v;
 
-		if (len == 0) {
-			s++;
-			continue;
+		if (len == 0 || (s[len] == ':' && !s[len + 1])) {
+			/* "a::b", ":a", "a:": a slip, not "no parameter" */
+			rf__format(err, errlen, "mode '%s': an empty parameter in '%.200s' (a "
+			           "':' with nothing %s it); remove the ':'", p->name, spec,
+			           len == 0 ? "before" : "after");
+			rc = RF_EINVAL;
+			break;
 		}
 		if (len >= sizeof(item)) {
 			rf__format(err, errlen, "mode '%s': parameter '%.40s...' is too "

@@ -232,9 +232,13 @@ TEST(params_defaults)
 	ASSERT_NEAR(v[5], 2, 0);
 	ASSERT_EQ(parse("", v), 0);
 	ASSERT_NEAR(v[2], 3, 0);
-	/* empty items are nothing */
-	ASSERT_EQ(parse("::", v), 0);
-	ASSERT_NEAR(v[0], 1, 0);
+	/* an empty item is a slip (a stray ':'), refused with where it is */
+	ASSERT_EQ(parse("::", v), RF_EINVAL);
+	ASSERT(strstr(msg, "an empty parameter in '::'") != NULL);
+	ASSERT_EQ(parse("scale=2:", v), RF_EINVAL);
+	ASSERT(strstr(msg, "nothing after it") != NULL);
+	ASSERT_EQ(parse(":scale=2", v), RF_EINVAL);
+	ASSERT(strstr(msg, "nothing before it") != NULL);
 }
 
 TEST(params_every_type)
@@ -250,7 +254,7 @@ TEST(params_every_type)
 	ASSERT_NEAR(v[4], 2, 0);
 	ASSERT_NEAR(v[5], 1e6, 0);
 	/* order does not matter, unnamed ones keep their default */
-	ASSERT_EQ(parse("::shape=round::scale=4", v), 0);
+	ASSERT_EQ(parse("shape=round:scale=4", v), 0);
 	ASSERT_NEAR(v[4], 0, 0);
 	ASSERT_NEAR(v[0], 4, 0);
 	ASSERT_NEAR(v[2], 3, 0);
@@ -466,6 +470,15 @@ TEST(loader_refusals)
 	ASSERT(strstr(msg, "(RF_PLUGIN_RADIANCE) must output spec.R spec.G spec.B") != NULL);
 	ASSERT_EQ(load("radiance_projection", RF_KIND_PROJECTION, &m), RF_EPLUGIN);
 	ASSERT(strstr(msg, "which only a shade mode may") != NULL);
+	/* Messages that say what is wrong, with the values. */
+	ASSERT_EQ(load("bad_param_range", RF_KIND_PROJECTION, &m), RF_EPLUGIN);
+	ASSERT(strstr(msg, "parameter 'gain': its default 12 lies outside its range "
+	                   "[0, 10]") != NULL);
+	ASSERT_EQ(load("bad_param_name", RF_KIND_PROJECTION, &m), RF_EPLUGIN);
+	ASSERT(strstr(msg, "parameter 1 is named 'Gain', not a name of [a-z][a-z0-9_]*") != NULL);
+	ASSERT_EQ(load("shade_both", RF_KIND_SHADE, &m), RF_EPLUGIN);
+	ASSERT(strstr(msg, "writes roughness.eff (the host samples with it) or, with "
+	                   "RF_PLUGIN_RADIANCE, spec.R spec.G spec.B, not both") != NULL);
 	ASSERT_EQ(load("accumulate_channels", RF_KIND_ACCUMULATE, &m), RF_EPLUGIN);
 	ASSERT(strstr(msg, "an accumulate mode reads no channels by name and its "
 	                   "state's first slots are 'value' and 'variance'") != NULL);
