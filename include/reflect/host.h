@@ -25,10 +25,11 @@ RF_EXTERN void rf_plugin_host_destroy(rf_plugin_host *h);
 RF_EXTERN void rf_plugin_host_set_frame(rf_plugin_host *h, const rf_header *frame);
 /* The probe, copied (NULL: none). */
 RF_EXTERN void rf_plugin_host_set_probe(rf_plugin_host *h, const struct rf_probe *probe);
-/* The environment sample() reads (rf_cubemap_sample), kept by pointer,
- * and its mapping; NULL takes the sampling services away. */
-RF_EXTERN void rf_plugin_host_set_environment(rf_plugin_host *h, const rf_cubemap *env,
-                                              enum rf_mapping mapping, float steps);
+/* The environment sample() and sample_many() read (through the shading
+ * pass's kernels), kept by pointer, and its mapping; NULL takes
+ * the sampling services away, as does running out of memory (returned). */
+RF_EXTERN int rf_plugin_host_set_environment(rf_plugin_host *h, const rf_cubemap *env,
+                                             enum rf_mapping mapping, float steps);
 /* For modes that write radiance themselves: sample_radiance reads
  * env's level 0 and plain box-filtered levels made from it here (the
  * host's copy: env may go); NULL takes the service away. */

@@ -20,7 +20,8 @@
  *        env_size, env_levels, dfg; optional_inputs in the descriptor;
  *        the accumulate kind's contract, with nvalues and count appended
  *        to rf_span; the filter kind, with band, radius and pass appended
- *        to rf_span and the host service filter_passes.
+ *        to rf_span and the host service filter_passes; sample() through
+ *        the pass's kernels, and sample_many.
  * A minor bump only appends fields at the end of a struct, or defines new
  * flag bits or kinds; a major bump is anything else.  The host accepts a
  * plugin when its major equals the host's and its minor is not newer, and
@@ -138,7 +139,9 @@ struct rf_host {
 	/* The probe, from the tool's options or the stream's header keys. */
 	const struct rf_probe *probe;
 	/* Environment radiance in direction dir (need not be unit) at a lod;
-	 * black where dir is not finite (rf_cubemap_sample). */
+	 * black where dir is not finite.  Since ABI 1.1 through the shading
+	 * pass's own kernels: a mode reading at the pass's D and lod gets the
+	 * pass's numbers (mode none's) to within about 1e-6 relative. */
 	void (*sample)(void *ctx, const float dir[3], float lod, float rgb[3]);
 	/* The one roughness-to-lod mapping of the environment, and back. */
 	float (*roughness_to_lod)(void *ctx, float roughness);
@@ -173,6 +176,13 @@ struct rf_host {
 	 * and the band each reads, rows above and below (at most
 	 * RF_FILTER_RADIUS_MAX); 0, or -1 when out of range. */
 	int (*filter_passes)(void *ctx, uint32_t passes, const uint32_t *radius);
+	/* n reads of the environment as sample() reads it (the GGX-prefiltered
+	 * chain the pass samples), eight at a time through the pass's vector
+	 * kernel where the CPU has it: directions x, y, z and lods (n floats
+	 * each) in, rgba (4 n floats, a undefined) out.  NULL without an
+	 * environment. */
+	void (*sample_many)(void *ctx, uint32_t n, const float *x, const float *y,
+	                    const float *z, const float *lod, float *rgba);
 };
 
 /* A span of pixels along one row, channels interleaved in the order the

@@ -25,6 +25,10 @@ struct rf_plugin_host {
 	const rf_cubemap *env;
 	enum rf_mapping mapping;
 	float steps;
+	/* For sample and sample_many: the environment as the shading pass
+	 * reads it, RGBA vectors, so a one-tap mode gets its bytes. */
+	struct rf__rgba_levels env_levels;
+	int env_vector;
 	/* For sample_radiance: level 0 of the environment and its plain
 	 * box-filtered levels, as RGBA vectors. */
 	rf_cubemap *plain;
@@ -44,10 +48,67 @@ header_get(void *ctx, const char *key)
 	return h->frame ? rf_header_get(h->frame, key) : NULL;
 }
 
+/* n reads of levels, the plugin's directions guarded: one that is not
+ * finite reads black (the kernels index texels by it; zero and denormal
+ * directions they take, as the pass does).  In chunks on the stack,
+ * copied only when a chunk has such a direction. */
+static void
+guarded_fetch(const struct rf__rgba_levels *levels, int vector, uint32_t n, const float *x,
+              const float *y, const float *z, const float *lod, float *rgba)
+{
+	uint32_t i0, k;
+
+	for (i0 = 0; i0 < n; i0 += 64) {
+		uint32_t m = n - i0 < 64 ? n - i0 : 64;
+		float cx[64], cy[64], cz[64];
+		unsigned char bad[64];
+		int any = 0;
+
+		for (k = 0; k < m; k++) {
+			float a = x[i0 + k], b = y[i0 + k], c = z[i0 + k];
+
+			bad[k] = !isfinite(a) || !isfinite(b) || !isfinite(c);
+			any |= bad[k];
+		}
+		if (!any) {
+			rf__rgba_levels_fetch_many(levels, vector, m, x + i0, y + i0, z + i0, lod + i0,
+			                           (rf__v4 *)(void *)(rgba + 4 * (size_t)i0));
+			continue;
+		}
+		for (k = 0; k < m; k++) {
+			cx[k] = bad[k] ? 1.0f : x[i0 + k];
+			cy[k] = bad[k] ? 0.0f : y[i0 + k];
+			cz[k] = bad[k] ? 0.0f : z[i0 + k];
+		}
+		rf__rgba_levels_fetch_many(levels, vector, m, cx, cy, cz, lod + i0,
+		                           (rf__v4 *)(void *)(rgba + 4 * (size_t)i0));
+		for (k = 0; k < m; k++)
+			if (bad[k])
+				memset(rgba + 4 * (size_t)(i0 + k), 0, 4 * sizeof(float));
+	}
+}
+
+/* One read through the pass's own kernels (rf__rgba_levels_fetch_many):
+ * a mode reading at the pass's D and lod gets the pass's numbers to the
+ * last bit or two (the pass reads eight at a time with fused
+ * multiply-adds, one read alone goes the plain way). */
 static void
 sample(void *ctx, const float dir[3], float lod, float rgb[3])
 {
-	rf_cubemap_sample(((const rf_plugin_host *)ctx)->env, dir, lod, rgb);
+	const rf_plugin_host *h = ctx;
+	float rgba[4];
+
+	guarded_fetch(&h->env_levels, h->env_vector, 1, dir, dir + 1, dir + 2, &lod, rgba);
+	memcpy(rgb, rgba, 3 * sizeof(float));
+}
+
+static void
+sample_many(void *ctx, uint32_t n, const float *x, const float *y, const float *z,
+            const float *lod, float *rgba)
+{
+	const rf_plugin_host *h = ctx;
+
+	guarded_fetch(&h->env_levels, h->env_vector, n, x, y, z, lod, rgba);
 }
 
 static float
@@ -188,7 +249,7 @@ sample_radiance(void *ctx, uint32_t n, const float *x, const float *y, const flo
 {
 	const rf_plugin_host *h = ctx;
 
-	rf__rgba_levels_fetch_many(&h->levels, h->vector, n, x, y, z, lod, (rf__v4 *)rgba);
+	guarded_fetch(&h->levels, h->vector, n, x, y, z, lod, rgba);
 }
 
 static int
@@ -268,6 +329,7 @@ rf_plugin_host_destroy(rf_plugin_host *h)
 	if (!h)
 		return;
 	drop_radiance(h);
+	rf__rgba_levels_destroy(&h->env_levels);
 	free(h);
 }
 
@@ -288,17 +350,26 @@ rf_plugin_host_set_probe(rf_plugin_host *h, const struct rf_probe *probe)
 	h->table.project_rays = probe ? project_rays : NULL;
 }
 
-void
+int
 rf_plugin_host_set_environment(rf_plugin_host *h, const rf_cubemap *env,
                                enum rf_mapping mapping, float steps)
 {
+	int rc = 0;
+
+	rf__rgba_levels_destroy(&h->env_levels);
+	memset(&h->env_levels, 0, sizeof(h->env_levels));
+	if (env && (rc = rf__rgba_levels_from_cube(&h->env_levels, env)) < 0)
+		env = NULL;
+	h->env_vector = env ? rf__rgba_levels_simd_usable(&h->env_levels) : 0;
 	h->env = env;
 	h->mapping = mapping;
 	h->steps = steps;
 	h->table.sample = env ? sample : NULL;
+	h->table.sample_many = env ? sample_many : NULL;
 	h->table.roughness_to_lod = env ? roughness_to_lod : NULL;
 	h->table.lod_to_roughness = env ? lod_to_roughness : NULL;
 	h->table.lod_steps = env ? steps : 0.0f;
+	return rc;
 }
 
 int

@@ -58,7 +58,7 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_param, flags, 40),
 	OFFSET(struct rf_param, choices, 48),
 
-	SIZE(struct rf_host, 112),
+	SIZE(struct rf_host, 120),
 	OFFSET(struct rf_host, size, 0),
 	OFFSET(struct rf_host, abi_major, 4),
 	OFFSET(struct rf_host, abi_minor, 8),
@@ -77,6 +77,7 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_host, env_levels, 92),
 	OFFSET(struct rf_host, dfg, 96),
 	OFFSET(struct rf_host, filter_passes, 104),
+	OFFSET(struct rf_host, sample_many, 112),
 
 	SIZE(struct rf_span, 72),
 	OFFSET(struct rf_span, size, 0),
