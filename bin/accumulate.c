@@ -36,7 +36,7 @@ accumulate_block(void *arg, const float *in, float *out, size_t y, size_t n)
 	                    : rf_accumulator_run(ab->acc, in, out, y, n);
 
 	if (rc == RF_EINVAL && *rf_accumulator_error(ab->acc))
-		die("'%s': frame %zu, %s", ab->io->input_name, ab->io->frames - 1,
+		die("'%s': frame %zu, %s", ab->io->input_name, ab->io->frames,
 		    rf_accumulator_error(ab->acc));
 	if (rc < 0)
 		die_status(rc, NULL);

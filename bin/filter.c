@@ -51,7 +51,7 @@ filter_frame(struct cli_io *io, rf_filter *f, const char *spec, const rf_header 
 	cli_io_begin(io, out);
 	if ((rc = rf_filter_frame(f, read_rows, write_rows, io)) < 0) {
 		if (rc == RF_EINVAL && *rf_filter_error(f))
-			die("'%s': frame %zu, %s", io->input_name, io->frames - 1,
+			die("'%s': frame %zu, %s", io->input_name, io->frames,
 			    rf_filter_error(f));
 		die_status(rc, NULL);
 	}

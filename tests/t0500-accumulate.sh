@@ -132,14 +132,14 @@ test_expect_success 'frames of another size or channel list: named and refused' 
 	cat two.txt wide.txt >mixed.txt &&
 	test_expect_code 1 reflect-accumulate mixed.txt 2>err &&
 	test_one_line_message reflect-accumulate err &&
-	test_grep "frame 2 is 3x1, frame 0 was 2x1" err &&
+	test_grep "frame 3 is 3x1, the first frame was 2x1" err &&
 	stream other.txt 2 1 "spec.G X" <<-\EOF &&
 	1 1
 	1 1
 	EOF
 	cat two.txt other.txt >mixed.txt &&
 	test_expect_code 1 reflect-accumulate mixed.txt 2>err &&
-	test_grep "frame 2.s channel 1 is .spec.G., frame 0.s was .spec.R." err
+	test_grep "frame 3.s channel 1 is .spec.G., the first frame.s was .spec.R." err
 '
 
 test_expect_success 'an empty stream, no channel to combine, NaN: refused' '
@@ -158,7 +158,7 @@ test_expect_success 'an empty stream, no channel to combine, NaN: refused' '
 	cat two.txt nan.txt >bad.txt &&
 	test_expect_code 1 reflect-accumulate bad.txt 2>err &&
 	test_one_line_message reflect-accumulate err &&
-	test_grep "frame 2, row 1, pixel 2: channel .spec.R. is nan" err &&
+	test_grep "frame 3, row 1, pixel 2: channel .spec.R. is nan" err &&
 	test_expect_code 1 reflect-accumulate -m ema:weight=2 four.txt 2>err &&
 	test_grep "weight" err &&
 	test_expect_code 1 reflect-accumulate -m none four.txt 2>err &&

@@ -168,7 +168,7 @@ test_expect_success 'missing guides, NaN, unknown modes and parameters: refused'
 	EOF
 	test_expect_code 1 reflect-filter -m quad nan.txt 2>err &&
 	test_one_line_message reflect-filter err &&
-	test_grep "frame 0, row 1, pixel 2: channel .spec.R. is nan" err &&
+	test_grep "frame 1, row 1, pixel 2: channel .spec.R. is nan" err &&
 	test_expect_code 1 reflect-filter -m atrous:passes=12 plain.txt 2>err &&
 	test_grep "passes" err &&
 	test_expect_code 1 reflect-filter -m blur plain.txt 2>err &&

@@ -128,7 +128,7 @@ rf_accumulator_destroy(rf_accumulator *a)
 	free(a);
 }
 
-/* Frame 0 decides the values: --channels, or the default selection. */
+/* The first frame decides the values: --channels, or the default selection. */
 static int
 choose_values(rf_accumulator *a, const rf_header *in, char *err, size_t errlen)
 {
@@ -144,8 +144,9 @@ same_shape(const rf_accumulator *a, const rf_header *in, char *err, size_t errle
 	size_t i, n = rf_header_nchannels(in), m = rf_header_nchannels(f);
 
 	if (rf_header_ncols(in) != rf_header_ncols(f) || rf_header_nrows(in) != rf_header_nrows(f)) {
-		rf__format(err, errlen, "frame %zu is %zux%zu, frame 0 was %zux%zu: frames "
-		           "accumulate pixel by pixel, so they must have one size", a->frames,
+		rf__format(err, errlen, "frame %zu is %zux%zu, the first frame was %zux%zu: "
+		           "frames accumulate pixel by pixel, so they must have one size",
+		           a->frames + 1,
 		           rf_header_ncols(in), rf_header_nrows(in), rf_header_ncols(f),
 		           rf_header_nrows(f));
 		return RF_EFORMAT;
@@ -156,16 +157,17 @@ same_shape(const rf_accumulator *a, const rf_header *in, char *err, size_t errle
 	if (i == n && n == m)
 		return 0;
 	if (i < n && i < m)
-		rf__format(err, errlen, "frame %zu's channel %zu is '%s', frame 0's was "
-		           "'%s': frames must have one channel list", a->frames, i + 1,
+		rf__format(err, errlen, "frame %zu's channel %zu is '%s', the first frame's "
+		           "was '%s': frames must have one channel list", a->frames + 1, i + 1,
 		           rf_header_channel(in, i), rf_header_channel(f, i));
 	else if (i < n)
-		rf__format(err, errlen, "frame %zu has a channel frame 0 had not ('%s'): "
-		           "frames must have one channel list", a->frames,
+		rf__format(err, errlen, "frame %zu has a channel the first frame had not "
+		           "('%s'): frames must have one channel list", a->frames + 1,
 		           rf_header_channel(in, i));
 	else
-		rf__format(err, errlen, "frame %zu lacks frame 0's channel '%s': frames "
-		           "must have one channel list", a->frames, rf_header_channel(f, i));
+		rf__format(err, errlen, "frame %zu lacks the first frame's channel '%s': "
+		           "frames must have one channel list", a->frames + 1,
+		           rf_header_channel(f, i));
 	return RF_EFORMAT;
 }
 
@@ -234,7 +236,7 @@ rf_accumulator_begin_frame(rf_accumulator *a, const rf_header *in, rf_header **o
 		a->count = 0;
 	if (a->count == UINT32_MAX) {
 		rf__format(err, errlen, "frame %zu: more frames than an accumulator counts",
-		           a->frames);
+		           a->frames + 1);
 		return RF_EINVAL;
 	}
 	a->count++;

@@ -174,7 +174,7 @@ rf_filter_begin_frame(rf_filter *f, const rf_header *in, rf_header **out, char *
 		f->guide_col[i] = rf_header_find_channel(in, guide_name(f, i));
 		if (f->guide_col[i] < 0 && i < f->ninputs) {
 			rf__format(err, errlen, "frame %zu has no channel '%s', which mode '%s' "
-			           "is guided by", f->frames, guide_name(f, i), f->p->name);
+			           "is guided by", f->frames + 1, guide_name(f, i), f->p->name);
 			return RF_ECHANNEL;
 		}
 	}
