@@ -35,7 +35,7 @@ accumulate_block(void *arg, const float *in, float *out, size_t y, size_t n)
 	int rc = ab->result ? rf_accumulator_result(ab->acc, out, y, n)
 	                    : rf_accumulator_run(ab->acc, in, out, y, n);
 
-	if (rc == RF_EINVAL && *rf_accumulator_error(ab->acc))
+	if ((rc == RF_EINVAL || rc == RF_EPLUGIN) && *rf_accumulator_error(ab->acc))
 		die("'%s': frame %zu, %s", ab->io->input_name, ab->io->frames,
 		    rf_accumulator_error(ab->acc));
 	if (rc < 0)

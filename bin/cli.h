@@ -89,6 +89,8 @@ void cli_io_invalid_option(struct cli_io *io, const char *arg);
 #define CLI_INVALID_USAGE "[--invalid=error|clamp|zero]"
 /* Dies: the input's pixel broke a rule (why: the library's message). */
 CLI_NORETURN void cli_io_invalid_failed(struct cli_io *io, const char *why);
+/* Dies: the mode gave up in run() (why: "mode 'name': its message"). */
+CLI_NORETURN void cli_io_plugin_failed(struct cli_io *io, const char *why);
 /* Says, once a frame, how many pixels were clamped or zeroed. */
 void cli_io_invalid_note(struct cli_io *io, size_t count);
 void cli_io_begin(struct cli_io *io, const rf_header *h);

@@ -130,6 +130,12 @@ cli_io_invalid_failed(struct cli_io *io, const char *why)
 }
 
 void
+cli_io_plugin_failed(struct cli_io *io, const char *why)
+{
+	die("'%s': frame %zu, %s", io->input_name, io->frames, why);
+}
+
+void
 cli_io_invalid_note(struct cli_io *io, size_t count)
 {
 	if (count)

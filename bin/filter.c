@@ -50,7 +50,7 @@ filter_frame(struct cli_io *io, rf_filter *f, const char *spec, const rf_header 
 		die_header_key(rc);
 	cli_io_begin(io, out);
 	if ((rc = rf_filter_frame(f, read_rows, write_rows, io)) < 0) {
-		if (rc == RF_EINVAL && *rf_filter_error(f))
+		if ((rc == RF_EINVAL || rc == RF_EPLUGIN) && *rf_filter_error(f))
 			die("'%s': frame %zu, %s", io->input_name, io->frames,
 			    rf_filter_error(f));
 		die_status(rc, NULL);

@@ -27,6 +27,7 @@ static const struct option long_options[] = {
 struct project_block {
 	rf_stage *stage;
 	int failed; /* the stage refused a pixel (rf_stage_error says why) */
+	int gave_up; /* the mode failed in run() (rf_stage_error says why) */
 };
 
 static int
@@ -36,7 +37,8 @@ project_block(void *arg, const float *in, float *out, size_t y, size_t n)
 	int rc = rf_stage_run(pb->stage, in, out, y, n);
 
 	pb->failed = rc == RF_EINVAL && *rf_stage_error(pb->stage);
-	if (rc < 0 && !pb->failed)
+	pb->gave_up = rc == RF_EPLUGIN;
+	if (rc < 0 && !pb->failed && !pb->gave_up)
 		die_status(rc, NULL);
 	return rc;
 }
@@ -75,14 +77,16 @@ project_frame(struct cli_io *io, struct cli_mode *mode, const struct cli_probe *
 	if (rows > rf_header_nrows(in))
 		rows = rf_header_nrows(in);
 	pb.stage = stage;
-	pb.failed = 0;
+	pb.failed = pb.gave_up = 0;
 	rc = cli_blocks(io, rf_header_nrows(in), rows,
 	                rf_header_ncols(in) * rf_header_nchannels(in),
 	                rf_header_ncols(out) * rf_header_nchannels(out), project_block, &pb);
-	if (pb.failed)
+	if (pb.failed || pb.gave_up)
 		snprintf(err, sizeof(err), "%s", rf_stage_error(stage));
 	cli_io_invalid_note(io, rf_stage_invalid_count(stage));
 	rf_stage_destroy(stage);
+	if (pb.gave_up)
+		cli_io_plugin_failed(io, err);
 	if (pb.failed)
 		cli_io_invalid_failed(io, err);
 	if (rc < 0)

@@ -182,6 +182,7 @@ struct shade_block {
 	rf_stage *stage;
 	rf_shade *shade;
 	int failed; /* the stage refused a pixel (rf_stage_error says why) */
+	int gave_up; /* the mode failed in run() (rf_stage_error says why) */
 };
 
 static int
@@ -192,7 +193,8 @@ shade_block(void *arg, const float *in, float *out, size_t y, size_t n)
 
 	sb->failed = rc == RF_EINVAL &&
 	             (*rf_stage_error(sb->stage) || *rf_shade_error(sb->shade));
-	if (rc < 0 && !sb->failed)
+	sb->gave_up = rc == RF_EPLUGIN;
+	if (rc < 0 && !sb->failed && !sb->gave_up)
 		die_status(rc, NULL);
 	return rc;
 }
@@ -274,10 +276,10 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 		rows = nrows ? nrows : 1;
 	sb.stage = stage;
 	sb.shade = shade;
-	sb.failed = 0;
+	sb.failed = sb.gave_up = 0;
 	rc = cli_blocks(io, nrows, rows, ncols * rf_header_nchannels(in),
 	                ncols * rf_header_nchannels(out), shade_block, &sb);
-	if (sb.failed)
+	if (sb.failed || sb.gave_up)
 		snprintf(why, sizeof(why), "%s", *rf_stage_error(stage) ? rf_stage_error(stage)
 		                                                       : rf_shade_error(shade));
 	cli_io_invalid_note(io, rf_stage_invalid_count(stage));
@@ -285,6 +287,8 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	if (rc < 0) {
 		/* Its threads are joined before we die, as the stage's are. */
 		rf_shade_destroy(shade);
+		if (sb.gave_up)
+			cli_io_plugin_failed(io, why);
 		if (sb.failed)
 			cli_io_invalid_failed(io, why);
 		cli_io_read_failed(io, rc);

@@ -164,4 +164,20 @@ test_expect_success 'create() fails: its message, on one line, exit 1' '
 	refused echo_params:shape=fail "mode .echo_params.: shape=fail asked for a failure in create"
 '
 
+# A mode that gives up in run() (the host's fail(), plugin ABI 1.1): exit
+# status 1 and its message on one line, at any thread count; the row the
+# mode names is its own (counted from 1).
+test_expect_success 'run() gives up: its message, one line, exit 1' '
+	reflect-gbuffer -x 4 -y 6 >rows.rfl &&
+	for j in 1 3
+	do
+		test_expect_code 1 reflect-project -j$j -m "$P/bail_at_row.so:row=2" <rows.rfl \
+			>/dev/null 2>err &&
+		test_one_line_message reflect-project err &&
+		test_grep "frame 1, mode .bail_at_row.: row 3 is one it cannot take at all$" err ||
+		return 1
+	done &&
+	reflect-project -m "$P/bail_at_row.so:row=999" <rows.rfl >/dev/null
+'
+
 test_done

@@ -21,7 +21,7 @@
  *        the accumulate kind's contract, with nvalues and count appended
  *        to rf_span; the filter kind, with band, radius and pass appended
  *        to rf_span and the host service filter_passes; sample() through
- *        the pass's kernels, and sample_many.
+ *        the pass's kernels, and sample_many; fail, for run().
  * A minor bump only appends fields at the end of a struct, or defines new
  * flag bits or kinds; a major bump is anything else.  The host accepts a
  * plugin when its major equals the host's and its minor is not newer, and
@@ -183,6 +183,12 @@ struct rf_host {
 	 * environment. */
 	void (*sample_many)(void *ctx, uint32_t n, const float *x, const float *y,
 	                    const float *z, const float *lod, float *rgba);
+	/* For run(): the mode cannot go on (what it was given does not fit
+	 * the frame, say).  The tool stops once the rows running now are
+	 * done, exit status 1, with "mode 'NAME': message" (one line; the
+	 * first call wins).  run() still returns as usual, its outputs
+	 * written whatever they are. */
+	void (*fail)(void *ctx, const char *message);
 };
 
 /* A span of pixels along one row, channels interleaved in the order the

@@ -28,6 +28,7 @@ struct worker {
 
 struct rf_accumulator {
 	const struct rf_plugin *p;
+	const struct rf_host *host;
 	int nthreads;
 	struct worker *workers;
 	struct rf__pool *pool;
@@ -83,6 +84,7 @@ rf_accumulator_create(rf_accumulator **ap, const struct rf_plugin *p,
 	if (!(a = calloc(1, sizeof(*a))))
 		return RF_ENOMEM;
 	a->p = p;
+	a->host = host;
 	a->nthreads = nthreads;
 	a->nslots = list_length(p->outputs);
 	if (o)
@@ -374,6 +376,8 @@ run_rows(rf_accumulator *a, const float *in, float *out, size_t y, size_t nrows,
 	for (i = 0; i < (size_t)a->nthreads; i++)
 		a->workers[i].bad_value = -1;
 	rf__pool_run(a->pool, nrows, run_row, a);
+	if (rf__host_take_failure(a->host, a->p->name, a->error, sizeof(a->error)))
+		return RF_EPLUGIN;
 	for (i = 0; i < (size_t)a->nthreads; i++) {
 		const struct worker *w = &a->workers[i];
 

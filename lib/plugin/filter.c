@@ -39,6 +39,7 @@ struct level {
 
 struct rf_filter {
 	const struct rf_plugin *p;
+	const struct rf_host *host;
 	int nthreads;
 	struct worker *workers;
 	struct rf__pool *pool;
@@ -113,6 +114,7 @@ rf_filter_create(rf_filter **fp, const struct rf_plugin *p, const double *values
 	if (!(f = calloc(1, sizeof(*f))))
 		return RF_ENOMEM;
 	f->p = p;
+	f->host = host;
 	f->nthreads = nthreads;
 	f->ninputs = list_length(p->inputs);
 	f->ng = f->ninputs + list_length(rf_plugin_optional_inputs(p));
@@ -370,6 +372,8 @@ rf_filter_frame(rf_filter *f, rf_filter_read_fn *read_rows, rf_filter_write_fn *
 			f->pass = p;
 			f->y0 = l->done;
 			rf__pool_run(f->pool, last - l->done, pass_row, f);
+			if (rf__host_take_failure(f->host, f->p->name, f->error, sizeof(f->error)))
+				return RF_EPLUGIN;
 			progress += last - l->done;
 			l->done = next->avail = last;
 		}

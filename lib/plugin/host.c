@@ -4,6 +4,7 @@
  * their modes the same table with the same meanings.
  */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -35,6 +36,10 @@ struct rf_plugin_host {
 	struct rf__rgba_levels levels;
 	int vector;
 	struct box box;
+	/* The first fail() of a block: set once (failed), read after the
+	 * block's threads are joined. */
+	int failed;
+	char failure[256];
 	/* What the last filter mode's create() declared (filter_passes). */
 	uint32_t filter_npasses;
 	uint32_t filter_radius[RF_FILTER_PASSES_MAX];
@@ -252,6 +257,34 @@ sample_radiance(void *ctx, uint32_t n, const float *x, const float *y, const flo
 	guarded_fetch(&h->levels, h->vector, n, x, y, z, lod, rgba);
 }
 
+static void
+fail(void *ctx, const char *message)
+{
+	rf_plugin_host *h = ctx;
+	char *c;
+
+	if (__atomic_exchange_n(&h->failed, 1, __ATOMIC_ACQ_REL))
+		return; /* the first one wins */
+	snprintf(h->failure, sizeof(h->failure), "%s",
+	         message && *message ? message : "it cannot go on");
+	for (c = h->failure; *c; c++)
+		if ((unsigned char)*c < 0x20 || *c == 0x7f)
+			*c = ' ';
+}
+
+int
+rf__host_take_failure(const struct rf_host *table, const char *mode, char *err,
+                      size_t errlen)
+{
+	rf_plugin_host *h;
+
+	if (!table || !(h = table->ctx) || !__atomic_load_n(&h->failed, __ATOMIC_ACQUIRE))
+		return 0;
+	rf__format(err, errlen, "mode '%s': %s", mode, h->failure);
+	__atomic_store_n(&h->failed, 0, __ATOMIC_RELEASE);
+	return 1;
+}
+
 static int
 filter_passes(void *ctx, uint32_t passes, const uint32_t *radius)
 {
@@ -308,6 +341,7 @@ rf_plugin_host_create(rf_plugin_host **hp)
 	h->table.header_get = header_get;
 	h->table.dfg = dfg;
 	h->table.filter_passes = filter_passes;
+	h->table.fail = fail;
 	h->mapping = RF_MAPPING_DEFAULT;
 	return 0;
 }

@@ -29,6 +29,12 @@ int rf__plugin_instance(const struct rf_plugin *p, const struct rf_host *host,
 int rf__choose_values(const rf_header *in, const char *list, const char *verb, int *cols,
                       size_t *n, char *err, size_t errlen);
 
+/* After a block's threads are joined: 1 and err ("mode 'name': ...")
+ * when a run() of the block called the host's fail() (tables of
+ * rf_plugin_host only), which it then forgets; else 0. */
+int rf__host_take_failure(const struct rf_host *table, const char *mode, char *err,
+                          size_t errlen);
+
 /* The passes and band radii a filter mode's create() declared through
  * the host's filter_passes (tables of rf_plugin_host only): their count,
  * 1 with radius 0 when it declared none; and forgetting them. */

@@ -24,6 +24,7 @@ struct worker {
 
 struct rf_stage {
 	const struct rf_plugin *p;
+	const struct rf_host *host; /* for a run() that failed (fail()) */
 	int nthreads;
 	struct worker *workers;
 	size_t nin, nout;
@@ -104,6 +105,7 @@ rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
 	if (!(s = calloc(1, sizeof(*s))))
 		return RF_ENOMEM;
 	s->p = p;
+	s->host = host;
 	s->nthreads = nthreads;
 	s->nrequired = list_length(p->inputs);
 	s->nin = s->nrequired + (rf_plugin_optional_inputs(p)
@@ -347,6 +349,8 @@ rf__stage_block_end(rf_stage *s)
 
 	for (t = 0; t < s->nthreads; t++)
 		s->fixed += s->workers[t].fixed;
+	if (rf__host_take_failure(s->host, s->p->name, s->error, sizeof(s->error)))
+		return RF_EPLUGIN;
 	return rf__first_invalid_report(&s->workers[0].first, (size_t)s->nthreads,
 	                                sizeof(struct worker), s->ncols, s->error,
 	                                sizeof(s->error));

@@ -58,7 +58,7 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_param, flags, 40),
 	OFFSET(struct rf_param, choices, 48),
 
-	SIZE(struct rf_host, 120),
+	SIZE(struct rf_host, 128),
 	OFFSET(struct rf_host, size, 0),
 	OFFSET(struct rf_host, abi_major, 4),
 	OFFSET(struct rf_host, abi_minor, 8),
@@ -78,6 +78,7 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_host, dfg, 96),
 	OFFSET(struct rf_host, filter_passes, 104),
 	OFFSET(struct rf_host, sample_many, 112),
+	OFFSET(struct rf_host, fail, 120),
 
 	SIZE(struct rf_span, 72),
 	OFFSET(struct rf_span, size, 0),
