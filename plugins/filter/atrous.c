@@ -290,8 +290,15 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	a->inv_color = values[COLOR] > 0.0 ? (float)(1.0 / values[COLOR]) : 0.0f;
 	a->lobe = (float)values[LOBE];
 #if defined(ATROUS_WIDE)
-	/* REFLECT_NO_AVX2 set: the four-lane code, to compare (the same bits) */
-	a->wide = __builtin_cpu_supports("avx2") && !getenv("REFLECT_NO_AVX2");
+	{
+		/* REFLECT_SIMD=off, the library's switch for its own kernels:
+		 * the four-lane code, to compare (the same bits) */
+		const char *simd = getenv("REFLECT_SIMD");
+
+		__builtin_cpu_init();
+		a->wide = __builtin_cpu_supports("avx2") &&
+		          !(simd && (!strcmp(simd, "off") || !strcmp(simd, "0")));
+	}
 #endif
 	for (i = 0; i < a->passes; i++)
 		radius[i] = 2u << i;
