@@ -90,8 +90,12 @@ garbage-after-magic unclosed-header format-double ascii-not-a-number
 ascii-truncated extra-data tab-in-value truncated-second-frame'
 
 test_expect_success 'wrong magic' '
+	{ printf "#?NOTREFLECT\nFORMAT=ascii\n\n"; } >other-magic &&
+	expect_bad other-magic \
+		"not a reflect stream: expected $SQ#?REFLECT1$SQ, got $SQ#?NOTREFLECT$SQ" \
+		reflect-info &&
 	expect_bad wrong-magic \
-		"not a reflect stream: expected $SQ#?REFLECT1$SQ, got $SQ#?RADIANCE$SQ" \
+		"not a reflect stream: it is a Radiance HDR image; reflect-import reads images into streams, and --env takes environments" \
 		reflect-info &&
 	expect_bad not-a-header \
 		"not a reflect stream: expected $SQ#?REFLECT1$SQ at the start" \
@@ -392,5 +396,20 @@ else
 		test_skip "$t" "${valgrind_reason:-no valgrind}"
 	done
 fi
+
+# An image given where a stream goes: its format named, and the tool that
+# reads images.
+test_expect_success 'an image for a stream: the format, and reflect-import' '
+	printf "\x89PNG\r\n\x1a\n\0\0\0\rIHDR" >image.png &&
+	printf "\x76\x2f\x31\x01\x02\0\0\0channels" >image.exr &&
+	printf "\xff\xd8\xff\xe0\0\x10JFIF" >image.jpg &&
+	for f in image.png:PNG image.exr:OpenEXR image.jpg:JPEG
+	do
+		test_expect_code 1 reflect-export -o out.png "${f%%:*}" 2>err &&
+		test_one_line_message reflect-export err &&
+		test_grep "not a reflect stream: it is an\{0,1\} ${f#*:} image; reflect-import reads images into streams" err ||
+		return 1
+	done
+'
 
 test_done

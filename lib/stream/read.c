@@ -203,6 +203,35 @@ parse_size(rf_reader *r, size_t lineno, const char *key, const char *s, size_t *
 	return 0;
 }
 
+/* The image format a file that is no stream starts like, for the hint
+ * that images come in through reflect-import; NULL for none of them.
+ * b holds the first n bytes of the input (n < 0: at least 8). */
+static const char *
+image_kind(const char *b, long n)
+{
+	static const struct { const char *magic; size_t len; const char *kind; } kinds[] = {
+		{ "\x76\x2f\x31\x01", 4, "an OpenEXR image" },
+		{ "\x89PNG", 4, "a PNG image" },
+		{ "\xff\xd8\xff", 3, "a JPEG image" },
+		{ "II*\0", 4, "a TIFF image" },
+		{ "MM\0*", 4, "a TIFF image" },
+		{ "DDS ", 4, "a DDS image" },
+		{ "\xabKTX 11", 7, "a KTX image" },
+		{ "\xabKTX 20", 7, "a KTX 2 image" },
+		{ "#?RADIANCE", 10, "a Radiance HDR image" },
+		{ "#?RGBE", 6, "a Radiance HDR image" },
+	};
+	size_t i;
+
+	for (i = 0; i < sizeof(kinds) / sizeof(kinds[0]); i++)
+		if ((n < 0 || (size_t)n >= kinds[i].len) && !memcmp(b, kinds[i].magic, kinds[i].len))
+			return kinds[i].kind;
+	return NULL;
+}
+
+#define IMAGE_HINT "; reflect-import reads images into streams, and --env takes " \
+	"environments"
+
 static int
 check_magic(rf_reader *r, const char *line)
 {
@@ -211,8 +240,13 @@ check_magic(rf_reader *r, const char *line)
 	long v;
 
 	if (strncmp(line, RF__STREAM_MAGIC, n)) {
+		const char *kind = image_kind(line, (long)strlen(line));
 		char shown[24];
 		size_t i;
+
+		if (kind)
+			return fail(r, RF_EFORMAT, "not a reflect stream: it is %s" IMAGE_HINT,
+			            kind);
 
 		for (i = 0; line[i] && i + 1 < sizeof(shown); i++)
 			shown[i] = (unsigned char)line[i] >= 0x20 &&
@@ -662,6 +696,12 @@ rf_reader_next_frame(rf_reader *r, const rf_header **hp)
 		return 1;
 	}
 	len = read_line(r->fp, line, &binary);
+	if (len != -1 && r->frames == 1 && strncmp(line, "#?", 2) &&
+	    image_kind(line, len < 0 ? -1 : len)) {
+		rc = fail(r, RF_EFORMAT, "not a reflect stream: it is %s" IMAGE_HINT,
+		          image_kind(line, len < 0 ? -1 : len));
+		goto bad;
+	}
 	if (len < 0 || binary || strncmp(line, "#?", 2)) {
 		rc = fail(r, RF_EFORMAT, "not a reflect stream: expected "
 		          "'" RF__STREAM_IDENT "' at the start%s",
