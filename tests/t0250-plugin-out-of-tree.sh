@@ -183,4 +183,23 @@ test_expect_success 'clean up the out-of-tree directory' '
 	rm -rf "$oot"
 '
 
+# The installed tools with nothing set: libreflect through their $ORIGIN
+# run path, the plugins and the image module beside the library, in the
+# prefix given to make install (not the configured one) and after the
+# whole tree has moved.
+test_expect_success 'an installed tree runs where it lies, and moved' '
+	mv "$prefix" moved &&
+	clean="env -u LD_LIBRARY_PATH -u REFLECT_PLUGIN_PATH -u REFLECT_PLUGIN_SYSTEM_PATH" &&
+	$clean moved/bin/reflect-gbuffer -x 8 -y 6 >g.rfl &&
+	$clean moved/bin/reflect-project -v g.rfl >p.rfl 2>err &&
+	test_grep "mode .box. from .$PWD/moved/bin/../lib/reflect-1/box.so." err &&
+	$clean moved/bin/reflect-shade --final p.rfl >s.rfl 2>/dev/null &&
+	if test -f moved/lib/reflect/reflect-oiio.so
+	then
+		$clean moved/bin/reflect-export -o s.tif s.rfl &&
+		test -s s.tif
+	fi &&
+	mv moved "$prefix"
+'
+
 test_done

@@ -25,6 +25,9 @@
 #include "image/writers.h"
 #include "util/util.h"
 
+#ifndef REFLECT_MODULEDIR_REL
+#define REFLECT_MODULEDIR_REL "reflect"
+#endif
 #ifndef REFLECT_MODULEDIR
 #define REFLECT_MODULEDIR "/usr/local/lib/reflect"
 #endif
@@ -86,6 +89,12 @@ load(void)
 		/* One that is there but will not load says why; the installed
 		 * one is the fallback only for a module that is not there. */
 		if (stat(path, &st) == 0)
+			return;
+		/* An installed tree, moved: the module's directory beside the
+		 * library (pkglibdir is libdir/PACKAGE). */
+		rf__format(path, sizeof(path), "%.*s/%s/%s", (int)(slash - info.dli_fname),
+		           info.dli_fname, REFLECT_MODULEDIR_REL, RF_IMAGE_MODULE_NAME);
+		if ((api = try_module(path)) || stat(path, &st) == 0)
 			return;
 	}
 	rf__format(path, sizeof(path), "%s/%s", REFLECT_MODULEDIR, RF_IMAGE_MODULE_NAME);

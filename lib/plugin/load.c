@@ -11,6 +11,9 @@
 #include "util/util.h"
 #include "reflect/plugin.h"
 
+#ifndef REFLECT_PLUGINDIR_REL
+#define REFLECT_PLUGINDIR_REL ""
+#endif
 #ifndef REFLECT_PLUGINDIR
 #define REFLECT_PLUGINDIR "/usr/local/lib/reflect-1"
 #endif
@@ -542,6 +545,27 @@ rf_module_path(const rf_module *m)
 	return m->path;
 }
 
+/* The installed plugin directory: beside the library itself when the
+ * tree was moved (the library's directory + REFLECT_PLUGINDIR_REL, when
+ * that is a directory), else the one it was built for. */
+static const char *
+installed_plugindir(void)
+{
+	static __thread char dir[4096];
+	Dl_info info;
+	struct stat st;
+	const char *slash;
+
+	if (*REFLECT_PLUGINDIR_REL && dladdr((void *)rf_plugin_search_path, &info) &&
+	    info.dli_fname && (slash = strrchr(info.dli_fname, '/'))) {
+		rf__format(dir, sizeof(dir), "%.*s/%s", (int)(slash - info.dli_fname),
+		           info.dli_fname, REFLECT_PLUGINDIR_REL);
+		if (stat(dir, &st) == 0 && S_ISDIR(st.st_mode))
+			return dir;
+	}
+	return REFLECT_PLUGINDIR;
+}
+
 const char *
 rf_plugin_search_path(void)
 {
@@ -550,7 +574,7 @@ rf_plugin_search_path(void)
 	const char *sys = getenv("REFLECT_PLUGIN_SYSTEM_PATH");
 
 	if (!sys)
-		sys = REFLECT_PLUGINDIR;
+		sys = installed_plugindir();
 	rf__format(buf, sizeof(buf), "%s%s%s", user && *user ? user : "",
 	           user && *user && *sys ? ":" : "", sys);
 	return buf;
