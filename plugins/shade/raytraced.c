@@ -89,8 +89,9 @@ struct raytraced {
 	float *ham0, *ham1; /* the Hammersley set of `samples` points */
 	int pattern, animate, estimator, masking, mipoffset;
 	uint32_t frames; /* frames=: how many the output will be averaged over */
-	int split;       /* frames' rays are blocks of one set (random_pairs) */
-	uint32_t *sigma; /* the order of the blocks, frames of them */
+	int split;       /* frames' rays are blocks of one set (create) */
+	uint32_t r2_step; /* R2 steps the frame's set moves by: the frame, or
+	                     with split the cycle of frames */
 	float *dir, *lookup, *dist, *jac, *x, *y, *z, *lod, *rgba, *weight, *pdf;
 	uint32_t *index; /* of each ray that counts, in the pixel's order */
 	uint32_t grid;   /* sampler=mis: the table's side, or 0 */
@@ -186,44 +187,12 @@ random_pairs(const struct raytraced *rt, uint32_t px, uint32_t py, uint32_t n,
 		b0 = ((float)bluenoise_rank[0][c] + 0.5f) / (float)(BLUENOISE_SIZE * BLUENOISE_SIZE);
 		b1 = ((float)bluenoise_rank[1][c] + 0.5f) / (float)(BLUENOISE_SIZE * BLUENOISE_SIZE);
 	}
-	if (rt->split) {
-		/* Frames to be averaged (frames=F): frame f's rays are a block
-		 * of the Hammersley set of K F points, the block sigma(f mod F)
-		 * for a golden-ratio permutation sigma, and each cycle of F
-		 * frames moves by an R2 step.  F frames together are then that
-		 * set itself, shifted per pixel as the frame's set is: they
-		 * average to one frame of K F rays, sum for sum; and
-		 * consecutive frames take blocks far apart.  A block covers a
-		 * sliver of u0 (the lobe's radius): a frame alone is a poor
-		 * picture, which frames=F says nobody looks at.  (The Sobol
-		 * sequence, whose every block of 2^m is a net, tried first:
-		 * 16 one-ray frames came out 1.6x worse than 16 rays, on the
-		 * default scene; so is one frame of Sobol's 16 points, against
-		 * Hammersley's.  The R2 steps below: 1.38x worse.) */
-		uint32_t cycle = frame / rt->frames, block = rt->sigma[frame % rt->frames];
-		float n_all = (float)rt->samples * (float)rt->frames;
-
-		f0 = (float)cycle * 0.7548776662f;
-		f1 = (float)cycle * 0.5698402910f;
-		for (i = 0; i < n; i++) {
-			uint32_t j = block * rt->samples + i;
-			float a = ((float)j + 0.5f) / n_all, b = radical_inverse(j);
-
-			if (rt->pattern == PATTERN_BLUE) {
-				a = fract(a + b0);
-				b = fract(b + b1);
-			}
-			u0[i] = fract(a + f0);
-			u1[i] = fract(b + f1);
-		}
-		return;
+	if (rt->r2_step) {
+		f0 = (float)rt->r2_step * 0.7548776662f;
+		f1 = (float)rt->r2_step * 0.5698402910f;
 	}
-	if (frame) {
-		f0 = (float)frame * 0.7548776662f;
-		f1 = (float)frame * 0.5698402910f;
-	}
-	/* The Hammersley set is the instance's (rt->ham0, rt->ham1); the
-	 * shifts are the pixel's and the frame's. */
+	/* The frame's points are the instance's (rt->ham0, rt->ham1, made
+	 * in create); the shifts are the pixel's and the frame's. */
 	for (i = 0; i < n; i++) {
 		float a = rt->ham0[i], b = rt->ham1[i];
 
@@ -231,7 +200,7 @@ random_pairs(const struct raytraced *rt, uint32_t px, uint32_t py, uint32_t n,
 			a = fract(a + b0);
 			b = fract(b + b1);
 		}
-		if (frame) {
+		if (rt->r2_step) {
 			a = fract(a + f0);
 			b = fract(b + f1);
 		}
@@ -717,7 +686,7 @@ trace_lobe(struct raytraced *rt, const struct lobe *lb, uint32_t n, const float 
 /* ---- sampler=mis ------------------------------------------------------------ */
 
 /*
- * The write-up's open TODO, importance sampling by the reflection's
+ * The write-up's open item, importance sampling by the reflection's
  * luminance, as a second technique beside the lobe's own, combined with
  * it by the balance heuristic in its one-sample form (a mixture).
  *
@@ -1094,7 +1063,6 @@ destroy(void *state)
 	if (!rt)
 		return;
 	free(rt->dir);
-	free(rt->sigma);
 	free(rt);
 }
 
@@ -1178,24 +1146,38 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 		rt->ham0[i] = ((float)i + 0.5f) / (float)rt->samples;
 		rt->ham1[i] = radical_inverse((uint32_t)i);
 	}
+	rt->r2_step = rt->animate ? rt->frame : 0;
 	if (rt->split) {
-		/* sigma(f) = f g mod F, g the step nearest F / golden ratio that
-		 * is prime to F: consecutive frames land far apart. */
-		uint32_t f, g = (uint32_t)((double)rt->frames * 0.6180339887 + 0.5), x, y, t;
+		/* Frames to be averaged (frames=F): frame f's rays are a block
+		 * of the Hammersley set of K F points, the block sigma(f mod F)
+		 * with sigma(f) = f g mod F, g the step nearest F / golden ratio
+		 * that is prime to F (consecutive frames take blocks far apart),
+		 * and each cycle of F frames moves by an R2 step.  F frames
+		 * together are then that set itself, shifted per pixel as a
+		 * frame's set is: they average to one frame of K F rays, sum for
+		 * sum.  A block covers a sliver of u0 (the lobe's radius): a
+		 * frame alone is a poor picture, which frames=F says nobody
+		 * looks at.  (The Sobol sequence, whose every block of 2^m is a
+		 * net, tried first: 16 one-ray frames came out 1.6x worse than
+		 * 16 rays, on the default scene; so is one frame of Sobol's 16
+		 * points, against Hammersley's.  R2 steps alone: 1.38x worse.) */
+		uint32_t g = (uint32_t)((double)rt->frames * 0.6180339887 + 0.5), x, y, t, part;
+		float n_all = (float)rt->samples * (float)rt->frames;
 
-		if (!(rt->sigma = malloc(rt->frames * sizeof(*rt->sigma)))) {
-			snprintf(err, errlen, "out of memory for %u frames", rt->frames);
-			destroy(rt);
-			return -1;
-		}
 		for (;; g++) {
 			for (x = g, y = rt->frames; y; t = x % y, x = y, y = t)
 				;
 			if (x == 1)
 				break;
 		}
-		for (f = 0; f < rt->frames; f++)
-			rt->sigma[f] = (uint32_t)(((uint64_t)f * g) % rt->frames);
+		part = (uint32_t)(((uint64_t)(rt->frame % rt->frames) * g) % rt->frames);
+		rt->r2_step = rt->frame / rt->frames;
+		for (i = 0; i < rt->samples; i++) {
+			uint32_t j = part * rt->samples + (uint32_t)i;
+
+			rt->ham0[i] = ((float)j + 0.5f) / n_all;
+			rt->ham1[i] = radical_inverse(j);
+		}
 	}
 	*state = rt;
 	return 0;
