@@ -663,6 +663,7 @@ rf_reader_next_frame(rf_reader *r, const rf_header **hp)
 {
 	char line[RF_HEADER_LINE_MAX + 2];
 	int c, binary, rc;
+	const char *kind;
 	long len;
 
 	*hp = NULL;
@@ -696,10 +697,10 @@ rf_reader_next_frame(rf_reader *r, const rf_header **hp)
 		return 1;
 	}
 	len = read_line(r->fp, line, &binary);
-	if (len != -1 && r->frames == 1 && strncmp(line, "#?", 2) &&
-	    image_kind(line, len < 0 ? -1 : len)) {
-		rc = fail(r, RF_EFORMAT, "not a reflect stream: it is %s" IMAGE_HINT,
-		          image_kind(line, len < 0 ? -1 : len));
+	kind = len != -1 && r->frames == 1 && strncmp(line, "#?", 2)
+	           ? image_kind(line, len < 0 ? -1 : len) : NULL;
+	if (kind) {
+		rc = fail(r, RF_EFORMAT, "not a reflect stream: it is %s" IMAGE_HINT, kind);
 		goto bad;
 	}
 	if (len < 0 || binary || strncmp(line, "#?", 2)) {
