@@ -167,8 +167,8 @@ mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose)
 			cli_message_start();
 			fputs("mode ", stderr);
 			cli_put_quoted(stderr, name);
-			fprintf(stderr, ": a ':' with no parameter after it; write -m %s or "
-			        "-m %s:KEY=VALUE\n", "MODE", "MODE");
+			fputs(": a ':' with no parameter after it; write -m MODE or "
+			      "-m MODE:KEY=VALUE\n", stderr);
 			free(name);
 			exit(EXIT_BAD_INPUT);
 		}

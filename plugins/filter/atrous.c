@@ -66,7 +66,7 @@ enum { NX, NY, NZ, PX, PY, PZ, ROUGH, OBJID, MASK, HIT, DEPTH, NGUIDES };
 struct atrous {
 	uint32_t passes, normal;
 	float inv_plane, inv_rough, inv_color, lobe;
-	float *soa; /* run()'s scratch, ncap floats (grown, not per span) */
+	float *scratch; /* run()'s scratch, ncap floats (grown, not per span) */
 	size_t ncap;
 	int wide; /* eight lanes (AVX2) */
 };
@@ -152,11 +152,11 @@ static int
 reserve(struct atrous *a, size_t floats)
 {
 	if (floats > a->ncap) {
-		float *grown = realloc(a->soa, floats * sizeof(float));
+		float *grown = realloc(a->scratch, floats * sizeof(float));
 
 		if (!grown)
 			return -1;
-		a->soa = grown;
+		a->scratch = grown;
 		a->ncap = floats;
 	}
 	return 0;
@@ -183,7 +183,7 @@ run(void *state, const struct rf_span *span)
 		       n * sizeof(float));
 	if (reserve(a, 2 * ((size_t)w + 8) + (3 * w + 3) / sizeof(float) + 1) < 0)
 		return; /* no room to filter: the values as they are */
-	act = a->soa;
+	act = a->scratch;
 	lp = act + w + 8;
 	flags = (unsigned char *)(lp + w + 8);
 	for (k = 0; k < 3; k++) {
@@ -317,7 +317,7 @@ destroy(void *state)
 	struct atrous *a = state;
 
 	if (a)
-		free(a->soa);
+		free(a->scratch);
 	free(a);
 }
 
