@@ -74,20 +74,44 @@ struct atrous {
 /* Guide f of pixel x of a planar band row. */
 #define AT(row, f, x) ((row)[(size_t)(f) * w + (x)])
 
-static inline int
-usable(const float *row, size_t w, size_t x)
+/* ok[x] = 1 where pixel x of a planar band row is usable: its geometry
+ * finite and on the mask (or no mask: NaN).  Four pixels at a time, on
+ * the bits: a test a pixel, as scalar code, cost a fifth of a pass. */
+static void
+usable_row(const float *row, size_t w, unsigned char *ok)
 {
-	return isfinite(AT(row, NX, x)) && isfinite(AT(row, NY, x)) && isfinite(AT(row, NZ, x)) &&
-	       isfinite(AT(row, PX, x)) && isfinite(AT(row, PY, x)) && isfinite(AT(row, PZ, x)) &&
-	       isfinite(AT(row, ROUGH, x)) && !(AT(row, MASK, x) < 0.5f);
+	typedef uint32_t v4u __attribute__((vector_size(16)));
+	static const int fields[] = { NX, NY, NZ, PX, PY, PZ, ROUGH };
+	const size_t nf = sizeof(fields) / sizeof(fields[0]);
+	const float *m = row + (size_t)MASK * w;
+	size_t x, k;
+
+	for (x = 0; x + 4 <= w; x += 4) {
+		v4u all = { 0, 0, 0, 0 }, bits;
+		float mask[4];
+
+		for (k = 0; k < nf; k++) {
+			memcpy(&bits, row + (size_t)fields[k] * w + x, sizeof(bits));
+			all |= (v4u)((bits & 0x7F800000u) == 0x7F800000u);
+		}
+		memcpy(mask, m + x, sizeof(mask));
+		for (k = 0; k < 4; k++)
+			ok[x + k] = !all[k] && !(mask[k] < 0.5f);
+	}
+	for (; x < w; x++) {
+		ok[x] = !(m[x] < 0.5f);
+		for (k = 0; k < nf; k++)
+			ok[x] &= (unsigned char)isfinite(row[(size_t)fields[k] * w + x]);
+	}
 }
 
-/* The pixel's size on its surface: the distance to the nearest usable
+/* The pixel's size on its surface: the distance to the nearest
  * neighbour of the same object in the row, or in the rows above and
- * below; +inf when it has none.  ok[k] flags the usable pixels of the
- * rows y - 1, y, y + 1 (NULL for a row outside the frame). */
+ * below, +inf when it has none.  A neighbour whose position is not
+ * finite gives a distance of NaN, which is never the nearest: the pixels
+ * around need no test of their own. */
 static float
-pixel_size(const struct rf_span *span, const unsigned char *const ok[3], size_t x)
+pixel_size(const struct rf_span *span, size_t x)
 {
 	const size_t w = span->width;
 	const float *c = span->band[span->radius];
@@ -100,8 +124,7 @@ pixel_size(const struct rf_span *span, const unsigned char *const ok[3], size_t 
 		long qx = (long)x + (k == 0 ? -1 : k == 1 ? 1 : 0);
 		float dx, ddy, dz, d;
 
-		if (!row || qx < 0 || qx >= (long)w || !ok[1 + dy][qx] ||
-		    AT(row, OBJID, qx) != AT(c, OBJID, x))
+		if (!row || qx < 0 || qx >= (long)w || AT(row, OBJID, qx) != AT(c, OBJID, x))
 			continue;
 		dx = AT(row, PX, qx) - AT(c, PX, x);
 		ddy = AT(row, PY, qx) - AT(c, PY, x);
@@ -110,6 +133,81 @@ pixel_size(const struct rf_span *span, const unsigned char *const ok[3], size_t 
 		best = d < best ? d : best;
 	}
 	return sqrtf(best);
+}
+
+/* Whether a pass of spacing step stays within the lobe at pixel x: the
+ * same test for the pixels whose hit distance is known, else yes. */
+static inline int
+within_lobe(const struct atrous *a, float step, float r, float hit, float d, float size)
+{
+	float blur = 2.0f * r * r * hit;
+
+	if (hit != hit)
+		return 1;
+	if (d > 0.0f && hit < INFINITY)
+		blur *= d / (d + hit);
+	return 2.0f * step * size <= a->lobe * blur;
+}
+
+/* act[x] = 0 where the pass would reach beyond the lobe.  The pixel's
+ * size four pixels at a time inside the row (as pixel_size, the same
+ * operations in the same order), pixel_size at its ends: a pixel at a
+ * time it cost a tenth of the filter. */
+static void
+lobe_limit(const struct atrous *a, const struct rf_span *span, float *act)
+{
+	typedef float v4 __attribute__((vector_size(16)));
+	typedef int32_t v4m __attribute__((vector_size(16)));
+	const size_t w = span->width, x0 = span->x, x1 = span->x + span->npix;
+	const float step = (float)(1u << span->pass);
+	const float *c = span->band[span->radius];
+	const float *up = span->band[span->radius - 1], *down = span->band[span->radius + 1];
+	const float *const rows[4] = { c, c, up, down };
+	const long shift[4] = { -1, 1, 0, 0 };
+	size_t x = x0;
+
+	for (; x < x1 && (x < 1 || x + 5 > w || (x - x0) % 4); x++)
+		if (act[x] != 0.0f &&
+		    !within_lobe(a, step, AT(c, ROUGH, x), AT(c, HIT, x), AT(c, DEPTH, x),
+		                 pixel_size(span, x)))
+			act[x] = 0.0f;
+	for (; x + 4 <= x1 && x + 5 <= w; x += 4) {
+		v4 cp[3], co, best = { INFINITY, INFINITY, INFINITY, INFINITY }, size;
+		int k, f;
+
+		for (f = 0; f < 3; f++)
+			memcpy(&cp[f], c + (size_t)(PX + f) * w + x, sizeof(v4));
+		memcpy(&co, c + (size_t)OBJID * w + x, sizeof(v4));
+		for (k = 0; k < 4; k++) {
+			const float *row = rows[k];
+			v4 qp[3], qo, d;
+			v4m same;
+
+			if (!row)
+				continue;
+			for (f = 0; f < 3; f++)
+				memcpy(&qp[f], row + (size_t)(PX + f) * w + x + shift[k], sizeof(v4));
+			memcpy(&qo, row + (size_t)OBJID * w + x + shift[k], sizeof(v4));
+			qp[0] -= cp[0];
+			qp[1] -= cp[1];
+			qp[2] -= cp[2];
+			d = qp[0] * qp[0] + qp[1] * qp[1] + qp[2] * qp[2];
+			same = (qo == co) & (d < best);
+			best = (v4)(((v4m)d & same) | ((v4m)best & ~same));
+		}
+		for (k = 0; k < 4; k++) {
+			size[k] = sqrtf(best[k]);
+			if (act[x + k] != 0.0f &&
+			    !within_lobe(a, step, AT(c, ROUGH, x + k), AT(c, HIT, x + k),
+			                 AT(c, DEPTH, x + k), size[k]))
+				act[x + k] = 0.0f;
+		}
+	}
+	for (; x < x1; x++)
+		if (act[x] != 0.0f &&
+		    !within_lobe(a, step, AT(c, ROUGH, x), AT(c, HIT, x), AT(c, DEPTH, x),
+		                 pixel_size(span, x)))
+			act[x] = 0.0f;
 }
 
 /* Four pixels at a time, or eight where AVX2 is (atrous-taps.h),
@@ -169,52 +267,39 @@ static void
 run(void *state, const struct rf_span *span)
 {
 	struct atrous *a = state;
-	const uint32_t nv = span->nvalues, step = 1u << span->pass, n = span->npix;
+	const uint32_t nv = span->nvalues, n = span->npix;
 	const size_t w = span->width;
 	const float *row = span->band[span->radius];
-	const unsigned char *ok[3];
-	unsigned char *flags;
+	unsigned char *ok;
 	float *act, *lp;
-	uint32_t i, v, k;
+	uint32_t i, v;
 
 	/* the values as they are, for the pixels the pass leaves alone */
 	for (v = 0; v < nv; v++)
 		memcpy(span->out + (size_t)v * n, row + (NGUIDES + v) * w + span->x,
 		       n * sizeof(float));
-	if (reserve(a, 2 * ((size_t)w + 8) + (3 * w + 3) / sizeof(float) + 1) < 0)
+	if (reserve(a, 2 * ((size_t)w + 8) + (w + 3) / sizeof(float) + 1) < 0)
 		return; /* no room to filter: the values as they are */
 	act = a->scratch;
 	lp = act + w + 8;
-	flags = (unsigned char *)(lp + w + 8);
-	for (k = 0; k < 3; k++) {
-		const float *r = span->band[span->radius + k - 1];
-
-		ok[k] = r ? flags + (size_t)k * w : NULL;
-		if (r)
-			for (i = 0; i < w; i++)
-				flags[(size_t)k * w + i] = (unsigned char)usable(r, w, i);
-	}
+	ok = (unsigned char *)(lp + w + 8);
+	usable_row(row, w, ok);
 	/* Which pixels this pass touches: reflective, with geometry, and (the
 	 * lobe) whose reach stays within the reflection's own blur. */
 	for (i = 0; i < w + 8; i++)
 		act[i] = lp[i] = 0.0f;
-	for (i = span->x; i < span->x + n; i++) {
-		if (!ok[1][i])
-			continue;
-		if (a->lobe > 0.0f && AT(row, HIT, i) == AT(row, HIT, i)) {
-			float r = AT(row, ROUGH, i), hit = AT(row, HIT, i), d = AT(row, DEPTH, i);
-			float blur = 2.0f * r * r * hit;
-
-			if (d > 0.0f && hit < INFINITY)
-				blur *= d / (d + hit);
-			if (!(2.0f * (float)step * pixel_size(span, ok, i) <= a->lobe * blur))
+	for (i = span->x; i < span->x + n; i++)
+		act[i] = ok[i];
+	if (a->lobe > 0.0f)
+		lobe_limit(a, span, act);
+	if (a->inv_color > 0.0f) /* the colour weight's only */
+		for (i = span->x; i < span->x + n; i++) {
+			if (act[i] == 0.0f)
 				continue;
+			for (v = 0; v < nv; v++)
+				lp[i] += AT(row, NGUIDES + v, i);
+			lp[i] /= (float)nv;
 		}
-		act[i] = 1.0f;
-		for (v = 0; v < nv; v++)
-			lp[i] += AT(row, NGUIDES + v, i);
-		lp[i] /= (float)nv;
-	}
 	for (i = span->x & ~7u; i < span->x + n; i += 8)
 		group(a, span, i, act, lp);
 }
