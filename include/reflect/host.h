@@ -25,6 +25,9 @@ RF_EXTERN void rf_plugin_host_destroy(rf_plugin_host *h);
 RF_EXTERN void rf_plugin_host_set_frame(rf_plugin_host *h, const rf_header *frame);
 /* The probe, copied (NULL: none). */
 RF_EXTERN void rf_plugin_host_set_probe(rf_plugin_host *h, const struct rf_probe *probe);
+/* The probe as the modes have it, with the bevel a projection mode
+ * declared (declare_bevel); NULL when there is none. */
+RF_EXTERN const struct rf_probe *rf_plugin_host_probe(const rf_plugin_host *h);
 /* The environment sample() and sample_many() read (through the shading
  * pass's kernels), kept by pointer, and its mapping; NULL takes
  * the sampling services away, as does running out of memory (returned). */

@@ -21,7 +21,8 @@
  *        the accumulate kind's contract, with nvalues and count appended
  *        to rf_span; the filter kind, with band, radius and pass appended
  *        to rf_span and the host service filter_passes; sample() through
- *        the pass's kernels, and sample_many; fail, for run().
+ *        the pass's kernels, and sample_many; fail, for run();
+ *        the probe's bevel and bevel_grown, and declare_bevel.
  * A minor bump only appends fields at the end of a struct, or defines new
  * flag bits or kinds; a major bump is anything else.  The host accepts a
  * plugin when its major equals the host's and its minor is not newer, and
@@ -124,6 +125,12 @@ struct rf_probe {
 	float box_min[3]; /* influence and projection box */
 	float box_max[3];
 	int box_projection; /* 0: directions are used as they are */
+	/* ABI 1.1: the shape the lookups leave by, when not the box itself:
+	 * its edges and corners rounded by bevel (world units), its faces on
+	 * the box, or with bevel_grown the box grown by bevel all round
+	 * (the PROBE_BEVEL key; 0 for the box). */
+	float bevel;
+	int bevel_grown;
 };
 
 /* Services of the host; a member is NULL when the tool cannot offer it.
@@ -152,7 +159,8 @@ struct rf_host {
 	/* ABI 1.1: for modes that trace the lobe themselves. */
 	/* n rays from the shading point p along unit directions dirs
 	 * (3 n floats), each taken to where it leaves the probe's projection
-	 * shape as reflect-project's box mode does: lookup (3 n) the unit
+	 * shape as reflect-project's box mode does (bevel's, when the probe
+	 * has a bevel): lookup (3 n) the unit
 	 * direction from the capture point to that exit, dist (n) the
 	 * distance from p to it, and jacobian (n) the solid angle at the
 	 * capture point per solid angle at p there (dw_C / dw_P).  A ray with
@@ -189,6 +197,14 @@ struct rf_host {
 	 * first call wins).  run() still returns as usual, its outputs
 	 * written whatever they are. */
 	void (*fail)(void *ctx, const char *message);
+	/* For a projection mode's create(): the shape its D leaves by is
+	 * the probe box rounded by radius (world units, 0: the box), its
+	 * faces on the box or (grown) the box grown by radius.  The tool
+	 * records it in the probe (PROBE_BEVEL), and the tools after it
+	 * trace their rays to the same shape (project_rays).  0, or -1 when
+	 * the radius is negative or more than the box's smallest half
+	 * extent. */
+	int (*declare_bevel)(void *ctx, float radius, int grown);
 };
 
 /* A span of pixels along one row, channels interleaved in the order the

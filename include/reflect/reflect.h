@@ -133,6 +133,7 @@ RF_EXTERN const char *rf_header_line(const rf_header *h, size_t i);
 #define RF_KEY_PROBE_BOX_PROJECTION "PROBE_BOX_PROJECTION" /* 1 or 0 */
 #define RF_KEY_PROBE_ENV "PROBE_ENV"   /* the probe's environment file */
 #define RF_KEY_PROBE_BLEND "PROBE_BLEND" /* blend distance in metres */
+#define RF_KEY_PROBE_BEVEL "PROBE_BEVEL" /* RADIUS [grown]: the rounded box */
 #define RF_KEY_PROJECTION "PROJECTION" /* reflect-project's mode */
 #define RF_KEY_SHADE "SHADE"           /* reflect-shade's mode */
 #define RF_KEY_ENV_MAPPING "ENV_MAPPING" /* the roughness-to-lod mapping used */
@@ -144,14 +145,16 @@ RF_EXTERN const char *rf_header_line(const rf_header *h, size_t i);
 struct rf_probe;
 /* The probe of a frame, from the strings a tool was given for its
  * --box, --center and --box-projection (NULL: not given), else from the
- * frame's PROBE_BOX, PROBE_CENTER and PROBE_BOX_PROJECTION; the centre
- * defaults to the box's, box projection to on.  RF_ENOTFOUND when
+ * frame's PROBE_BOX, PROBE_CENTER and PROBE_BOX_PROJECTION, and the bevel
+ * from PROBE_BEVEL; the centre defaults to the box's, box projection to
+ * on.  RF_ENOTFOUND when
  * neither gives a box, RF_EINVAL for a value that does not parse or an
  * empty box; err says which. */
 RF_EXTERN int rf_probe_resolve(struct rf_probe *probe, const rf_header *h,
                                const char *box, const char *center,
                                const char *projection, char *err, size_t errlen);
-/* Writes the probe as PROBE_BOX, PROBE_CENTER, PROBE_BOX_PROJECTION. */
+/* Writes the probe as PROBE_BOX, PROBE_CENTER, PROBE_BOX_PROJECTION and
+ * PROBE_BEVEL (removed for the box). */
 RF_EXTERN int rf_probe_to_header(const struct rf_probe *probe, rf_header *h);
 
 /*

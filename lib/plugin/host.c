@@ -17,6 +17,7 @@
 #include "reflect/shading.h"
 /* The box's geometry as the projection plugins have it, to the bit. */
 #include "project/projection.h"
+#include "project/bevel.h"
 #include "soa.h"
 
 struct rf_plugin_host {
@@ -36,6 +37,7 @@ struct rf_plugin_host {
 	struct rf__rgba_levels levels;
 	int vector;
 	struct box box;
+	struct bevel bevel; /* the probe's rounded box, when probe.bevel > 0 */
 	/* The first fail() of a block: set once (failed), read after the
 	 * block's threads are joined. */
 	int failed;
@@ -197,6 +199,36 @@ project_rays4(const struct box *b, uint32_t n, const float p[3], const float *di
 	return i;
 }
 
+/* The rays' exits from the rounded box, as the bevel mode finds them
+ * (bevel_exit), the Jacobian's cosines taken to the shape's normal at
+ * each exit. */
+static void
+project_rays_bevel(const rf_plugin_host *h, uint32_t n, const float p[3], const float *dirs,
+                   float *lookup, float *dist, float *jacobian)
+{
+	uint32_t i;
+
+	for (i = 0; i < n; i++) {
+		const float *dir = dirs + 3 * i;
+		float *d = lookup + 3 * i, t, reach, nrm[3], cos_c, cos_p;
+
+		if (!h->probe.box_projection || bevel_exit(&h->bevel, p, dir, &t, nrm) < 0) {
+			d[0] = dir[0];
+			d[1] = dir[1];
+			d[2] = dir[2];
+			dist[i] = INFINITY;
+			jacobian[i] = 1.0f;
+			continue;
+		}
+		lookup_from_hit(&h->box, p, dir, t, d, &reach);
+		dist[i] = t;
+		cos_c = fabsf(d[0] * nrm[0] + d[1] * nrm[1] + d[2] * nrm[2]);
+		cos_p = fabsf(dir[0] * nrm[0] + dir[1] * nrm[1] + dir[2] * nrm[2]);
+		jacobian[i] = reach > 0.0f && cos_p > 0.0f ? t * t * cos_c / (reach * reach * cos_p)
+		                                           : 1.0f;
+	}
+}
+
 /* The rays' exits from the box, as box_exit and lookup_from_hit find
  * them (the same quotients, so the same bits), with the face each leaves
  * by, which box_exit does not say: the axis of the nearest wall. */
@@ -209,6 +241,10 @@ project_rays(void *ctx, uint32_t n, const float p[3], const float *dirs, float *
 	int inside = h->probe.box_projection, k;
 	uint32_t i;
 
+	if (h->probe.bevel > 0.0f) {
+		project_rays_bevel(h, n, p, dirs, lookup, dist, jacobian);
+		return;
+	}
 	for (k = 0; k < 3; k++)
 		if (p[k] < b->outer_lo[k] || p[k] > b->outer_hi[k])
 			inside = 0;
@@ -286,6 +322,25 @@ rf__host_take_failure(const struct rf_host *table, const char *mode, char *err,
 }
 
 static int
+declare_bevel(void *ctx, float radius, int grown)
+{
+	rf_plugin_host *h = ctx;
+
+	if (!(radius >= 0.0f) || !h->table.probe || radius > bevel_max_radius(&h->probe))
+		return -1;
+	h->probe.bevel = radius;
+	h->probe.bevel_grown = radius > 0.0f && grown;
+	h->bevel = bevel_of_probe(&h->probe, radius, grown);
+	return 0;
+}
+
+const struct rf_probe *
+rf_plugin_host_probe(const rf_plugin_host *h)
+{
+	return h->table.probe;
+}
+
+static int
 filter_passes(void *ctx, uint32_t passes, const uint32_t *radius)
 {
 	rf_plugin_host *h = ctx;
@@ -342,6 +397,7 @@ rf_plugin_host_create(rf_plugin_host **hp)
 	h->table.dfg = dfg;
 	h->table.filter_passes = filter_passes;
 	h->table.fail = fail;
+	h->table.declare_bevel = declare_bevel;
 	h->mapping = RF_MAPPING_DEFAULT;
 	return 0;
 }
@@ -379,6 +435,7 @@ rf_plugin_host_set_probe(rf_plugin_host *h, const struct rf_probe *probe)
 	if (probe) {
 		h->probe = *probe;
 		h->box = box_of_probe(probe);
+		h->bevel = bevel_of_probe(probe, probe->bevel, probe->bevel_grown);
 	}
 	h->table.probe = probe ? &h->probe : NULL;
 	h->table.project_rays = probe ? project_rays : NULL;

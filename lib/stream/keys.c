@@ -78,7 +78,16 @@ rf_probe_to_header(const struct rf_probe *probe, rf_header *h)
 		mx[i] = probe->box_max[i];
 		c[i] = probe->center[i];
 	}
-	return rf__header_set_probe_keys(h, 0, mn, mx, c, probe->box_projection);
+	if ((i = rf__header_set_probe_keys(h, 0, mn, mx, c, probe->box_projection)) < 0)
+		return i;
+	if (probe->bevel > 0.0f) {
+		char v[64];
+
+		snprintf(v, sizeof(v), "%.9g%s", (double)probe->bevel,
+		         probe->bevel_grown ? " grown" : "");
+		return rf_header_set(h, RF_KEY_PROBE_BEVEL, v);
+	}
+	return rf_header_unset(h, RF_KEY_PROBE_BEVEL);
 }
 
 /* n numbers separated by commas or spaces; 0 on success. */
@@ -158,6 +167,27 @@ rf_probe_resolve(struct rf_probe *probe, const rf_header *h, const char *box_arg
 	} else {
 		for (i = 0; i < 3; i++)
 			probe->center[i] = 0.5f * (probe->box_min[i] + probe->box_max[i]);
+	}
+	if ((v = rf_header_get(h, RF_KEY_PROBE_BEVEL))) {
+		const char *grown = strstr(v, " grown");
+		char num[64];
+
+		snprintf(num, sizeof(num), "%.*s", grown ? (int)(grown - v) : (int)strlen(v), v);
+		if ((grown && strcmp(grown, " grown")) || scan_floats(num, &probe->bevel, 1) < 0 ||
+		    probe->bevel < 0.0f) {
+			rf__format(err, errlen, "header key %s: '%s' needs a radius of 0 or "
+			           "more, then optionally 'grown'", RF_KEY_PROBE_BEVEL, v);
+			return RF_EINVAL;
+		}
+		probe->bevel_grown = grown != NULL;
+		for (i = 0; i < 3; i++)
+			if (probe->bevel > 0.5f * (probe->box_max[i] - probe->box_min[i])) {
+				rf__format(err, errlen, "header key %s: radius %g is more than "
+				           "half the box on axis %c (%g)", RF_KEY_PROBE_BEVEL,
+				           (double)probe->bevel, "XYZ"[i],
+				           0.5 * ((double)probe->box_max[i] - probe->box_min[i]));
+				return RF_EINVAL;
+			}
 	}
 	v = projection_arg ? projection_arg : rf_header_get(h, RF_KEY_PROBE_BOX_PROJECTION);
 	if (v) {

@@ -115,7 +115,7 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
 	static rf_module *box;
 	static int tried;
-	struct rf_probe probe = { { 0, 1.5f, 0 }, { -3, 0, -2 }, { 3, 3, 2 }, 1 };
+	struct rf_probe probe = { { 0, 1.5f, 0 }, { -3, 0, -2 }, { 3, 3, 2 }, 1, 0.0f, 0 };
 	struct rf_host host;
 	size_t ncols = size / (IN_FLOATS * sizeof(float)), i, c, nv, np, spec;
 	rf_header *in, *proj = NULL;

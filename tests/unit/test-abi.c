@@ -58,7 +58,7 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_param, flags, 40),
 	OFFSET(struct rf_param, choices, 48),
 
-	SIZE(struct rf_host, 128),
+	SIZE(struct rf_host, 136),
 	OFFSET(struct rf_host, size, 0),
 	OFFSET(struct rf_host, abi_major, 4),
 	OFFSET(struct rf_host, abi_minor, 8),
@@ -79,6 +79,7 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_host, filter_passes, 104),
 	OFFSET(struct rf_host, sample_many, 112),
 	OFFSET(struct rf_host, fail, 120),
+	OFFSET(struct rf_host, declare_bevel, 128),
 
 	SIZE(struct rf_span, 72),
 	OFFSET(struct rf_span, size, 0),
@@ -96,11 +97,13 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_span, radius, 64),
 	OFFSET(struct rf_span, pass, 68),
 
-	SIZE(struct rf_probe, 40),
+	SIZE(struct rf_probe, 48),
 	OFFSET(struct rf_probe, center, 0),
 	OFFSET(struct rf_probe, box_min, 12),
 	OFFSET(struct rf_probe, box_max, 24),
 	OFFSET(struct rf_probe, box_projection, 36),
+	OFFSET(struct rf_probe, bevel, 40), /* ABI 1.1 */
+	OFFSET(struct rf_probe, bevel_grown, 44),
 };
 #define HAVE_ABI_TABLE 1
 #endif

@@ -6,7 +6,7 @@ TEST(table_follows_the_settings)
 {
 	rf_plugin_host *h;
 	const struct rf_host *t;
-	struct rf_probe probe = { { 1, 2, 3 }, { -1, -2, -3 }, { 4, 5, 6 }, 0 };
+	struct rf_probe probe = { { 1, 2, 3 }, { -1, -2, -3 }, { 4, 5, 6 }, 0, 0.0f, 0 };
 	rf_header *frame;
 	rf_cubemap *c;
 	float dir[3] = { 0.3f, -0.2f, 0.9f }, got[3], want[3];
@@ -62,7 +62,7 @@ TEST(table_follows_the_settings)
 /* Hand-derived exits from the box [-3,0,-2]..[3,3,2], centre (0,1.5,0). */
 TEST(rays_leave_the_box)
 {
-	struct rf_probe probe = { { 0, 1.5f, 0 }, { -3, 0, -2 }, { 3, 3, 2 }, 1 };
+	struct rf_probe probe = { { 0, 1.5f, 0 }, { -3, 0, -2 }, { 3, 3, 2 }, 1, 0.0f, 0 };
 	rf_plugin_host *h;
 	const struct rf_host *t;
 	const float at_c[3] = { 0, 1.5f, 0 }, off[3] = { 1, 1.5f, 0 }, low[3] = { 0, 0.5f, 0 };
@@ -100,6 +100,125 @@ TEST(rays_leave_the_box)
 	rf_plugin_host_set_probe(h, &probe);
 	t->project_rays(t->ctx, 1, off, dirs, look, dist, jac);
 	ASSERT(look[0] == 1 && !(dist[0] < INFINITY) && jac[0] == 1);
+	rf_plugin_host_destroy(h);
+}
+
+/* Half the cross product of a quadrilateral's diagonals: its area. */
+static float
+diagonal_area(float q[4][3])
+{
+	float u[3], v[3], c[3];
+	int k;
+
+	for (k = 0; k < 3; k++) {
+		u[k] = q[3][k] - q[0][k];
+		v[k] = q[2][k] - q[1][k];
+	}
+	c[0] = u[1] * v[2] - u[2] * v[1];
+	c[1] = u[2] * v[0] - u[0] * v[2];
+	c[2] = u[0] * v[1] - u[1] * v[0];
+	return 0.5f * sqrtf(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+}
+
+/* A unit vector's two tangents. */
+static void
+tangents(const float d[3], float a[3], float b[3])
+{
+	float h[3] = { 0, 0, 1 }, l;
+
+	if (fabsf(d[2]) > 0.9f) {
+		h[0] = 1;
+		h[2] = 0;
+	}
+	a[0] = d[1] * h[2] - d[2] * h[1];
+	a[1] = d[2] * h[0] - d[0] * h[2];
+	a[2] = d[0] * h[1] - d[1] * h[0];
+	l = sqrtf(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+	a[0] /= l;
+	a[1] /= l;
+	a[2] /= l;
+	b[0] = d[1] * a[2] - d[2] * a[1];
+	b[1] = d[2] * a[0] - d[0] * a[2];
+	b[2] = d[0] * a[1] - d[1] * a[0];
+}
+
+/* With a bevel declared, the rays leave the rounded box: radius 1 with
+ * the faces on the box, inner box (-2, 1, -1) .. (2, 2, 1).  From the
+ * centre through the edge's point at 45 degrees, (2.70711, 2.70711, 0),
+ * 2.96404 away; and the Jacobian at a face, a corner and an edge, against
+ * the solid angle of a small square of directions from P mapped to the
+ * capture point. */
+TEST(rays_leave_the_rounded_box)
+{
+	struct rf_probe probe = { { 0.5f, 1.2f, 0.3f }, { -3, 0, -2 }, { 3, 3, 2 }, 1, 0.0f, 0 };
+	rf_plugin_host *h;
+	const struct rf_host *t;
+	const float c[3] = { 0, 1.5f, 0 }, p[3] = { -1, 0.8f, 0.4f };
+	float d[3] = { 2.70711f, 1.20711f, 0 }, look[3], dist, jac, l;
+	int k, r;
+
+	ASSERT_EQ(rf_plugin_host_create(&h), 0);
+	t = rf_plugin_host_table(h);
+	ASSERT(t->declare_bevel != NULL);
+	ASSERT(t->declare_bevel(t->ctx, 1.0f, 0) == -1); /* no probe yet */
+	rf_plugin_host_set_probe(h, &probe);
+	ASSERT(t->declare_bevel(t->ctx, 1.6f, 0) == -1); /* over 1.5 */
+	ASSERT(t->declare_bevel(t->ctx, -0.1f, 0) == -1);
+	ASSERT(t->declare_bevel(t->ctx, 1.0f, 0) == 0);
+	ASSERT(rf_plugin_host_probe(h)->bevel == 1.0f);
+	l = sqrtf(d[0] * d[0] + d[1] * d[1]);
+	d[0] /= l;
+	d[1] /= l;
+	t->project_rays(t->ctx, 1, c, d, look, &dist, &jac);
+	ASSERT_NEAR(dist, 2.96404, 2e-5);
+	/* Jacobians at a face, an edge and a corner, from off the centre */
+	for (r = 0; r < 3; r++) {
+		float dir[3] = { 1, 0.1f, 0.05f }, a[3], b[3], sq[4][3], lk[4][3], e = 1e-3f;
+		float area_c, area_p, dd[4], jj[4];
+
+		if (r == 1) { /* to the corner sphere's point along (1, 1, 1) */
+			dir[0] = 2 + 0.57735f - p[0];
+			dir[1] = 2 + 0.57735f - p[1];
+			dir[2] = 1 + 0.57735f - p[2];
+		} else if (r == 2) { /* onto the edge along x at y = 2, z = 1 */
+			dir[0] = 1.0f;
+			dir[1] = 1.1f;
+			dir[2] = 0.75f;
+		}
+		l = sqrtf(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+		for (k = 0; k < 3; k++)
+			dir[k] /= l;
+		tangents(dir, a, b);
+		for (k = 0; k < 4; k++) {
+			float sa = k & 1 ? e : -e, sb = k & 2 ? e : -e;
+			int i;
+
+			for (i = 0; i < 3; i++)
+				sq[k][i] = dir[i] + sa * a[i] + sb * b[i];
+			l = sqrtf(sq[k][0] * sq[k][0] + sq[k][1] * sq[k][1] + sq[k][2] * sq[k][2]);
+			for (i = 0; i < 3; i++)
+				sq[k][i] /= l;
+		}
+		t->project_rays(t->ctx, 4, p, sq[0], lk[0], dd, jj);
+		t->project_rays(t->ctx, 1, p, dir, look, &dist, &jac);
+		/* the squares' areas on the unit spheres at P and at C: half the
+		 * cross product of their diagonals */
+		area_p = diagonal_area(sq);
+		area_c = diagonal_area(lk);
+		{
+			const float x = p[0] + dir[0] * dist, y = p[1] + dir[1] * dist;
+			const float z = p[2] + dir[2] * dist;
+
+			if (r == 0)
+				ASSERT_NEAR(x, 3.0, 1e-5);
+			else if (r == 1)
+				ASSERT(fabsf(x - 2.57735f) < 1e-4f && fabsf(y - 2.57735f) < 1e-4f &&
+				       fabsf(z - 1.57735f) < 1e-4f);
+			else
+				ASSERT(fabsf(x) < 2 && y > 2 && z > 1);
+		}
+		ASSERT_NEAR(jac, area_c / area_p, 1e-2 * jac);
+	}
 	rf_plugin_host_destroy(h);
 }
 
@@ -146,6 +265,7 @@ main(void)
 {
 	RUN(table_follows_the_settings);
 	RUN(rays_leave_the_box);
+	RUN(rays_leave_the_rounded_box);
 	RUN(radiance_reads_plain_levels);
 	TAP_DONE();
 }

@@ -15,7 +15,7 @@
 static char msg[512];
 static rf_cubemap *env;
 static rf_plugin_host *host;
-static const struct rf_probe probe = { { 0.0f, 1.5f, 0.0f }, { -3, 0, -2 }, { 3, 3, 2 }, 1 };
+static const struct rf_probe probe = { { 0.0f, 1.5f, 0.0f }, { -3, 0, -2 }, { 3, 3, 2 }, 1, 0.0f, 0 };
 
 /* The default room at 32 texels a face, with the host's services. */
 static int
