@@ -59,6 +59,9 @@ project_frame(struct cli_io *io, struct cli_mode *mode, const struct cli_probe *
 	                       sizeof(perr));
 	if (prc < 0 && prc != RF_ENOTFOUND)
 		die("%s", perr);
+	/* the shape is the mode's to declare, whatever the input's was */
+	probe.bevel = 0.0f;
+	probe.bevel_grown = 0;
 	rf_plugin_host_set_frame(host, in);
 	rf_plugin_host_set_probe(host, prc == 0 ? &probe : NULL);
 	if ((rc = rf_stage_create(&stage, mode->plugin, mode->values,
@@ -69,7 +72,7 @@ project_frame(struct cli_io *io, struct cli_mode *mode, const struct cli_probe *
 		die_status(rc, err);
 	cli_record_command(out);
 	if ((rc = rf_header_set(out, RF_KEY_PROJECTION, spec)) < 0 ||
-	    (prc == 0 && (rc = rf_probe_to_header(&probe, out)) < 0))
+	    (prc == 0 && (rc = rf_probe_to_header(rf_plugin_host_probe(host), out)) < 0))
 		die_header_key(rc);
 	cli_io_begin(io, out);
 	rows = rf_block_rows(rf_header_ncols(out), rf_header_nchannels(out),

@@ -5,6 +5,7 @@ test_description='-l lists the modes; -m finds them along the search path; -v na
 B=$builddir/plugins/.libs
 P=$REFLECT_TEST_PLUGINS
 tab=$(printf '\t')
+sq="'"
 
 test_expect_success 'setup: a G-buffer and directories of plugins' '
 	cat >gbuf <<-\EOF &&
@@ -24,10 +25,18 @@ test_expect_success 'setup: a G-buffer and directories of plugins' '
 	cp "$B/box.so" "we:ird/box.so"
 '
 
-test_expect_success '-l lists box and infinite: summary, file, channels' '
+test_expect_success '-l lists bevel, box and infinite: summary, file, channels' '
 	reflect-project -l >out 2>err &&
 	test_line_count 0 err &&
 	cat >expect <<-EOF &&
+	bevel${tab}box projection onto the probe box with its edges and corners rounded
+	  file: $B/bevel.so (version 1.0, plugin ABI 1.1, reflect developers, MIT)
+	  reads: P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z
+	  writes: R.X R.Y R.Z D.X D.Y D.Z hit.dist probe.dist
+	  parameters:
+	    radius=0.5${tab}rounding radius of the box${sq}s edges and corners, world units ([0, inf))
+	    offset=0${tab}grow the rounded box beyond the probe box (the write-up${sq}s shape) instead of keeping its faces on it (0 or 1)
+	    roughen=0${tab}radius added per width of the lobe at the hit (0: a fixed radius) ([0, inf))
 	box${tab}box projection: look up where the reflected ray leaves the probe box
 	  file: $B/box.so (version 1.0, plugin ABI 1.1, reflect developers, MIT)
 	  reads: P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z
@@ -79,7 +88,7 @@ test_expect_success '-l: modes of another kind are left out silently' '
 	! grep shade_kind out &&
 	! grep shade_kind err &&
 	grep -c "^[a-z_]*$tab" out >count &&
-	echo 4 >expect &&
+	echo 5 >expect &&
 	diff expect count
 '
 

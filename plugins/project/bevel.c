@@ -1,0 +1,161 @@
+/*
+ * bevel: box projection onto the probe box with its edges and corners
+ * rounded (bevel.h has the shape and its exact exit), so that a
+ * reflection slides round a room's corner instead of folding at it.
+ *
+ * roughen=K grows the radius with the lobe: R_eff = R + K 2 alpha t,
+ * 2 alpha t the width of the GGX lobe's median cone (2 atan alpha, about
+ * 2 alpha wide) at t, the exit distance through the shape of radius R;
+ * one step of that fixed point, R_eff at most the box's smallest half
+ * extent.  A mirror keeps R, a rough floor sees soft room edges.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "reflect/plugin.h"
+
+#include "bevel.h"
+#include "projection.h"
+
+enum { RADIUS, OFFSET, ROUGHEN, NPARAMS };
+
+static const struct rf_param params[NPARAMS] = {
+	{ "radius", "rounding radius of the box's edges and corners, world units", 0, HUGE_VAL,
+	  0.5, 0, NULL },
+	{ "offset", "grow the rounded box beyond the probe box (the write-up's shape) instead "
+	  "of keeping its faces on it", 0, 1, 0, RF_PARAM_BOOL, NULL },
+	{ "roughen", "radius added per width of the lobe at the hit (0: a fixed radius)", 0,
+	  HUGE_VAL, 0, 0, NULL },
+};
+
+static const char *const inputs[] = {
+	"P.X", "P.Y", "P.Z", "N.X", "N.Y", "N.Z", "V.X", "V.Y", "V.Z", NULL
+};
+static const char *const optional_inputs[] = { "roughness", NULL };
+static const char *const outputs[] = {
+	"R.X", "R.Y", "R.Z", "D.X", "D.Y", "D.Z", "hit.dist", "probe.dist", NULL
+};
+
+struct bevel_mode {
+	struct rf_probe probe;
+	float radius, roughen, max_radius;
+	int grown;
+};
+
+static int
+create(const struct rf_host *host, const double *values, void **state, char *err,
+       size_t errlen)
+{
+	struct bevel_mode *m;
+
+	if (!host->probe) {
+		snprintf(err, errlen, "no probe box: give --box and --center or a "
+		         "stream with PROBE_BOX and PROBE_CENTER");
+		return -1;
+	}
+	if (values[RADIUS] > bevel_max_radius(host->probe)) {
+		snprintf(err, errlen, "radius %g is more than the probe box's smallest half "
+		         "extent, %g: give radius=%g or less", values[RADIUS],
+		         (double)bevel_max_radius(host->probe),
+		         (double)bevel_max_radius(host->probe));
+		return -1;
+	}
+	if (host->size < offsetof(struct rf_host, declare_bevel) + sizeof(host->declare_bevel) ||
+	    !host->declare_bevel ||
+	    host->declare_bevel(host->ctx, (float)values[RADIUS], values[OFFSET] != 0.0) < 0) {
+		snprintf(err, errlen, "this host cannot record a bevel (it needs reflect-project "
+		         "of plugin ABI 1.1 or later)");
+		return -1;
+	}
+	if (!(m = calloc(1, sizeof(*m)))) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	m->probe = *host->probe;
+	m->radius = (float)values[RADIUS];
+	m->grown = values[OFFSET] != 0.0;
+	m->roughen = (float)values[ROUGHEN];
+	m->max_radius = bevel_max_radius(host->probe);
+	*state = m;
+	return 0;
+}
+
+static void
+run(void *state, const struct rf_span *span)
+{
+	const struct bevel_mode *m = state;
+	const struct bevel shape = bevel_of_probe(&m->probe, m->radius, m->grown);
+	const struct box box = box_of_probe(&m->probe);
+	const int projecting = m->probe.box_projection;
+	const float *in = span->in;
+	float *out = span->out;
+	uint32_t i;
+
+	for (i = 0; i < span->npix; i++, in += 10, out += 8) {
+		float p[3] = { in[0], in[1], in[2] }, r[3], d[3], hit, reach;
+		int ok;
+
+		reflection_vector(in + 3, in + 6, r);
+		if (!projecting)
+			ok = -1;
+		else if (m->radius == 0.0f && m->roughen == 0.0f)
+			ok = box_exit(&box, p, r, &hit); /* exactly box */
+		else
+			ok = bevel_exit(&shape, p, r, &hit, NULL);
+		if (ok == 0 && m->roughen > 0.0f && in[9] > 0.0f) {
+			const float alpha = in[9] * in[9];
+			float grown = m->radius + m->roughen * 2.0f * alpha * hit;
+			struct bevel wider;
+
+			if (grown > m->max_radius)
+				grown = m->max_radius;
+			wider = bevel_of_probe(&m->probe, grown, m->grown);
+			ok = bevel_exit(&wider, p, r, &hit, NULL);
+		}
+		if (ok == 0) {
+			lookup_from_hit(&box, p, r, hit, d, &reach);
+		} else {
+			d[0] = r[0];
+			d[1] = r[1];
+			d[2] = r[2];
+			hit = reach = INFINITY;
+		}
+		out[0] = r[0];
+		out[1] = r[1];
+		out[2] = r[2];
+		out[3] = d[0];
+		out[4] = d[1];
+		out[5] = d[2];
+		out[6] = hit;
+		out[7] = reach;
+	}
+}
+
+static void
+destroy(void *state)
+{
+	free(state);
+}
+
+static const struct rf_plugin descriptor = {
+	.abi_major = RF_PLUGIN_ABI_MAJOR,
+	.abi_minor = RF_PLUGIN_ABI_MINOR,
+	.size = sizeof(struct rf_plugin),
+	.kind = RF_KIND_PROJECTION,
+	.name = "bevel",
+	.summary = "box projection onto the probe box with its edges and corners rounded",
+	.version = "1.0",
+	.author = "reflect developers",
+	.license = "MIT",
+	.nparams = NPARAMS,
+	.params = params,
+	.inputs = inputs,
+	.outputs = outputs,
+	.create = create,
+	.run = run,
+	.destroy = destroy,
+	.optional_inputs = optional_inputs,
+};
+
+RF_PLUGIN_DEFINE(descriptor)
