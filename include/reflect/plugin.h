@@ -69,6 +69,13 @@ enum rf_plugin_kind {
 #define RF_SHADE_SPEC_G "spec.G"
 #define RF_SHADE_SPEC_B "spec.B"
 
+/* An occlusion mode (reflect-occlude) writes one output, the factor its
+ * specular occlusion puts on the reflection (1: none, 0: all of it);
+ * the host multiplies spec.R spec.G spec.B and R G B, those the stream
+ * has, by it, and keeps in this channel the product with an occlusion
+ * the stream had before. */
+#define RF_OCCLUSION "occlusion"
+
 /* An accumulate mode (reflect-accumulate) combines frames value by
  * value, whatever channel a value comes from: its descriptor lists no
  * inputs, and its outputs name the slots of its state per value, the

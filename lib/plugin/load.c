@@ -293,7 +293,7 @@ rf_plugin_writes_radiance(const struct rf_plugin *p)
 /* A kind's output contract (plugin.h): a shade mode writes the roughness
  * the host samples with, or with RF_PLUGIN_RADIANCE the radiance; an
  * accumulate mode reads values, not channels, into a state that starts
- * with the value and its variance. */
+ * with the value and its variance; an occlusion mode writes its factor. */
 static int
 check_outputs(const struct rf_plugin *p, const char *path, char *err, size_t errlen)
 {
@@ -321,6 +321,15 @@ check_outputs(const struct rf_plugin *p, const char *path, char *err, size_t err
 			           "writes the values it filters, not channels by name: its "
 			           "outputs list must be empty (reflect-plugin(7)); fix it and "
 			           "rebuild the plugin", path);
+			return RF_EPLUGIN;
+		}
+		return 0;
+	}
+	if (p->kind == RF_KIND_OCCLUSION) {
+		if (strcmp(p->outputs[0], RF_OCCLUSION) || p->outputs[1]) {
+			rf__format(err, errlen, "plugin '%s': an occlusion mode writes one "
+			           "channel, '%s' (the host multiplies the reflection by it); "
+			           "fix its outputs and rebuild the plugin", path, RF_OCCLUSION);
 			return RF_EPLUGIN;
 		}
 		return 0;
@@ -354,6 +363,18 @@ check_outputs(const struct rf_plugin *p, const char *path, char *err, size_t err
 		return RF_EPLUGIN;
 	}
 	return 0;
+}
+
+/* Whether a file stem is the plugin's name after its kind and a '-'
+ * (occlusion-box): modes of two kinds may share a name, box the
+ * projection and box the occlusion, in one directory. */
+static int
+kind_prefixed(const char *stem, const struct rf_plugin *p)
+{
+	const char *kind = rf_plugin_kind_name(p->kind);
+	size_t n = kind ? strlen(kind) : 0;
+
+	return n && !strncmp(stem, kind, n) && stem[n] == '-' && !strcmp(stem + n + 1, p->name);
 }
 
 static int
@@ -420,7 +441,7 @@ check_descriptor(const struct rf_plugin *p, const char *path, unsigned kind,
 		return RF_EPLUGIN;
 	}
 	file_stem(path, stem, sizeof(stem));
-	if (strcmp(stem, p->name)) {
+	if (strcmp(stem, p->name) && !kind_prefixed(stem, p)) {
 		rf__format(err, errlen, "plugin '%s': its descriptor is named '%.60s', "
 		           "but a plugin's name must equal its file name; rename the "
 		           "file to '%.60s.so' or set the name to '%.60s'", path,
@@ -613,6 +634,13 @@ rf_module_load(rf_module **mp, const char *name, unsigned kind, char *err,
 		n = strcspn(p, ":");
 		if (!n)
 			continue;
+		/* KIND-NAME.so first: a name another kind has too */
+		if (kind && rf_plugin_kind_name(kind)) {
+			rf__format(path, sizeof(path), "%.*s/%s-%s.so", (int)n, p,
+			           rf_plugin_kind_name(kind), name);
+			if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
+				return rf_module_load_file(mp, path, kind, err, errlen);
+		}
 		rf__format(path, sizeof(path), "%.*s/%s.so", (int)n, p, name);
 		if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
 			return rf_module_load_file(mp, path, kind, err, errlen);

@@ -47,6 +47,9 @@ struct rf_stage {
 	enum rf_invalid invalid;
 	struct rf__check check; /* on the plugin's inputs, as gathered */
 	int mask_col;           /* the stream's mask, or -1 */
+	/* An occlusion mode's factor: its output column, the input's own
+	 * occlusion (-1: none) and the channels it multiplies. */
+	int occ_col, occ_prev, occ_targets[6], nocc_targets;
 	size_t fixed;           /* pixels of the frame clamped or zeroed */
 	char error[320];
 };
@@ -248,6 +251,24 @@ rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
 	}
 	rf__check_plan(&s->check, s->in_names, s->nin);
 	s->mask_col = rf_header_find_channel(in, "mask");
+	s->nocc_targets = 0;
+	s->occ_col = s->occ_prev = -1;
+	if (s->p->kind == RF_KIND_OCCLUSION) {
+		static const char *const targets[] = { RF_SHADE_SPEC_R, RF_SHADE_SPEC_G,
+		                                       RF_SHADE_SPEC_B, "R", "G", "B" };
+
+		s->occ_col = rf_header_find_channel(s->out_h, RF_OCCLUSION);
+		s->occ_prev = rf_header_find_channel(in, RF_OCCLUSION);
+		for (i = 0; i < 6; i++)
+			if ((c = rf_header_find_channel(in, targets[i])) >= 0)
+				s->occ_targets[s->nocc_targets++] = c;
+			else if (i < 3) {
+				rf__format(err, errlen, "input has no channel '%s': occlusion "
+				           "darkens a shaded reflection; run reflect-shade first",
+				           targets[i]);
+				return RF_ECHANNEL;
+			}
+	}
 	s->fixed = 0;
 	s->error[0] = '\0';
 	s->nin_runs = gather_runs(s);
@@ -376,6 +397,25 @@ rf_stage_invalid_count(const rf_stage *s)
 
 /* One row (row y of the frame) on thread `thread`: its input passed
  * through, the plugin's inputs gathered, run, its outputs scattered. */
+/* An occlusion mode's factor on the reflection: the channels it darkens
+ * (in place: their columns are the input's, widened), and the product
+ * with the input's own occlusion. */
+static void
+apply_occlusion(const rf_stage *s, const float *in, float *out)
+{
+	size_t x;
+	int k;
+
+	for (x = 0; x < s->ncols; x++) {
+		float *po = out + x * s->out_ncomp, f = po[s->occ_col];
+
+		for (k = 0; k < s->nocc_targets; k++)
+			po[s->occ_targets[k]] *= f;
+		if (s->occ_prev >= 0)
+			po[s->occ_col] = f * in[x * s->in_ncomp + (size_t)s->occ_prev];
+	}
+}
+
 void
 rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int thread)
 {
@@ -416,6 +456,8 @@ rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int thread)
 			rf__copy_run(po + s->out_runs[i].dst, q + s->out_runs[i].src,
 			             s->out_runs[i].len);
 	}
+	if (s->occ_col >= 0)
+		apply_occlusion(s, in, out);
 }
 
 int
