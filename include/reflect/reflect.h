@@ -136,6 +136,7 @@ RF_EXTERN const char *rf_header_line(const rf_header *h, size_t i);
 #define RF_KEY_PROBE_BEVEL "PROBE_BEVEL" /* RADIUS [grown]: the rounded box */
 #define RF_KEY_PROJECTION "PROJECTION" /* reflect-project's mode */
 #define RF_KEY_SHADE "SHADE"           /* reflect-shade's mode */
+#define RF_KEY_OCCLUSION "OCCLUSION"   /* reflect-occlude's mode */
 #define RF_KEY_ENV_MAPPING "ENV_MAPPING" /* the roughness-to-lod mapping used */
 #define RF_KEY_ENV_STEPS "ENV_STEPS"   /* the lod of its roughest level */
 #define RF_KEY_ACCUMULATE "ACCUMULATE" /* reflect-accumulate's mode */
