@@ -276,6 +276,12 @@ RF_EXTERN int rf_stage_begin_frame(rf_stage *s, const rf_header *in,
  * the same rows to fill in place; returns its index, or the existing
  * channel's of that name.  After rf_stage_begin_frame. */
 RF_EXTERN int rf_stage_reserve_channel(rf_stage *s, const char *name);
+/* Gives the plugin value for its input channel name at every pixel, in
+ * place of the stream's (reflect-shade --box-projection=off gives
+ * hit.dist and probe.dist +inf, so that every mode is the classic
+ * lookup); NULL name drops every such value.  RF_ENOTFOUND when the
+ * plugin reads no such channel (nothing is changed). */
+RF_EXTERN int rf_stage_set_input_value(rf_stage *s, const char *name, float value);
 /* Processes nrows rows starting at row y of the current frame.  Under
  * RF_INVALID_ERROR (the default) a pixel whose input is invalid (see
  * below) makes it return RF_EINVAL, with the first such pixel of the

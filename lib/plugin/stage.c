@@ -50,6 +50,9 @@ struct rf_stage {
 	/* An occlusion mode's factor: its output column, the input's own
 	 * occlusion (-1: none) and the channels it multiplies. */
 	int occ_col, occ_prev, occ_targets[6], nocc_targets;
+	/* Inputs given one value for every pixel (rf_stage_set_input_value). */
+	size_t nfixed, fixed_at[4];
+	float fixed_value[4];
 	size_t fixed;           /* pixels of the frame clamped or zeroed */
 	char error[320];
 };
@@ -377,6 +380,35 @@ rf__stage_block_end(rf_stage *s)
 	                                sizeof(s->error));
 }
 
+int
+rf_stage_set_input_value(rf_stage *s, const char *name, float value)
+{
+	const char *const *opt = rf_plugin_optional_inputs(s->p);
+	size_t i, k;
+
+	if (!name) {
+		s->nfixed = 0;
+		return 0;
+	}
+	for (i = 0; i < s->nin; i++) {
+		const char *in = i < s->nrequired ? s->p->inputs[i] : opt[i - s->nrequired];
+
+		if (strcmp(in, name))
+			continue;
+		for (k = 0; k < s->nfixed && s->fixed_at[k] != i; k++)
+			;
+		if (k == s->nfixed) {
+			if (s->nfixed == sizeof(s->fixed_at) / sizeof(s->fixed_at[0]))
+				return RF_ETOOBIG;
+			s->nfixed++;
+		}
+		s->fixed_at[k] = i;
+		s->fixed_value[k] = value;
+		return 0;
+	}
+	return RF_ENOTFOUND;
+}
+
 void
 rf_stage_set_invalid(rf_stage *s, enum rf_invalid policy)
 {
@@ -443,6 +475,8 @@ rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int thread)
 			             s->in_runs[i].len);
 		for (i = 0; i < s->nabsent; i++)
 			g[s->absent[i]] = NAN;
+		for (i = 0; i < s->nfixed; i++)
+			g[s->fixed_at[i]] = s->fixed_value[i];
 	}
 	zeroed = s->check.n ? check_row(s, w, in, y) : 0;
 	s->p->run(w->state, &span);
