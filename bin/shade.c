@@ -16,7 +16,8 @@ usage(void)
 	        "[--rgbm=M[,E]] [--intensity=X] [--size=N] "
 	        "[--mapping=unity|linear|exact] [--steps=N] [--samples=N] [--final] "
 	        "[--box=XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX] [--center=X,Y,Z] "
-	        "[--box-projection=on|off] [--seed=N] " CLI_INVALID_USAGE " " CLI_IO_USAGE
+	        "[--box-projection=on|off] [--lod=L] [--seed=N] " CLI_INVALID_USAGE " "
+	        CLI_IO_USAGE
 	        " [file]\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
@@ -24,7 +25,7 @@ usage(void)
 enum {
 	OPT_ENVMAP = 256, /* handed to envmap_opts_parse by name */
 	OPT_MAPPING, OPT_STEPS, OPT_SAMPLES, OPT_FINAL, OPT_BOX, OPT_CENTER,
-	OPT_PROJECTION, OPT_SEED, OPT_INVALID, OPT_HELP
+	OPT_PROJECTION, OPT_LOD, OPT_SEED, OPT_INVALID, OPT_HELP
 };
 
 static const struct option long_options[] = {
@@ -42,6 +43,7 @@ static const struct option long_options[] = {
 	{ "box", required_argument, NULL, OPT_BOX },
 	{ "center", required_argument, NULL, OPT_CENTER },
 	{ "box-projection", required_argument, NULL, OPT_PROJECTION },
+	{ "lod", required_argument, NULL, OPT_LOD },
 	{ "seed", required_argument, NULL, OPT_SEED },
 	{ "invalid", required_argument, NULL, OPT_INVALID },
 	{ "help", no_argument, NULL, OPT_HELP },
@@ -224,6 +226,9 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 		parse_floats(o->probe.center, "--center", centre, 3);
 		center = centre;
 	}
+	/* Box projection off: the classic lookup along R for every mode, the
+	 * distances infinite as for a probe without box projection. */
+	rf_shade_set_unprojected(shade, prc == 0 && !probe.box_projection);
 	check_frame(o, shade, in, center);
 
 	name = o->env.path ? o->env.path : rf_header_get(in, RF_KEY_PROBE_ENV);
@@ -244,6 +249,10 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	                          rf_plugin_host_table(host), o->nthreads, err,
 	                          sizeof(err))) < 0)
 		die_status(rc, err);
+	if (prc == 0 && !probe.box_projection) {
+		rf_stage_set_input_value(stage, "hit.dist", INFINITY);
+		rf_stage_set_input_value(stage, "probe.dist", INFINITY);
+	}
 	rf_stage_set_invalid(stage, io->invalid);
 	rf_shade_set_invalid(shade, io->invalid);
 	if ((rc = rf_stage_begin_frame(stage, in, &mid, err, sizeof(err))) < 0)
@@ -351,6 +360,10 @@ main(int argc, char **argv)
 				die("--box-projection: '%s' is not on or off", optarg);
 			o.probe.projection = optarg;
 			break;
+		case OPT_LOD:
+			so.lod = (float)parse_number("lod", optarg, 0, 64);
+			so.force_lod = 1;
+			break;
 		case OPT_SEED:
 			o.seed = (uint32_t)parse_whole("seed", optarg, 4294967295.0);
 			break;
@@ -367,7 +380,9 @@ main(int argc, char **argv)
 			       "  --prefiltered --layout=L --srgb= --rgbm= --intensity= --size=N\n"
 			       "  --mapping=unity|linear|exact --steps=N  roughness to lod\n"
 			       "  --final  also R G B = spec x (F0 A + B), the split-sum BRDF\n"
-			       "  --box=... --center=X,Y,Z --box-projection=on|off  the probe\n"
+			       "  --box=... --center=X,Y,Z --box-projection=on|off  the probe (off:\n"
+			       "      every mode the classic lookup along R)\n"
+			       "  --lod=L  every mirror read at lod L (the mips' debug view)\n"
 			       "  --seed=N  for modes that draw samples\n"
 			       "  --invalid=error|clamp|zero  NaN, Inf, roughness out of [0, 1]\n"
 			       "  -j N  threads   -v  say which plugin and environment   -V  versions\n"

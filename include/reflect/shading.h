@@ -101,9 +101,18 @@ struct rf_shade_options {
 	 * sampling through the host's services): reflective pixels keep
 	 * them, and only walls and the final colour are done here. */
 	int mode_radiance;
+	/* 1: every mirror read at lod (the write-up's debug view of mips),
+	 * whatever the mode's roughness; a mode writing radiance is not
+	 * affected. */
+	int force_lod;
+	float lod;
 };
 
 RF_EXTERN int rf_shade_create(rf_shade **s, const struct rf_shade_options *o);
+/* For the frames that follow: 1 looks up along the reflection vector R
+ * (box projection off: the classic lookup), not along D; 0 (the
+ * default) along D. */
+RF_EXTERN void rf_shade_set_unprojected(rf_shade *s, int unprojected);
 RF_EXTERN void rf_shade_destroy(rf_shade *s);
 /* Checks the channels of a frame and makes its output header (valid
  * until the next call).  center: the probe's capture point, or NULL when

@@ -41,6 +41,8 @@ static const char *const out_names[OUT_COUNT] = {
 
 struct rf_shade {
 	int final, nthreads, mode_radiance;
+	int force_lod, unprojected;
+	float lod;
 	int in[IN_COUNT];
 	int out[OUT_COUNT];
 	size_t nout;
@@ -95,6 +97,8 @@ rf_shade_create(rf_shade **sp, const struct rf_shade_options *o)
 		return RF_ENOMEM;
 	s->final = o && o->final;
 	s->mode_radiance = o && o->mode_radiance;
+	s->force_lod = o && o->force_lod;
+	s->lod = o ? o->lod : 0.0f;
 	s->nthreads = o && o->nthreads > 1 ? o->nthreads : 1;
 	if (s->nthreads > RF__THREADS_MAX)
 		s->nthreads = RF__THREADS_MAX;
@@ -175,6 +179,12 @@ rf_shade_destroy(rf_shade *s)
 	free(s);
 }
 
+void
+rf_shade_set_unprojected(rf_shade *s, int unprojected)
+{
+	s->unprojected = unprojected;
+}
+
 const char *
 rf_shade_channel(const rf_shade *s, size_t i)
 {
@@ -246,6 +256,17 @@ rf_shade_begin_frame(rf_shade *s, const rf_header *in, const float center[3],
 	s->error[0] = '\0';
 	for (i = 0; i < IN_COUNT; i++)
 		s->in[i] = rf_header_find_channel(in, in_names[i]);
+	if (s->unprojected && !s->mode_radiance) {
+		static const char *const r[3] = { "R.X", "R.Y", "R.Z" };
+
+		for (i = 0; i < 3; i++)
+			if ((s->in[IN_DX + i] = rf_header_find_channel(in, r[i])) < 0) {
+				rf__format(err, errlen, "input has no channel '%s' (the reflection "
+				           "vector reflect-project writes: with box projection off "
+				           "it is the lookup direction)", r[i]);
+				return RF_ECHANNEL;
+			}
+	}
 	plan_check(s);
 	if (s->mode_radiance) {
 		if ((rc = require(s, in, IN_SR, IN_SB, "the radiance the shade mode "
@@ -253,8 +274,9 @@ rf_shade_begin_frame(rf_shade *s, const rf_header *in, const float center[3],
 			return rc;
 	} else if ((rc = require(s, in, IN_REFF, IN_REFF, "the effective "
 	                         "roughness a shade mode writes", err, errlen)) < 0 ||
-	           (rc = require(s, in, IN_DX, IN_DZ, "the lookup direction that "
-	                         "reflect-project writes", err, errlen)) < 0) {
+	           (!s->unprojected &&
+	            (rc = require(s, in, IN_DX, IN_DZ, "the lookup direction that "
+	                          "reflect-project writes", err, errlen)) < 0)) {
 		return rc;
 	}
 	if (s->in[IN_MASK] >= 0) {
@@ -330,7 +352,8 @@ add_read(struct reads *r, size_t *n, float x, float y, float z, float lod)
 static void
 check_pixel(const rf_shade *s, const float *p, size_t y, size_t x, struct reads *r)
 {
-	static const char *const names[6] = { "D.X", "D.Y", "D.Z", "P.X", "P.Y", "P.Z" };
+	static const char *const names[2][6] = { { "D.X", "D.Y", "D.Z", "P.X", "P.Y", "P.Z" },
+		                                 { "R.X", "R.Y", "R.Z", "P.X", "P.Y", "P.Z" } };
 	const int at[6] = { s->in[IN_DX], s->in[IN_DY], s->in[IN_DZ],
 		            s->in[IN_PX], s->in[IN_PY], s->in[IN_PZ] };
 	float m = s->in[IN_MASK] >= 0 ? p[s->in[IN_MASK]] : 1.0f;
@@ -345,7 +368,7 @@ check_pixel(const rf_shade *s, const float *p, size_t y, size_t x, struct reads 
 		if (at[k] >= 0 && ((k < 3 && m > 0.0f && !s->mode_radiance) || (k >= 3 && m < 1.0f)) &&
 		    !isfinite(p[at[k]])) {
 			rf__first_invalid_keep(&r->first, y * s->ncols + x, "channel '%s' is %g",
-			                       names[k], (double)p[at[k]]);
+			                       names[s->unprojected][k], (double)p[at[k]]);
 			return;
 		}
 }
@@ -374,7 +397,8 @@ plan_reads(const rf_shade *s, const float *in, size_t in_ncomp, size_t y, struct
 
 		if (m > 0.0f && mirror)
 			a = add_read(r, &n, in[cdx], in[cdy], in[cdz],
-			             rf_roughness_to_lod(s->mapping, s->steps, in[cr]));
+			             s->force_lod ? s->lod
+			                          : rf_roughness_to_lod(s->mapping, s->steps, in[cr]));
 		if (m < 1.0f)
 			b = add_read(r, &n, in[cpx] - ox, in[cpy] - oy, in[cpz] - oz, 0.0f);
 		r->mask[x] = m;
