@@ -115,6 +115,13 @@ int cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
 /* Rows a tool holds at once: a block of about this many bytes. */
 #define CLI_BLOCK_BYTES ((size_t)4 << 20)
 
+/* A per-pixel stage over the frame in, in blocks: begins the output
+ * frame out (the stage's output header, its keys set), runs the rows,
+ * destroys the stage and ends the frame; a refused pixel, a mode that
+ * failed in run() or a failed read ends the process with its message. */
+void cli_stage_rows(struct cli_io *io, rf_stage *stage, const rf_header *in,
+                    const rf_header *out);
+
 /* Threads over row blocks: -j N, else REFLECT_THREADS, else every core. */
 int cli_threads(const char *arg);
 

@@ -244,3 +244,50 @@ cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
 	}
 	return finish(&b, reading ? &rt : NULL, writing ? &wt : NULL);
 }
+
+struct stage_block {
+	rf_stage *stage;
+	int failed;  /* the stage refused a pixel (rf_stage_error says why) */
+	int gave_up; /* the mode failed in run() (rf_stage_error says why) */
+};
+
+static int
+stage_block(void *arg, const float *in, float *out, size_t y, size_t n)
+{
+	struct stage_block *sb = arg;
+	int rc = rf_stage_run(sb->stage, in, out, y, n);
+
+	sb->failed = rc == RF_EINVAL && *rf_stage_error(sb->stage);
+	sb->gave_up = rc == RF_EPLUGIN;
+	if (rc < 0 && !sb->failed && !sb->gave_up)
+		die_status(rc, NULL);
+	return rc;
+}
+
+void
+cli_stage_rows(struct cli_io *io, rf_stage *stage, const rf_header *in, const rf_header *out)
+{
+	struct stage_block sb = { stage, 0, 0 };
+	size_t rows = rf_block_rows(rf_header_ncols(out), rf_header_nchannels(out),
+	                            CLI_BLOCK_BYTES);
+	char err[1024];
+	int rc;
+
+	cli_io_begin(io, out);
+	if (rows > rf_header_nrows(in))
+		rows = rf_header_nrows(in);
+	rc = cli_blocks(io, rf_header_nrows(in), rows,
+	                rf_header_ncols(in) * rf_header_nchannels(in),
+	                rf_header_ncols(out) * rf_header_nchannels(out), stage_block, &sb);
+	if (sb.failed || sb.gave_up)
+		snprintf(err, sizeof(err), "%s", rf_stage_error(stage));
+	cli_io_invalid_note(io, rf_stage_invalid_count(stage));
+	rf_stage_destroy(stage);
+	if (sb.gave_up)
+		cli_io_plugin_failed(io, err);
+	if (sb.failed)
+		cli_io_invalid_failed(io, err);
+	if (rc < 0)
+		cli_io_read_failed(io, rc);
+	cli_io_end_frame(io);
+}

@@ -19,35 +19,14 @@ static const struct option long_options[] = {
 	{ NULL, 0, NULL, 0 },
 };
 
-struct occlude_block {
-	rf_stage *stage;
-	int failed; /* the stage refused a pixel (rf_stage_error says why) */
-	int gave_up; /* the mode failed in run() (rf_stage_error says why) */
-};
-
-static int
-occlude_block(void *arg, const float *in, float *out, size_t y, size_t n)
-{
-	struct occlude_block *ob = arg;
-	int rc = rf_stage_run(ob->stage, in, out, y, n);
-
-	ob->failed = rc == RF_EINVAL && *rf_stage_error(ob->stage);
-	ob->gave_up = rc == RF_EPLUGIN;
-	if (rc < 0 && !ob->failed && !ob->gave_up)
-		die_status(rc, NULL);
-	return rc;
-}
-
 static void
 occlude_frame(struct cli_io *io, struct cli_mode *mode, const char *spec, int nthreads,
               rf_plugin_host *host, const rf_header *in)
 {
 	struct rf_probe probe;
-	struct occlude_block ob;
 	char err[1024], perr[512];
 	rf_stage *stage;
 	rf_header *out;
-	size_t rows;
 	int rc, prc;
 
 	prc = rf_probe_resolve(&probe, in, NULL, NULL, NULL, perr, sizeof(perr));
@@ -64,27 +43,7 @@ occlude_frame(struct cli_io *io, struct cli_mode *mode, const char *spec, int nt
 	cli_record_command(out);
 	if ((rc = rf_header_set(out, RF_KEY_OCCLUSION, spec)) < 0)
 		die_header_key(rc);
-	cli_io_begin(io, out);
-	rows = rf_block_rows(rf_header_ncols(out), rf_header_nchannels(out),
-	                     CLI_BLOCK_BYTES);
-	if (rows > rf_header_nrows(in))
-		rows = rf_header_nrows(in);
-	ob.stage = stage;
-	ob.failed = ob.gave_up = 0;
-	rc = cli_blocks(io, rf_header_nrows(in), rows,
-	                rf_header_ncols(in) * rf_header_nchannels(in),
-	                rf_header_ncols(out) * rf_header_nchannels(out), occlude_block, &ob);
-	if (ob.failed || ob.gave_up)
-		snprintf(err, sizeof(err), "%s", rf_stage_error(stage));
-	cli_io_invalid_note(io, rf_stage_invalid_count(stage));
-	rf_stage_destroy(stage);
-	if (ob.gave_up)
-		cli_io_plugin_failed(io, err);
-	if (ob.failed)
-		cli_io_invalid_failed(io, err);
-	if (rc < 0)
-		cli_io_read_failed(io, rc);
-	cli_io_end_frame(io);
+	cli_stage_rows(io, stage, in, out);
 }
 
 int

@@ -24,35 +24,14 @@ static const struct option long_options[] = {
 	{ NULL, 0, NULL, 0 },
 };
 
-struct project_block {
-	rf_stage *stage;
-	int failed; /* the stage refused a pixel (rf_stage_error says why) */
-	int gave_up; /* the mode failed in run() (rf_stage_error says why) */
-};
-
-static int
-project_block(void *arg, const float *in, float *out, size_t y, size_t n)
-{
-	struct project_block *pb = arg;
-	int rc = rf_stage_run(pb->stage, in, out, y, n);
-
-	pb->failed = rc == RF_EINVAL && *rf_stage_error(pb->stage);
-	pb->gave_up = rc == RF_EPLUGIN;
-	if (rc < 0 && !pb->failed && !pb->gave_up)
-		die_status(rc, NULL);
-	return rc;
-}
-
 static void
 project_frame(struct cli_io *io, struct cli_mode *mode, const struct cli_probe *po,
               const char *spec, int nthreads, rf_plugin_host *host, const rf_header *in)
 {
 	struct rf_probe probe;
-	struct project_block pb;
 	char err[1024], perr[512];
 	rf_stage *stage;
 	rf_header *out;
-	size_t rows;
 	int rc, prc;
 
 	prc = rf_probe_resolve(&probe, in, po->box, po->center, po->projection, perr,
@@ -74,27 +53,7 @@ project_frame(struct cli_io *io, struct cli_mode *mode, const struct cli_probe *
 	if ((rc = rf_header_set(out, RF_KEY_PROJECTION, spec)) < 0 ||
 	    (prc == 0 && (rc = rf_probe_to_header(rf_plugin_host_probe(host), out)) < 0))
 		die_header_key(rc);
-	cli_io_begin(io, out);
-	rows = rf_block_rows(rf_header_ncols(out), rf_header_nchannels(out),
-	                     CLI_BLOCK_BYTES);
-	if (rows > rf_header_nrows(in))
-		rows = rf_header_nrows(in);
-	pb.stage = stage;
-	pb.failed = pb.gave_up = 0;
-	rc = cli_blocks(io, rf_header_nrows(in), rows,
-	                rf_header_ncols(in) * rf_header_nchannels(in),
-	                rf_header_ncols(out) * rf_header_nchannels(out), project_block, &pb);
-	if (pb.failed || pb.gave_up)
-		snprintf(err, sizeof(err), "%s", rf_stage_error(stage));
-	cli_io_invalid_note(io, rf_stage_invalid_count(stage));
-	rf_stage_destroy(stage);
-	if (pb.gave_up)
-		cli_io_plugin_failed(io, err);
-	if (pb.failed)
-		cli_io_invalid_failed(io, err);
-	if (rc < 0)
-		cli_io_read_failed(io, rc);
-	cli_io_end_frame(io);
+	cli_stage_rows(io, stage, in, out);
 }
 
 int

@@ -29,29 +29,15 @@ run(void *state, const struct rf_span *span)
 	float *out = span->out;
 	uint32_t i;
 
-	/* Each pixel is worked out in locals and stored once: the output
-	 * could alias the input as far as the compiler knows, and stores
-	 * between reads would make it read P again. */
 	for (i = 0; i < span->npix; i++, in += 9, out += 8) {
-		float p[3] = { in[0], in[1], in[2] }, r[3], d[3], hit, reach;
+		float p[3] = { in[0], in[1], in[2] }, r[3], d[3], hit = 0.0f, reach = 0.0f;
+		int ok;
 
 		reflection_vector(in + 3, in + 6, r);
-		if (projecting && box_exit(&box, p, r, &hit) == 0) {
+		ok = projecting ? box_exit(&box, p, r, &hit) : -1;
+		if (ok == 0)
 			lookup_from_hit(&box, p, r, hit, d, &reach);
-		} else {
-			d[0] = r[0];
-			d[1] = r[1];
-			d[2] = r[2];
-			hit = reach = INFINITY;
-		}
-		out[0] = r[0];
-		out[1] = r[1];
-		out[2] = r[2];
-		out[3] = d[0];
-		out[4] = d[1];
-		out[5] = d[2];
-		out[6] = hit;
-		out[7] = reach;
+		projection_out(out, ok, r, d, hit, reach);
 	}
 }
 

@@ -135,6 +135,32 @@ lookup_from_hit(const struct box *b, const float p[3], const float dir[3], float
 	}
 }
 
+/* A projection's eight outputs for one pixel: R, D, hit.dist and
+ * probe.dist; with ok < 0 (no exit) D = R and both distances +inf.
+ * Stored once each, from locals: the output could alias the input as far
+ * as the compiler knows, and stores between reads would make it read
+ * the inputs again. */
+static inline void
+projection_out(float *out, int ok, const float r[3], const float d[3], float hit,
+               float reach)
+{
+	out[0] = r[0];
+	out[1] = r[1];
+	out[2] = r[2];
+	if (ok == 0) {
+		out[3] = d[0];
+		out[4] = d[1];
+		out[5] = d[2];
+		out[6] = hit;
+		out[7] = reach;
+	} else {
+		out[3] = r[0];
+		out[4] = r[1];
+		out[5] = r[2];
+		out[6] = out[7] = INFINITY;
+	}
+}
+
 /* The state of a mode that only needs the probe: a copy of it. */
 static inline int
 reflection_create(const struct rf_host *host, void **state, char *err,
