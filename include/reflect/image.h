@@ -80,6 +80,14 @@ RF_EXTERN int rf_image_count_levels(const char *path, size_t *nlevels, char *err
 RF_EXTERN int rf_image_read_level(rf_image **img, const char *path, size_t level,
                                   char *err, size_t errlen);
 
+/* Draws text (letters, digits, " .,:=-+_/()'?") in white on a darkened
+ * box, its corner 4 s pixels from (x0, y0), s pixels a font pixel (0 is
+ * 1), into RGB float pixels of a width x height picture; what falls
+ * outside it is left out.  A 5x9 bitmap font of reflect's own, so that
+ * pictures are the same on every machine. */
+RF_EXTERN void rf_image_label(float *px, size_t width, size_t height, size_t x0, size_t y0,
+                              const char *text, size_t s);
+
 /* Display encoding: exposure scale, an optional tone curve, sRGB. */
 enum rf_tone {
 	RF_TONE_NONE = 0,  /* clamp to [0, 1] only */
