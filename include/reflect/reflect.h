@@ -396,7 +396,9 @@ RF_EXTERN const char *rf_filter_error(const rf_filter *f);
 }
 #endif
 
-/* Images have their own header; it is part of this one. */
+/* Images and their comparison have headers of their own; they are part
+ * of this one. */
 #include "reflect/image.h"
+#include "reflect/compare.h"
 
 #endif
