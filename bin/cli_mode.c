@@ -54,6 +54,11 @@ print_param(const struct rf_param *q)
 {
 	char range[96];
 
+	if (q->flags & RF_PARAM_STRING) {
+		printf("    %s=%s\t%s (a string)\n", q->name, q->choices ? q->choices : "",
+		       q->help);
+		return;
+	}
 	if (q->flags & RF_PARAM_CHOICE) {
 		printf("    %s=", q->name);
 		print_choice(stdout, q, q->def);
@@ -196,7 +201,9 @@ mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose)
 			const struct rf_param *q = &p->params[i];
 
 			fprintf(stderr, "%s%s=", i ? " " : " (", q->name);
-			if (q->flags & RF_PARAM_CHOICE)
+			if (q->flags & RF_PARAM_STRING)
+				cli_put_quoted(stderr, rf_plugin_param_string(q, m->values[i]));
+			else if (q->flags & RF_PARAM_CHOICE)
 				print_choice(stderr, q, m->values[i]);
 			else
 				fprintf(stderr, "%.9g", m->values[i]);

@@ -77,7 +77,7 @@ test_expect_success 'name differs from the file: both names, rename the file or 
 
 test_expect_success 'unknown parameter flag bits: the bits, versions, allowed flags' '
 	rel=$(cat release) &&
-	refused bad_param_flags "built for plugin ABI 1\.1, its parameter .gain. sets flag bits 0x10 that this ABI does not define (this reflect ($rel) supports ABI 1\.1); use only RF_PARAM_INTEGER, RF_PARAM_BOOL and RF_PARAM_CHOICE and rebuild it"
+	refused bad_param_flags "built for plugin ABI 1\.1, its parameter .gain. sets flag bits 0x10 that this ABI does not define (this reflect ($rel) supports ABI 1\.1); use only RF_PARAM_INTEGER, RF_PARAM_BOOL, RF_PARAM_CHOICE and RF_PARAM_STRING and rebuild it"
 '
 
 test_expect_success 'unknown descriptor flags: the bits, versions, set them to 0' '

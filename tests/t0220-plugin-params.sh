@@ -3,6 +3,7 @@ test_description='-m mode:key=value: values reach the plugin, bad ones are refus
 . "$srcdir/tests/lib.sh"
 
 P=$REFLECT_TEST_PLUGINS
+tab=$(printf "\t")
 export REFLECT_PLUGIN_PATH="$P:$REFLECT_PLUGIN_PATH"
 
 # Channels of echo_params, after the input's P.X N.X:
@@ -178,6 +179,39 @@ test_expect_success 'run() gives up: its message, one line, exit 1' '
 		return 1
 	done &&
 	reflect-project -m "$P/bail_at_row.so:row=999" <rows.rfl >/dev/null
+'
+
+# string_param: table=FILE's first number as echo.table, label's length
+# as echo.label (default "abc": 3).
+test_expect_success 'string parameters: defaults, given text, a file opened from the working directory' '
+	reflect-project -fa -m string_param <gbuf >out &&
+	data out | sed -n 1p | cut -f3,4 >got &&
+	printf "0\t3\n" >expect &&
+	diff expect got &&
+	mkdir -p sub && echo 42.5 >sub/t.txt &&
+	(cd sub && reflect-project -fa -m "string_param:table=t.txt:label=hello world" \
+		<../gbuf >../out) &&
+	data out | sed -n 1p | cut -f3,4 >got &&
+	printf "42.5\t11\n" >expect &&
+	diff expect got &&
+	reflect-project -v -m string_param:label=x <gbuf 2>err >/dev/null &&
+	test_grep "(table=.. label=.x.)" err
+'
+
+test_expect_success 'string parameters: the plugin reports what it could not load' '
+	test_expect_code 1 reflect-project -m string_param:table=nope.txt <gbuf >/dev/null 2>err &&
+	test_grep "string_param.*cannot open .nope.txt.: No such file or directory" err &&
+	: >empty.txt &&
+	test_expect_code 1 reflect-project -m string_param:table=empty.txt <gbuf >/dev/null 2>err &&
+	test_grep "empty.txt.: no number in it" err
+'
+
+test_expect_success 'string parameters: -l shows them; ABI 1.0 may not have them' '
+	reflect-project -l >list 2>/dev/null &&
+	sed -n "/^string_param$tab/,/^[^ ]/p" list >sp &&
+	test_grep "^    label=abc${tab}a text (a string)$" sp &&
+	test_expect_code 1 reflect-project -m string_abi_1_0 <gbuf >/dev/null 2>err &&
+	test_grep "built for plugin ABI 1.0, its parameter .table. sets flag bits 0x8 that this ABI does not define" err
 '
 
 test_done

@@ -22,7 +22,8 @@
  *        to rf_span; the filter kind, with band, radius and pass appended
  *        to rf_span and the host service filter_passes; sample() through
  *        the pass's kernels, and sample_many; fail, for run();
- *        the probe's bevel and bevel_grown, and declare_bevel.
+ *        the probe's bevel and bevel_grown, and declare_bevel;
+ *        RF_PARAM_STRING parameters and param_string.
  * A minor bump only appends fields at the end of a struct, or defines new
  * flag bits or kinds; a major bump is anything else.  The host accepts a
  * plugin when its major equals the host's and its minor is not newer, and
@@ -115,7 +116,12 @@ enum rf_plugin_kind {
 #define RF_PARAM_INTEGER 0x1u /* only whole numbers are accepted */
 #define RF_PARAM_BOOL 0x2u    /* 0 or 1; min 0, max 1 */
 #define RF_PARAM_CHOICE 0x4u  /* value is an index into `choices` */
-#define RF_PARAM_KNOWN_FLAGS (RF_PARAM_INTEGER | RF_PARAM_BOOL | RF_PARAM_CHOICE)
+/* ABI 1.1: a string (a table file a model loads in create(), say): its
+ * default is `choices` (NULL: ""), min, max and def are 0, and create()
+ * gets the string with the host's param_string(ctx, values[i]). */
+#define RF_PARAM_STRING 0x8u
+#define RF_PARAM_KNOWN_FLAGS (RF_PARAM_INTEGER | RF_PARAM_BOOL | RF_PARAM_CHOICE | \
+                              RF_PARAM_STRING)
 
 struct rf_param {
 	const char *name;    /* [a-z][a-z0-9_]*, as in -m mode:name=value */
@@ -123,7 +129,8 @@ struct rf_param {
 	double min, max;     /* inclusive; -HUGE_VAL or HUGE_VAL for unbounded */
 	double def;          /* default, inside [min, max] */
 	unsigned flags;      /* RF_PARAM_* */
-	const char *choices; /* with RF_PARAM_CHOICE: "a|b|c", value = index */
+	const char *choices; /* with RF_PARAM_CHOICE: "a|b|c", value = index;
+	                        with RF_PARAM_STRING: the default string */
 };
 
 /* The probe the stream is shaded with (world units). */
@@ -212,6 +219,11 @@ struct rf_host {
 	 * the radius is negative or more than the box's smallest half
 	 * extent. */
 	int (*declare_bevel)(void *ctx, float radius, int grown);
+	/* The string of an RF_PARAM_STRING parameter, from its value in
+	 * create()'s values: the text given (-m mode:table=t.txt; a file
+	 * name is the plugin's to open, relative to the working directory)
+	 * or the default.  Valid until the instance's destroy(). */
+	const char *(*param_string)(void *ctx, double value);
 };
 
 /* A span of pixels along one row, channels interleaved in the order the

@@ -248,8 +248,15 @@ RF_EXTERN int rf_plugin_scan(rf_plugin_visit_fn fn, void *arg);
 
 /* Parses "key=value:key=value" against the plugin's parameter table into
  * values[nparams] (defaults first).  err names the key and the range. */
+struct rf_param;
 RF_EXTERN int rf_plugin_parse_params(const struct rf_plugin *p, const char *spec,
                                      double *values, char *err, size_t errlen);
+/* The string an RF_PARAM_STRING parameter's value stands for (its value
+ * from rf_plugin_parse_params, the given string's or the default's); a
+ * value it did not make gives q's default (q->choices, or "" for q NULL
+ * or without one).  The library keeps the strings for the process's
+ * life. */
+RF_EXTERN const char *rf_plugin_param_string(const struct rf_param *q, double value);
 
 RF_EXTERN float rf_srgb_encode(float linear);
 RF_EXTERN float rf_srgb_decode(float encoded);

@@ -321,6 +321,13 @@ rf__host_take_failure(const struct rf_host *table, const char *mode, char *err,
 	return 1;
 }
 
+static const char *
+param_string(void *ctx, double value)
+{
+	(void)ctx;
+	return rf_plugin_param_string(NULL, value);
+}
+
 static int
 declare_bevel(void *ctx, float radius, int grown)
 {
@@ -398,6 +405,7 @@ rf_plugin_host_create(rf_plugin_host **hp)
 	h->table.filter_passes = filter_passes;
 	h->table.fail = fail;
 	h->table.declare_bevel = declare_bevel;
+	h->table.param_string = param_string;
 	h->mapping = RF_MAPPING_DEFAULT;
 	return 0;
 }

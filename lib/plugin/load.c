@@ -194,6 +194,12 @@ param_inconsistency(const struct rf_param *q, int nchoices, char *buf, size_t si
 	else if ((q->flags & RF_PARAM_CHOICE) && (q->min != 0 || q->max != nchoices - 1))
 		rf__format(buf, size, "its %d choices need the range [0, %d], not [%g, %g]",
 		           nchoices, nchoices - 1, q->min, q->max);
+	else if ((q->flags & RF_PARAM_STRING) && (q->flags & ~RF_PARAM_STRING))
+		rf__format(buf, size, "it sets RF_PARAM_STRING with other flags (0x%x)",
+		           q->flags);
+	else if ((q->flags & RF_PARAM_STRING) && (q->min != 0 || q->max != 0 || q->def != 0))
+		rf__format(buf, size, "RF_PARAM_STRING needs min, max and def 0, not %g, %g, "
+		           "%g (its default string is choices)", q->min, q->max, q->def);
 	else if ((q->flags & RF_PARAM_BOOL) && (q->min != 0 || q->max != 1))
 		rf__format(buf, size, "RF_PARAM_BOOL needs the range [0, 1], not [%g, %g]",
 		           q->min, q->max);
@@ -240,13 +246,17 @@ check_params(const struct rf_plugin *p, const char *path, char *err, size_t errl
 			           "text; write one and rebuild the plugin", path, q->name);
 			return RF_EPLUGIN;
 		}
-		if (q->flags & ~RF_PARAM_KNOWN_FLAGS) {
+		if (q->flags & ~(p->abi_minor >= 1 ? RF_PARAM_KNOWN_FLAGS
+		                                   : RF_PARAM_INTEGER | RF_PARAM_BOOL | RF_PARAM_CHOICE)) {
 			rf__format(err, errlen, "plugin '%s': built for plugin ABI "
 			           "%u.%u, its parameter '%s' sets flag bits 0x%x that "
 			           "this ABI does not define (this reflect (%s) supports "
-			           "ABI %d.%d); use only RF_PARAM_INTEGER, RF_PARAM_BOOL "
-			           "and RF_PARAM_CHOICE and rebuild it", path, p->abi_major,
-			           p->abi_minor, q->name, q->flags & ~RF_PARAM_KNOWN_FLAGS,
+			           "ABI %d.%d); use only RF_PARAM_INTEGER, RF_PARAM_BOOL, "
+			           "RF_PARAM_CHOICE and RF_PARAM_STRING and rebuild it", path, p->abi_major,
+			           p->abi_minor, q->name,
+			           q->flags & ~(p->abi_minor >= 1 ? RF_PARAM_KNOWN_FLAGS
+			                                          : RF_PARAM_INTEGER | RF_PARAM_BOOL |
+			                                                    RF_PARAM_CHOICE),
 			           RF_VERSION_STRING, RF_PLUGIN_ABI_MAJOR,
 			           RF_PLUGIN_ABI_MINOR);
 			return RF_EPLUGIN;

@@ -1,6 +1,7 @@
 /* "-m mode:key=value:key=value": parameters checked against the table. */
 #include <errno.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -11,7 +12,9 @@
 static void
 format_range(char *buf, size_t size, const struct rf_param *q)
 {
-	if (q->flags & RF_PARAM_CHOICE)
+	if (q->flags & RF_PARAM_STRING)
+		rf__format(buf, size, "a string");
+	else if (q->flags & RF_PARAM_CHOICE)
 		rf__format(buf, size, "one of %s", q->choices);
 	else if (q->flags & RF_PARAM_BOOL)
 		rf__format(buf, size, "0 or 1");
@@ -111,6 +114,47 @@ unknown_param(const struct rf_plugin *p, const char *name, char *err, size_t err
 		           p->name, name);
 }
 
+/* The strings of RF_PARAM_STRING parameters, value k at strings[k - 1]:
+ * a value is a double, and so a string given on a command line (or a
+ * default) is kept here, for the process's life (a tool parses its -m
+ * once). */
+static char **strings;
+static size_t nstrings;
+static pthread_mutex_t strings_mu = PTHREAD_MUTEX_INITIALIZER;
+
+static int
+keep_string(const char *v, double *out)
+{
+	char **grown, *copy = strdup(v);
+	int rc = 0;
+
+	if (!copy)
+		return RF_ENOMEM;
+	pthread_mutex_lock(&strings_mu);
+	if (!(grown = realloc(strings, (nstrings + 1) * sizeof(*strings)))) {
+		free(copy);
+		rc = RF_ENOMEM;
+	} else {
+		strings = grown;
+		strings[nstrings++] = copy;
+		*out = (double)nstrings;
+	}
+	pthread_mutex_unlock(&strings_mu);
+	return rc;
+}
+
+const char *
+rf_plugin_param_string(const struct rf_param *q, double value)
+{
+	const char *s = NULL;
+
+	pthread_mutex_lock(&strings_mu);
+	if (value >= 1 && value <= (double)nstrings && value == floor(value))
+		s = strings[(size_t)value - 1];
+	pthread_mutex_unlock(&strings_mu);
+	return s ? s : q && q->choices ? q->choices : "";
+}
+
 /* One "key=value" item; q is its parameter. */
 static int
 parse_value(const struct rf_plugin *p, const struct rf_param *q, const char *v,
@@ -118,6 +162,13 @@ parse_value(const struct rf_plugin *p, const struct rf_param *q, const char *v,
 {
 	char range[160];
 
+	if (q->flags & RF_PARAM_STRING) {
+		if (keep_string(v, out) < 0) {
+			rf__format(err, errlen, "%s", rf_strerror(RF_ENOMEM));
+			return RF_ENOMEM;
+		}
+		return 0;
+	}
 	format_range(range, sizeof(range), q);
 	if (q->flags & RF_PARAM_CHOICE) {
 		if (parse_choice(q, v, out) < 0) {
@@ -164,8 +215,18 @@ rf_plugin_parse_params(const struct rf_plugin *p, const char *spec,
 	uint32_t i;
 	int rc = 0;
 
-	for (i = 0; i < p->nparams; i++)
-		values[i] = p->params[i].def;
+	for (i = 0; i < p->nparams && !rc; i++) {
+		const struct rf_param *q = &p->params[i];
+
+		values[i] = q->def;
+		/* a string's default is kept too, so that its value names it */
+		if (q->flags & RF_PARAM_STRING)
+			rc = keep_string(q->choices ? q->choices : "", &values[i]);
+	}
+	if (rc < 0) {
+		rf__format(err, errlen, "%s", rf_strerror(rc));
+		return rc;
+	}
 	if (!(given = calloc(p->nparams + 1, 1))) {
 		rf__format(err, errlen, "%s", rf_strerror(RF_ENOMEM));
 		return RF_ENOMEM;

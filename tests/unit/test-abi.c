@@ -58,7 +58,7 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_param, flags, 40),
 	OFFSET(struct rf_param, choices, 48),
 
-	SIZE(struct rf_host, 136),
+	SIZE(struct rf_host, 144),
 	OFFSET(struct rf_host, size, 0),
 	OFFSET(struct rf_host, abi_major, 4),
 	OFFSET(struct rf_host, abi_minor, 8),
@@ -80,6 +80,7 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_host, sample_many, 112),
 	OFFSET(struct rf_host, fail, 120),
 	OFFSET(struct rf_host, declare_bevel, 128),
+	OFFSET(struct rf_host, param_string, 136),
 
 	SIZE(struct rf_span, 72),
 	OFFSET(struct rf_span, size, 0),
@@ -141,7 +142,8 @@ TEST(constants)
 	ASSERT_EQ(RF_PARAM_INTEGER, 0x1);
 	ASSERT_EQ(RF_PARAM_BOOL, 0x2);
 	ASSERT_EQ(RF_PARAM_CHOICE, 0x4);
-	ASSERT_EQ(RF_PARAM_KNOWN_FLAGS, 0x7);
+	ASSERT_EQ(RF_PARAM_STRING, 0x8);
+	ASSERT_EQ(RF_PARAM_KNOWN_FLAGS, 0xf);
 	ASSERT_EQ(RF_PLUGIN_RADIANCE, 0x1);
 	ASSERT_EQ(RF_PLUGIN_KNOWN_FLAGS, 0x1);
 	ASSERT_STR_EQ(RF_SHADE_ROUGHNESS, "roughness.eff");
