@@ -23,7 +23,8 @@
  *        to rf_span and the host service filter_passes; sample() through
  *        the pass's kernels, and sample_many; fail, for run();
  *        the probe's bevel and bevel_grown, and declare_bevel;
- *        RF_PARAM_STRING parameters and param_string.
+ *        RF_PARAM_STRING parameters and param_string; face_size,
+ *        texel_solid_angle and pixel_footprint.
  * A minor bump only appends fields at the end of a struct, or defines new
  * flag bits or kinds; a major bump is anything else.  The host accepts a
  * plugin when its major equals the host's and its minor is not newer, and
@@ -224,6 +225,22 @@ struct rf_host {
 	 * name is the plugin's to open, relative to the working directory)
 	 * or the default.  Valid until the instance's destroy(). */
 	const char *(*param_string)(void *ctx, double value);
+	/* The prefiltered environment's geometry (the chain sample() and
+	 * sample_many() read): texels across a face of a level (0 past the
+	 * last), and the solid angle of a texel toward dir (need not be
+	 * unit) at a lod, (2 / face_size(0))^2 4^lod / (1 + u^2 + v^2)^1.5
+	 * for face coordinates u, v: what filtered importance sampling
+	 * compares a sample's pdf with.  NULL without an environment. */
+	uint32_t (*face_size)(void *ctx, uint32_t level);
+	float (*texel_solid_angle)(void *ctx, const float dir[3], float lod);
+	/* The pixel's footprint on its surface: where the camera rays through
+	 * the centres of the pixels right of and below pixel (x, y) meet the
+	 * plane through p with normal n, less p (dpdx, dpdy, world units).
+	 * From the stream's CAMERA key and the frame's size, as
+	 * reflect-gbuffer casts its rays; 0, or -1 when the stream has no
+	 * camera or a ray runs along the plane (then both are 0). */
+	int (*pixel_footprint)(void *ctx, uint32_t x, uint32_t y, const float p[3],
+	                       const float n[3], float dpdx[3], float dpdy[3]);
 };
 
 /* A span of pixels along one row, channels interleaved in the order the

@@ -15,6 +15,7 @@
 #include "util/util.h"
 #include "reflect/host.h"
 #include "reflect/shading.h"
+#include "reflect/scene.h"
 /* The box's geometry as the projection plugins have it, to the bit. */
 #include "project/projection.h"
 #include "project/bevel.h"
@@ -42,6 +43,10 @@ struct rf_plugin_host {
 	 * block's threads are joined. */
 	int failed;
 	char failure[256];
+	/* The frame's camera (CAMERA), for pixel_footprint. */
+	int has_camera;
+	struct rf_camera camera;
+	size_t width, height;
 	/* What the last filter mode's create() declared (filter_passes). */
 	uint32_t filter_npasses;
 	uint32_t filter_radius[RF_FILTER_PASSES_MAX];
@@ -328,6 +333,87 @@ param_string(void *ctx, double value)
 	return rf_plugin_param_string(NULL, value);
 }
 
+static uint32_t
+face_size(void *ctx, uint32_t level)
+{
+	const rf_plugin_host *h = ctx;
+
+	if (!h->env || level >= rf_cubemap_levels(h->env))
+		return 0;
+	return (uint32_t)(rf_cubemap_size(h->env) >> level ? rf_cubemap_size(h->env) >> level
+	                                                    : 1);
+}
+
+static float
+texel_solid_angle(void *ctx, const float dir[3], float lod)
+{
+	const rf_plugin_host *h = ctx;
+	const double ax = fabs(dir[0]), ay = fabs(dir[1]), az = fabs(dir[2]);
+	const double m = ax > ay ? (ax > az ? ax : az) : (ay > az ? ay : az);
+	const double size = h->env ? (double)rf_cubemap_size(h->env) : 1.0;
+	double u, v, base;
+
+	if (!(m > 0.0) || !isfinite(m))
+		return 0.0f;
+	/* face coordinates: the two other components over the major one */
+	if (ax == m) {
+		u = ay / m;
+		v = az / m;
+	} else if (ay == m) {
+		u = ax / m;
+		v = az / m;
+	} else {
+		u = ax / m;
+		v = ay / m;
+	}
+	base = 4.0 / (size * size) / pow(1.0 + u * u + v * v, 1.5);
+	return (float)(base * exp2(2.0 * lod));
+}
+
+/* The hit of the camera ray through image point (px, py) with the plane
+ * (p, n), less p; 0, or -1 when the ray runs along the plane. */
+static int
+ray_on_plane(const rf_plugin_host *h, double px, double py, const float p[3], const float n[3],
+             float out[3])
+{
+	double d[3], dn, t;
+	int k;
+
+	rf_camera_ray(&h->camera, h->width, h->height, px, py, d);
+	dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+	if (!(fabs(dn) > 1e-9))
+		return -1;
+	t = ((p[0] - h->camera.position[0]) * n[0] + (p[1] - h->camera.position[1]) * n[1] +
+	     (p[2] - h->camera.position[2]) * n[2]) / dn;
+	for (k = 0; k < 3; k++)
+		out[k] = (float)(h->camera.position[k] + t * d[k] - p[k]);
+	return 0;
+}
+
+static int
+pixel_footprint(void *ctx, uint32_t x, uint32_t y, const float p[3], const float n[3],
+                float dpdx[3], float dpdy[3])
+{
+	const rf_plugin_host *h = ctx;
+	float c[3];
+	int k;
+
+	/* each neighbour's hit less the pixel's own on the same plane, so
+	 * that p need not lie on the centre ray exactly */
+	if (!h->has_camera || ray_on_plane(h, x + 0.5, y + 0.5, p, n, c) < 0 ||
+	    ray_on_plane(h, x + 1.5, y + 0.5, p, n, dpdx) < 0 ||
+	    ray_on_plane(h, x + 0.5, y + 1.5, p, n, dpdy) < 0) {
+		for (k = 0; k < 3; k++)
+			dpdx[k] = dpdy[k] = 0.0f;
+		return -1;
+	}
+	for (k = 0; k < 3; k++) {
+		dpdx[k] -= c[k];
+		dpdy[k] -= c[k];
+	}
+	return 0;
+}
+
 static int
 declare_bevel(void *ctx, float radius, int grown)
 {
@@ -406,6 +492,7 @@ rf_plugin_host_create(rf_plugin_host **hp)
 	h->table.fail = fail;
 	h->table.declare_bevel = declare_bevel;
 	h->table.param_string = param_string;
+	h->table.pixel_footprint = pixel_footprint;
 	h->mapping = RF_MAPPING_DEFAULT;
 	return 0;
 }
@@ -434,7 +521,32 @@ rf_plugin_host_destroy(rf_plugin_host *h)
 void
 rf_plugin_host_set_frame(rf_plugin_host *h, const rf_header *frame)
 {
+	const char *v = frame ? rf_header_get(frame, RF_KEY_CAMERA) : NULL;
+	double c[10];
+	char *end;
+	int k;
+
 	h->frame = frame;
+	h->has_camera = 0;
+	if (!v)
+		return;
+	for (k = 0; k < 10; k++) {
+		c[k] = strtod(v, &end);
+		if (end == v || !isfinite(c[k]))
+			return;
+		v = end;
+	}
+	for (k = 0; k < 3; k++) {
+		h->camera.position[k] = c[k];
+		h->camera.target[k] = c[3 + k];
+		h->camera.up[k] = c[6 + k];
+	}
+	h->camera.fov = c[9];
+	if (rf_camera_check(&h->camera, NULL, 0) < 0)
+		return;
+	h->width = rf_header_ncols(frame);
+	h->height = rf_header_nrows(frame);
+	h->has_camera = 1;
 }
 
 void
@@ -465,6 +577,8 @@ rf_plugin_host_set_environment(rf_plugin_host *h, const rf_cubemap *env,
 	h->steps = steps;
 	h->table.sample = env ? sample : NULL;
 	h->table.sample_many = env ? sample_many : NULL;
+	h->table.face_size = env ? face_size : NULL;
+	h->table.texel_solid_angle = env ? texel_solid_angle : NULL;
 	h->table.roughness_to_lod = env ? roughness_to_lod : NULL;
 	h->table.lod_to_roughness = env ? lod_to_roughness : NULL;
 	h->table.lod_steps = env ? steps : 0.0f;

@@ -58,7 +58,7 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_param, flags, 40),
 	OFFSET(struct rf_param, choices, 48),
 
-	SIZE(struct rf_host, 144),
+	SIZE(struct rf_host, 168),
 	OFFSET(struct rf_host, size, 0),
 	OFFSET(struct rf_host, abi_major, 4),
 	OFFSET(struct rf_host, abi_minor, 8),
@@ -81,6 +81,9 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_host, fail, 120),
 	OFFSET(struct rf_host, declare_bevel, 128),
 	OFFSET(struct rf_host, param_string, 136),
+	OFFSET(struct rf_host, face_size, 144),
+	OFFSET(struct rf_host, texel_solid_angle, 152),
+	OFFSET(struct rf_host, pixel_footprint, 160),
 
 	SIZE(struct rf_span, 72),
 	OFFSET(struct rf_span, size, 0),

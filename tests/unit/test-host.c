@@ -222,6 +222,94 @@ TEST(rays_leave_the_rounded_box)
 	rf_plugin_host_destroy(h);
 }
 
+/* face_size and texel_solid_angle: the chain's sizes, the solid angle at
+ * a face's centre (2/S)^2 times 4 a lod, and the texels of a level that
+ * sum to the whole sphere. */
+TEST(environment_geometry)
+{
+	rf_plugin_host *h;
+	const struct rf_host *t;
+	rf_cubemap *c;
+	const float centre[3] = { 0, 0, -3 };
+	double sum = 0.0;
+	int f, i, j;
+
+	ASSERT_EQ(rf_cubemap_create(&c, 16, 5), 0);
+	rf_default_environment_cube(c);
+	ASSERT_EQ(rf_plugin_host_create(&h), 0);
+	t = rf_plugin_host_table(h);
+	ASSERT(t->face_size == NULL && t->texel_solid_angle == NULL);
+	ASSERT_EQ(rf_plugin_host_set_environment(h, c, RF_MAPPING_DEFAULT, 4), 0);
+	ASSERT_EQ(t->face_size(t->ctx, 0), 16);
+	ASSERT_EQ(t->face_size(t->ctx, 2), 4);
+	ASSERT_EQ(t->face_size(t->ctx, 4), 1);
+	ASSERT_EQ(t->face_size(t->ctx, 5), 0);
+	ASSERT_NEAR(t->texel_solid_angle(t->ctx, centre, 0), 1.0 / 64, 1e-9);
+	ASSERT_NEAR(t->texel_solid_angle(t->ctx, centre, 1.5), 8.0 / 64, 1e-7);
+	/* every texel of level 0 at its centre: 4 pi to the midpoint rule's
+	 * error, under 0.2 % at 16 texels a face */
+	for (f = 0; f < 6; f++)
+		for (j = 0; j < 16; j++)
+			for (i = 0; i < 16; i++) {
+				float u = (i + 0.5f) / 8 - 1, v = (j + 0.5f) / 8 - 1, d[3];
+
+				d[f / 2] = f & 1 ? -1.0f : 1.0f;
+				d[(f / 2 + 1) % 3] = u;
+				d[(f / 2 + 2) % 3] = v;
+				sum += t->texel_solid_angle(t->ctx, d, 0);
+			}
+	ASSERT_NEAR(sum, 4 * M_PI, 0.002 * 4 * M_PI);
+	rf_plugin_host_destroy(h);
+	rf_cubemap_destroy(c);
+}
+
+/* pixel_footprint: a camera at the origin looking down -z, 90 degrees,
+ * 100 x 100 pixels, and the plane z = -1: neighbouring pixel centres are
+ * 2 / 100 apart on it, right along +x, down along -y. */
+TEST(pixel_footprint_by_hand)
+{
+	rf_plugin_host *h;
+	const struct rf_host *t;
+	rf_header *frame;
+	const float p[3] = { -0.01f, 0.01f, -1 }, n[3] = { 0, 0, 1 }, along[3] = { 0, 1, 0.01f };
+	float dx[3], dy[3];
+
+	ASSERT_EQ(rf_plugin_host_create(&h), 0);
+	t = rf_plugin_host_table(h);
+	ASSERT_EQ(rf_header_create(&frame), 0);
+	ASSERT_EQ(rf_header_set_size(frame, 100, 100), 0);
+	rf_plugin_host_set_frame(h, frame);
+	ASSERT(t->pixel_footprint(t->ctx, 49, 49, p, n, dx, dy) == -1);
+	ASSERT(dx[0] == 0 && dy[1] == 0);
+	ASSERT_EQ(rf_header_set(frame, RF_KEY_CAMERA, "0 0 0 0 0 -1 0 1 0 90"), 0);
+	rf_plugin_host_set_frame(h, frame);
+	ASSERT(t->pixel_footprint(t->ctx, 49, 49, p, n, dx, dy) == 0);
+	ASSERT_NEAR(dx[0], 0.02, 1e-6);
+	ASSERT_NEAR(dx[1], 0, 1e-6);
+	ASSERT_NEAR(dx[2], 0, 1e-6);
+	ASSERT_NEAR(dy[0], 0, 1e-6);
+	ASSERT_NEAR(dy[1], -0.02, 1e-6);
+	/* twice as far, twice as large.  The plane tilted 60 degrees about y,
+	 * n = (sin 60, 0, cos 60) through p: the rays (-0.01, 0.01, -1) and
+	 * (0.01, 0.01, -1) meet it at t = p.n / d.n = 1.000079 and 1.035332,
+	 * (-0.010001, 0.010001, -1.000079) and (0.010353, 0.010353,
+	 * -1.035332): 0.040705 apart in x and z (about 0.02 / cos 60, the
+	 * perspective on top). */
+	{
+		const float far[3] = { -0.02f, 0.02f, -2 };
+		const float tilted[3] = { 0.8660254f, 0, 0.5f };
+
+		ASSERT(t->pixel_footprint(t->ctx, 49, 49, far, n, dx, dy) == 0);
+		ASSERT_NEAR(dx[0], 0.04, 1e-6);
+		ASSERT(t->pixel_footprint(t->ctx, 49, 49, p, tilted, dx, dy) == 0);
+		ASSERT_NEAR(sqrt(dx[0] * dx[0] + dx[2] * dx[2]), 0.040705, 2e-6);
+		/* the pixel's own ray, (-0.01, 0.01, -1), along the plane */
+		ASSERT(t->pixel_footprint(t->ctx, 49, 49, p, along, dx, dy) == -1);
+	}
+	rf_header_destroy(frame);
+	rf_plugin_host_destroy(h);
+}
+
 /* sample_radiance: the plain levels of the environment's level 0. */
 TEST(radiance_reads_plain_levels)
 {
@@ -266,6 +354,8 @@ main(void)
 	RUN(table_follows_the_settings);
 	RUN(rays_leave_the_box);
 	RUN(rays_leave_the_rounded_box);
+	RUN(environment_geometry);
+	RUN(pixel_footprint_by_hand);
 	RUN(radiance_reads_plain_levels);
 	TAP_DONE();
 }
