@@ -24,7 +24,7 @@
  *        the pass's kernels, and sample_many; fail, for run();
  *        the probe's bevel and bevel_grown, and declare_bevel;
  *        RF_PARAM_STRING parameters and param_string; face_size,
- *        texel_solid_angle and pixel_footprint.
+ *        texel_solid_angle, pixel_footprint and random_pairs.
  * A minor bump only appends fields at the end of a struct, or defines new
  * flag bits or kinds; a major bump is anything else.  The host accepts a
  * plugin when its major equals the host's and its minor is not newer, and
@@ -241,7 +241,21 @@ struct rf_host {
 	 * camera or a ray runs along the plane (then both are 0). */
 	int (*pixel_footprint)(void *ctx, uint32_t x, uint32_t y, const float p[3],
 	                       const float n[3], float dpdx[3], float dpdy[3]);
+	/* Pairs i0 .. i0 + n - 1 of pixel (x, y)'s sequence of n_all pairs
+	 * in [0, 1)^2, the raytraced mode's for the same pattern, seed (the
+	 * host's --seed) and frame: RF_SEQUENCE_WHITE a hash of pixel,
+	 * index, frame and seed; RF_SEQUENCE_LOW_DISCREPANCY the Hammersley
+	 * set of n_all points moved by frame steps of the R2 sequence;
+	 * RF_SEQUENCE_BLUE that set moved again by the pixel's blue-noise
+	 * values.  Frame 0 is a still: pass the stream's FRAME to animate. */
+	void (*random_pairs)(void *ctx, int pattern, uint32_t x, uint32_t y, uint32_t frame,
+	                     uint32_t i0, uint32_t n, uint32_t n_all, float *u0, float *u1);
 };
+
+/* The patterns of random_pairs (the raytraced mode's pattern=). */
+#define RF_SEQUENCE_WHITE 0
+#define RF_SEQUENCE_BLUE 1
+#define RF_SEQUENCE_LOW_DISCREPANCY 2
 
 /* A span of pixels along one row, channels interleaved in the order the
  * descriptor declares them.  It need not be a whole row (x need not be

@@ -19,6 +19,7 @@
 /* The box's geometry as the projection plugins have it, to the bit. */
 #include "project/projection.h"
 #include "project/bevel.h"
+#include "sequences.h"
 #include "soa.h"
 
 struct rf_plugin_host {
@@ -414,6 +415,30 @@ pixel_footprint(void *ctx, uint32_t x, uint32_t y, const float p[3], const float
 	return 0;
 }
 
+static void
+random_pairs(void *ctx, int pattern, uint32_t x, uint32_t y, uint32_t frame, uint32_t i0,
+             uint32_t n, uint32_t n_all, float *u0, float *u1)
+{
+	const rf_plugin_host *h = ctx;
+	float ham0[64], ham1[64];
+	uint32_t k, m, j;
+
+	if (pattern == RF_SEQUENCE_WHITE) {
+		sequence_pairs(SEQUENCE_WHITE, h->table.seed, frame, 0, x, y, i0, n, NULL, NULL, u0,
+		               u1);
+		return;
+	}
+	/* the set's points, 64 at a time on the stack */
+	for (k = 0; k < n; k += m) {
+		m = n - k < 64 ? n - k : 64;
+		for (j = 0; j < m; j++)
+			hammersley(i0 + k + j, n_all ? n_all : n, &ham0[j], &ham1[j]);
+		sequence_pairs(pattern == RF_SEQUENCE_BLUE ? SEQUENCE_BLUE : SEQUENCE_LOW_DISCREPANCY,
+		               h->table.seed, frame, frame, x, y, i0 + k, m, ham0, ham1, u0 + k,
+		               u1 + k);
+	}
+}
+
 static int
 declare_bevel(void *ctx, float radius, int grown)
 {
@@ -493,6 +518,7 @@ rf_plugin_host_create(rf_plugin_host **hp)
 	h->table.declare_bevel = declare_bevel;
 	h->table.param_string = param_string;
 	h->table.pixel_footprint = pixel_footprint;
+	h->table.random_pairs = random_pairs;
 	h->mapping = RF_MAPPING_DEFAULT;
 	return 0;
 }

@@ -37,12 +37,13 @@
 #include "reflect/plugin.h"
 #include "../soa.h"
 
-/* Two 64 x 64 blue-noise masks, made at build time by bluenoise-gen.c. */
-#include "bluenoise.h"
+#include "../sequences.h"
 
 enum { SAMPLES, PATTERN, ANIMATE, SAMPLER, ESTIMATOR, MASKING, MIPOFFSET, SEED, FRAMES,
        NPARAMS };
-enum { PATTERN_WHITE, PATTERN_BLUE, PATTERN_DETERMINISTIC };
+/* the pattern= choices, in sequences.h's order */
+enum { PATTERN_WHITE = SEQUENCE_WHITE, PATTERN_BLUE = SEQUENCE_BLUE,
+       PATTERN_DETERMINISTIC = SEQUENCE_LOW_DISCREPANCY };
 enum { ESTIMATOR_EXACT, ESTIMATOR_ORIGINAL };
 enum { MASKING_CORRELATED, MASKING_SEPARABLE };
 enum { SAMPLER_VNDF, SAMPLER_MIS };
@@ -101,112 +102,22 @@ struct raytraced {
 
 /* ---- random numbers ------------------------------------------------------ */
 
-/* Jarzynski and Olano's pcg4d: four 32-bit keys, four well-mixed words. */
-static inline void
-pcg4d(uint32_t v[4])
-{
-	int i;
-
-	for (i = 0; i < 4; i++)
-		v[i] = v[i] * 1664525u + 1013904223u;
-	v[0] += v[1] * v[3];
-	v[1] += v[2] * v[0];
-	v[2] += v[0] * v[1];
-	v[3] += v[1] * v[2];
-	for (i = 0; i < 4; i++)
-		v[i] ^= v[i] >> 16;
-	v[0] += v[1] * v[3];
-	v[1] += v[2] * v[0];
-	v[2] += v[0] * v[1];
-	v[3] += v[1] * v[2];
-}
-
-/* The top 24 bits: [0, 1), never 1. */
-static inline float
-unit_float(uint32_t h)
-{
-	return (float)(h >> 8) * (1.0f / 16777216.0f);
-}
-
-static inline float
-radical_inverse(uint32_t i)
-{
-	i = (i << 16) | (i >> 16);
-	i = ((i & 0x55555555u) << 1) | ((i & 0xAAAAAAAAu) >> 1);
-	i = ((i & 0x33333333u) << 2) | ((i & 0xCCCCCCCCu) >> 2);
-	i = ((i & 0x0F0F0F0Fu) << 4) | ((i & 0xF0F0F0F0u) >> 4);
-	i = ((i & 0x00FF00FFu) << 8) | ((i & 0xFF00FF00u) >> 8);
-	return unit_float(i);
-}
-
 static inline float
 max0(float x)
 {
 	return x > 0.0f ? x : 0.0f;
 }
 
-static inline float
-fract(float x)
-{
-	float f = x - floorf(x);
-
-	return f < 1.0f ? f : 0.0f;
-}
-
-/* Ray i's (u1, u2) at pixel (px, py).  Animated frames are decorrelated:
- * the frame is a key of the hash, and the Hammersley sets move by the R2
- * sequence's step (Roberts 2018), or along one Sobol sequence for blue
- * frames to be averaged (below), so no frame reuses another's numbers.
- * blue shifts the set by the pixel's values of two blue-noise masks
- * (Cranley-Patterson rotation, Georgiev and Fajardo's dithered sampling):
- * every pixel converges as fast as Hammersley, without the structured
- * aliasing of one set for all, and what error is left is spread as blue
- * noise, fine grained, which the eye and any later blur forgive. */
+/* Ray i's (u1, u2) at pixel (px, py), from sequences.h: the frame is a
+ * key of the white hash, and the Hammersley sets move by R2 steps, or
+ * along one larger set for frames to be averaged (create), so no frame
+ * reuses another's numbers. */
 static void
 random_pairs(const struct raytraced *rt, uint32_t px, uint32_t py, uint32_t n,
              float *restrict u0, float *restrict u1)
 {
-	uint32_t frame = rt->animate ? rt->frame : 0, i;
-	float b0 = 0.0f, b1 = 0.0f, f0 = 0.0f, f1 = 0.0f;
-
-	if (rt->pattern == PATTERN_WHITE) {
-		for (i = 0; i < n; i++) {
-			uint32_t v[4] = { px, py, i, rt->seed ^ (frame * 0x9E3779B9u) };
-
-			pcg4d(v);
-			u0[i] = unit_float(v[0]);
-			u1[i] = unit_float(v[1]);
-		}
-		return;
-	}
-	if (rt->pattern == PATTERN_BLUE) {
-		uint32_t sx = (px + rt->seed * 23u) % BLUENOISE_SIZE;
-		uint32_t sy = (py + rt->seed * 41u) % BLUENOISE_SIZE;
-		uint32_t c = sy * BLUENOISE_SIZE + sx;
-
-		b0 = ((float)bluenoise_rank[0][c] + 0.5f) / (float)(BLUENOISE_SIZE * BLUENOISE_SIZE);
-		b1 = ((float)bluenoise_rank[1][c] + 0.5f) / (float)(BLUENOISE_SIZE * BLUENOISE_SIZE);
-	}
-	if (rt->r2_step) {
-		f0 = (float)rt->r2_step * 0.7548776662f;
-		f1 = (float)rt->r2_step * 0.5698402910f;
-	}
-	/* The frame's points are the instance's (rt->ham0, rt->ham1, made
-	 * in create); the shifts are the pixel's and the frame's. */
-	for (i = 0; i < n; i++) {
-		float a = rt->ham0[i], b = rt->ham1[i];
-
-		if (rt->pattern == PATTERN_BLUE) {
-			a = fract(a + b0);
-			b = fract(b + b1);
-		}
-		if (rt->r2_step) {
-			a = fract(a + f0);
-			b = fract(b + f1);
-		}
-		u0[i] = a;
-		u1[i] = b;
-	}
+	sequence_pairs(rt->pattern, rt->seed, rt->animate ? rt->frame : 0, rt->r2_step, px, py,
+	               0, n, rt->ham0, rt->ham1, u0, u1);
 }
 
 /* ---- the lobe ------------------------------------------------------------ */
@@ -1143,8 +1054,7 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	rt->index = (uint32_t *)(rt->dens + k);
 	rt->table = (float *)(rt->index + k);
 	for (i = 0; i < rt->samples; i++) {
-		rt->ham0[i] = ((float)i + 0.5f) / (float)rt->samples;
-		rt->ham1[i] = radical_inverse((uint32_t)i);
+		hammersley((uint32_t)i, rt->samples, &rt->ham0[i], &rt->ham1[i]);
 	}
 	rt->r2_step = rt->animate ? rt->frame : 0;
 	if (rt->split) {

@@ -58,7 +58,7 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_param, flags, 40),
 	OFFSET(struct rf_param, choices, 48),
 
-	SIZE(struct rf_host, 168),
+	SIZE(struct rf_host, 176),
 	OFFSET(struct rf_host, size, 0),
 	OFFSET(struct rf_host, abi_major, 4),
 	OFFSET(struct rf_host, abi_minor, 8),
@@ -84,6 +84,7 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_host, face_size, 144),
 	OFFSET(struct rf_host, texel_solid_angle, 152),
 	OFFSET(struct rf_host, pixel_footprint, 160),
+	OFFSET(struct rf_host, random_pairs, 168),
 
 	SIZE(struct rf_span, 72),
 	OFFSET(struct rf_span, size, 0),
@@ -146,6 +147,9 @@ TEST(constants)
 	ASSERT_EQ(RF_PARAM_BOOL, 0x2);
 	ASSERT_EQ(RF_PARAM_CHOICE, 0x4);
 	ASSERT_EQ(RF_PARAM_STRING, 0x8);
+	ASSERT_EQ(RF_SEQUENCE_WHITE, 0);
+	ASSERT_EQ(RF_SEQUENCE_BLUE, 1);
+	ASSERT_EQ(RF_SEQUENCE_LOW_DISCREPANCY, 2);
 	ASSERT_EQ(RF_PARAM_KNOWN_FLAGS, 0xf);
 	ASSERT_EQ(RF_PLUGIN_RADIANCE, 0x1);
 	ASSERT_EQ(RF_PLUGIN_KNOWN_FLAGS, 0x1);

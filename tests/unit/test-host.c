@@ -1,5 +1,6 @@
 /* Unit tests of the host services every tool gives its plugins. */
 #include "reflect/host.h"
+#include "sequences.h"
 #include "tap.h"
 
 TEST(table_follows_the_settings)
@@ -310,6 +311,69 @@ TEST(pixel_footprint_by_hand)
 	rf_plugin_host_destroy(h);
 }
 
+/* random_pairs: the low-discrepancy set by hand, in pieces as whole, the
+ * blue set a per-pixel shift of it, frames moved by the R2 step, white
+ * noise that averages 1/2; and the raytraced mode's own numbers
+ * (sequences.h, which it draws from) for the same keys. */
+TEST(random_pairs_of_the_host)
+{
+	rf_plugin_host *h;
+	const struct rf_host *t;
+	float a[16], b[16], c[16], d[16], w0[4096], w1[4096], ham0[16], ham1[16];
+	double mean = 0.0;
+	int i;
+
+	ASSERT_EQ(rf_plugin_host_create(&h), 0);
+	rf_plugin_host_set_seed(h, 7);
+	t = rf_plugin_host_table(h);
+	t->random_pairs(t->ctx, RF_SEQUENCE_LOW_DISCREPANCY, 3, 4, 0, 0, 16, 16, a, b);
+	for (i = 0; i < 16; i++) {
+		ASSERT(a[i] == (i + 0.5f) / 16);
+		ham0[i] = a[i];
+		ham1[i] = b[i];
+	}
+	ASSERT(b[0] == 0.0f && b[1] == 0.5f && b[2] == 0.25f && b[3] == 0.75f);
+	t->random_pairs(t->ctx, RF_SEQUENCE_LOW_DISCREPANCY, 3, 4, 0, 4, 8, 16, c, d);
+	for (i = 0; i < 8; i++)
+		ASSERT(c[i] == a[4 + i] && d[i] == b[4 + i]);
+	/* blue: the same set, every point moved by the pixel's one shift */
+	t->random_pairs(t->ctx, RF_SEQUENCE_BLUE, 3, 4, 0, 0, 16, 16, c, d);
+	for (i = 1; i < 16; i++) {
+		float s0 = c[i] - a[i] - (c[0] - a[0]), s1 = d[i] - b[i] - (d[0] - b[0]);
+
+		ASSERT(fabsf(s0 - roundf(s0)) < 1e-6f && fabsf(s1 - roundf(s1)) < 1e-6f);
+	}
+	/* frame 1: moved by one step of R2, 0.7548777 and 0.5698403 */
+	t->random_pairs(t->ctx, RF_SEQUENCE_LOW_DISCREPANCY, 3, 4, 1, 0, 16, 16, c, d);
+	for (i = 0; i < 16; i++) {
+		float s0 = c[i] - a[i] - 0.7548776662f, s1 = d[i] - b[i] - 0.5698402910f;
+
+		ASSERT(fabsf(s0 - roundf(s0)) < 1e-6f && fabsf(s1 - roundf(s1)) < 1e-6f);
+	}
+	/* the raytraced mode's numbers for the same pattern, seed and frame */
+	for (i = 0; i < 3; i++) {
+		static const int patterns[3] = { RF_SEQUENCE_WHITE, RF_SEQUENCE_BLUE,
+		                                 RF_SEQUENCE_LOW_DISCREPANCY };
+		int k;
+
+		t->random_pairs(t->ctx, patterns[i], 10, 20, 5, 0, 16, 16, a, b);
+		sequence_pairs(patterns[i], 7, 5, 5, 10, 20, 0, 16, ham0, ham1, c, d);
+		for (k = 0; k < 16; k++)
+			ASSERT(a[k] == c[k] && b[k] == d[k]);
+	}
+	/* white: 4096 pairs average 1/2 (to 0.01, 3 sigma 0.0045), another
+	 * frame draws others */
+	t->random_pairs(t->ctx, RF_SEQUENCE_WHITE, 1, 2, 0, 0, 4096, 4096, w0, w1);
+	for (i = 0; i < 4096; i++) {
+		ASSERT(w0[i] >= 0.0f && w0[i] < 1.0f);
+		mean += w0[i] + w1[i];
+	}
+	ASSERT_NEAR(mean / 8192, 0.5, 0.01);
+	t->random_pairs(t->ctx, RF_SEQUENCE_WHITE, 1, 2, 1, 0, 16, 16, a, b);
+	ASSERT(a[0] != w0[0] || a[1] != w0[1]);
+	rf_plugin_host_destroy(h);
+}
+
 /* sample_radiance: the plain levels of the environment's level 0. */
 TEST(radiance_reads_plain_levels)
 {
@@ -356,6 +420,7 @@ main(void)
 	RUN(rays_leave_the_rounded_box);
 	RUN(environment_geometry);
 	RUN(pixel_footprint_by_hand);
+	RUN(random_pairs_of_the_host);
 	RUN(radiance_reads_plain_levels);
 	TAP_DONE();
 }

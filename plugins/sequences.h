@@ -1,0 +1,127 @@
+/*
+ * The sample sequences of reflect: white noise, blue noise and the
+ * low-discrepancy (Hammersley) set, keyed by pixel, frame and seed, as
+ * the raytraced mode draws its rays and as the host hands them to any
+ * mode (plugin.h's random_pairs).  Header-only, as projection.h is: the
+ * plugin and the host include it, and so give the same numbers.
+ */
+#ifndef REFLECT_PLUGINS_SEQUENCES_H
+#define REFLECT_PLUGINS_SEQUENCES_H
+
+#include <math.h>
+#include <stdint.h>
+
+/* Two 64 x 64 blue-noise masks, made at build time by bluenoise-gen.c. */
+#include "shade/bluenoise.h"
+
+enum { SEQUENCE_WHITE, SEQUENCE_BLUE, SEQUENCE_LOW_DISCREPANCY };
+
+/* Jarzynski and Olano's pcg4d: four 32-bit keys, four well-mixed words. */
+static inline void
+pcg4d(uint32_t v[4])
+{
+	int i;
+
+	for (i = 0; i < 4; i++)
+		v[i] = v[i] * 1664525u + 1013904223u;
+	v[0] += v[1] * v[3];
+	v[1] += v[2] * v[0];
+	v[2] += v[0] * v[1];
+	v[3] += v[1] * v[2];
+	for (i = 0; i < 4; i++)
+		v[i] ^= v[i] >> 16;
+	v[0] += v[1] * v[3];
+	v[1] += v[2] * v[0];
+	v[2] += v[0] * v[1];
+	v[3] += v[1] * v[2];
+}
+
+/* The top 24 bits: [0, 1), never 1. */
+static inline float
+unit_float(uint32_t h)
+{
+	return (float)(h >> 8) * (1.0f / 16777216.0f);
+}
+
+static inline float
+radical_inverse(uint32_t i)
+{
+	i = (i << 16) | (i >> 16);
+	i = ((i & 0x55555555u) << 1) | ((i & 0xAAAAAAAAu) >> 1);
+	i = ((i & 0x33333333u) << 2) | ((i & 0xCCCCCCCCu) >> 2);
+	i = ((i & 0x0F0F0F0Fu) << 4) | ((i & 0xF0F0F0F0u) >> 4);
+	i = ((i & 0x00FF00FFu) << 8) | ((i & 0xFF00FF00u) >> 8);
+	return unit_float(i);
+}
+
+static inline float
+fract(float x)
+{
+	float f = x - floorf(x);
+
+	return f < 1.0f ? f : 0.0f;
+}
+
+/* Point i of the Hammersley set of n: ((i + 1/2) / n, radical inverse). */
+static inline void
+hammersley(uint32_t i, uint32_t n, float *a, float *b)
+{
+	*a = ((float)i + 0.5f) / (float)n;
+	*b = radical_inverse(i);
+}
+
+/* Pairs i0 .. i0 + n - 1 of a pixel's sequence.  White: a hash of pixel,
+ * index, seed and frame.  The others: the points ham0, ham1 (n of them),
+ * moved by r2_step steps of the R2 sequence (Roberts 2018: animated
+ * frames reuse no other's numbers), and for blue by the pixel's values
+ * of two blue-noise masks, offset by the seed (Cranley-Patterson
+ * rotation, Georgiev and Fajardo's dithered sampling): every pixel
+ * converges as Hammersley does, and what error is left is spread as blue
+ * noise, fine grained, which the eye and any later blur forgive. */
+static inline void
+sequence_pairs(int pattern, uint32_t seed, uint32_t frame, uint32_t r2_step, uint32_t px,
+               uint32_t py, uint32_t i0, uint32_t n, const float *ham0, const float *ham1,
+               float *u0, float *u1)
+{
+	float b0 = 0.0f, b1 = 0.0f, f0 = 0.0f, f1 = 0.0f;
+	uint32_t i;
+
+	if (pattern == SEQUENCE_WHITE) {
+		for (i = 0; i < n; i++) {
+			uint32_t v[4] = { px, py, i0 + i, seed ^ (frame * 0x9E3779B9u) };
+
+			pcg4d(v);
+			u0[i] = unit_float(v[0]);
+			u1[i] = unit_float(v[1]);
+		}
+		return;
+	}
+	if (pattern == SEQUENCE_BLUE) {
+		uint32_t sx = (px + seed * 23u) % BLUENOISE_SIZE;
+		uint32_t sy = (py + seed * 41u) % BLUENOISE_SIZE;
+		uint32_t c = sy * BLUENOISE_SIZE + sx;
+
+		b0 = ((float)bluenoise_rank[0][c] + 0.5f) / (float)(BLUENOISE_SIZE * BLUENOISE_SIZE);
+		b1 = ((float)bluenoise_rank[1][c] + 0.5f) / (float)(BLUENOISE_SIZE * BLUENOISE_SIZE);
+	}
+	if (r2_step) {
+		f0 = (float)r2_step * 0.7548776662f;
+		f1 = (float)r2_step * 0.5698402910f;
+	}
+	for (i = 0; i < n; i++) {
+		float a = ham0[i], b = ham1[i];
+
+		if (pattern == SEQUENCE_BLUE) {
+			a = fract(a + b0);
+			b = fract(b + b1);
+		}
+		if (r2_step) {
+			a = fract(a + f0);
+			b = fract(b + f1);
+		}
+		u0[i] = a;
+		u1[i] = b;
+	}
+}
+
+#endif
