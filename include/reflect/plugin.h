@@ -163,7 +163,7 @@ struct rf_host {
 	/* Environment radiance in direction dir (need not be unit) at a lod;
 	 * black where dir is not finite.  Since ABI 1.1 through the shading
 	 * pass's own kernels: a mode reading at the pass's D and lod gets the
-	 * pass's numbers (mode none's) to within about 1e-6 relative. */
+	 * pass's numbers (mode none's) to the bit. */
 	void (*sample)(void *ctx, const float dir[3], float lod, float rgb[3]);
 	/* The one roughness-to-lod mapping of the environment, and back. */
 	float (*roughness_to_lod)(void *ctx, float roughness);

@@ -384,8 +384,32 @@ rf__rgba_levels_fetch_many(const struct rf__rgba_levels *p, int vector, size_t c
 	size_t i = 0;
 
 #ifdef PYRAMID_AVX2
-	if (vector)
+	if (vector) {
 		i = fetch_many_avx2(p, count, x, y, z, lod, rgb);
+		/* The last reads padded to eight, through the same kernel: a
+		 * read gives the same bits wherever it falls in a batch (the
+		 * kernel fuses multiply-adds, the plain path does not), so a
+		 * mode reading one at a time through the host gets the pass's
+		 * numbers exactly. */
+		if (i < count) {
+			float px[8], py[8], pz[8], pl[8];
+			rf__v4 out[8];
+			size_t k, n = count - i;
+
+			for (k = 0; k < 8; k++) {
+				size_t j = i + (k < n ? k : n - 1);
+
+				px[k] = x[j];
+				py[k] = y[j];
+				pz[k] = z[j];
+				pl[k] = lod[j];
+			}
+			fetch_many_avx2(p, 8, px, py, pz, pl, out);
+			for (k = 0; k < n; k++)
+				rgb[i + k] = out[k];
+			i = count;
+		}
+	}
 #else
 	(void)vector;
 #endif

@@ -101,10 +101,9 @@ guarded_fetch(const struct rf__rgba_levels *levels, int vector, uint32_t n, cons
 	}
 }
 
-/* One read through the pass's own kernels (rf__rgba_levels_fetch_many):
- * a mode reading at the pass's D and lod gets the pass's numbers to the
- * last bit or two (the pass reads eight at a time with fused
- * multiply-adds, one read alone goes the plain way). */
+/* One read through the pass's own kernels (rf__rgba_levels_fetch_many,
+ * which pads a batch's tail to its vector width): a mode reading at the
+ * pass's D and lod gets the pass's numbers to the bit. */
 static void
 sample(void *ctx, const float dir[3], float lod, float rgb[3])
 {
