@@ -37,6 +37,17 @@ test_expect_success 'Blender passes: names mapped, Z up turned to Y up, V from t
 	test_cmp_numbers expect got 1e-6
 '
 
+test_expect_success 'Blender: a Tangent AOV becomes T, turned to Y up as a vector' '
+	ascii_image tangent.exr "ViewLayer.Position.X ViewLayer.Position.Y ViewLayer.Position.Z ViewLayer.Normal.X ViewLayer.Normal.Y ViewLayer.Normal.Z ViewLayer.Tangent.X ViewLayer.Tangent.Y ViewLayer.Tangent.Z" \
+		"1 2 3 0 0 1 0 1 0" &&
+	reflect-import --preset=blender --camera=1,-5,3 --roughness=0.25 -fa tangent.exr >t.txt &&
+	test_grep "^CHANNELS=P.X P.Y P.Z N.X N.Y N.Z T.X T.Y T.Z " t.txt &&
+	# T (0,1,0) Z up is (0,0,-1) Y up
+	data t.txt | cut -f7-9 >got &&
+	echo "0 0 -1" >expect &&
+	test_cmp_numbers expect got 1e-6
+'
+
 test_expect_success 'single-layer images mapped by FILE:CHANNEL; duplicate names dropped' '
 	ascii_image pos.exr "R G B" "0.5 1 -1" &&
 	ascii_image nrm.exr "R G B" "0 0 1" &&

@@ -95,6 +95,9 @@ struct rf_hit {
 	double P[3], N[3], Ng[3];
 	float roughness, metallic, albedo[3], mask;
 	int objid;
+	/* The surface tangent: the direction its texture's u grows in (a
+	 * normal map's), made perpendicular to N; unit length. */
+	double T[3];
 };
 
 /* dir must be a unit vector.  Returns the hit's objid. */

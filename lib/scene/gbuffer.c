@@ -12,13 +12,19 @@
 enum {
 	CH_PX, CH_PY, CH_PZ, CH_NX, CH_NY, CH_NZ, CH_NGX, CH_NGY, CH_NGZ,
 	CH_VX, CH_VY, CH_VZ, CH_ROUGHNESS, CH_METALLIC, CH_ALBEDO_R, CH_ALBEDO_G,
-	CH_ALBEDO_B, CH_MASK, CH_OBJID, CH_DEPTH, CH_COUNT
+	CH_ALBEDO_B, CH_MASK, CH_OBJID, CH_DEPTH,
+	/* on request only (-c T): three more floats a pixel on every stream
+	 * for the few models that have a direction on the surface */
+	CH_TX, CH_TY, CH_TZ, CH_COUNT
 };
+
+/* The channels written when none are asked for: all but the tangent. */
+#define CH_DEFAULT (CH_DEPTH + 1)
 
 static const char *const channel_names[CH_COUNT] = {
 	"P.X", "P.Y", "P.Z", "N.X", "N.Y", "N.Z", "Ng.X", "Ng.Y", "Ng.Z",
 	"V.X", "V.Y", "V.Z", "roughness", "metallic", "albedo.R", "albedo.G",
-	"albedo.B", "mask", "objid", "depth"
+	"albedo.B", "mask", "objid", "depth", "T.X", "T.Y", "T.Z"
 };
 
 /* Layer names that stand for three channels. */
@@ -27,7 +33,7 @@ static const struct {
 	int first;
 } layers[] = {
 	{ "P", CH_PX }, { "N", CH_NX }, { "Ng", CH_NGX }, { "V", CH_VX },
-	{ "albedo", CH_ALBEDO_R },
+	{ "albedo", CH_ALBEDO_R }, { "T", CH_TX },
 };
 
 
@@ -42,7 +48,7 @@ struct rf_gbuffer {
 	int nthreads;
 	size_t nch;
 	int map[CH_COUNT]; /* output channel -> value index */
-	int identity;      /* map[c] == c for all CH_COUNT channels */
+	int identity;      /* map[c] == c for the CH_DEFAULT channels */
 	struct rf_camera cam;
 	struct camera_basis cb;
 	double *k; /* per-object constants for rays from the camera */
@@ -85,9 +91,9 @@ select_channels(rf_gbuffer *g, const char *list, char *err, size_t errlen)
 	int c, rc;
 
 	if (!list) {
-		for (c = 0; c < CH_COUNT; c++)
+		for (c = 0; c < CH_DEFAULT; c++)
 			g->map[c] = c;
-		g->nch = CH_COUNT;
+		g->nch = CH_DEFAULT;
 		return 0;
 	}
 	while (*p) {
@@ -108,8 +114,8 @@ select_channels(rf_gbuffer *g, const char *list, char *err, size_t errlen)
 					break;
 			if (i == sizeof(layers) / sizeof(layers[0])) {
 				rf__format(err, errlen, "unknown G-buffer channel '%.*s' "
-				           "(expected P, N, Ng, V, roughness, metallic, albedo, "
-				           "mask, objid, depth or a component such as P.X)",
+				           "(expected P, N, Ng, T, V, roughness, metallic, "
+				           "albedo, mask, objid, depth or a component such as P.X)",
 				           (int)(n > 64 ? 64 : n), p);
 				return RF_ECHANNEL;
 			}
@@ -150,7 +156,7 @@ rf_gbuffer_create(rf_gbuffer **gp, const rf_scene *s, size_t width, size_t heigh
 		free(g);
 		return rc;
 	}
-	g->identity = g->nch == CH_COUNT;
+	g->identity = g->nch == CH_DEFAULT;
 	for (i = 0; i < g->nch; i++)
 		g->identity &= g->map[i] == (int)i;
 	g->k = calloc(s->nobjects + 1, RF__ORIGIN_STRIDE * sizeof(double));
@@ -329,6 +335,12 @@ render_row(void *arg, size_t task, int thread)
 		v[CH_MASK] = hit.mask;
 		v[CH_OBJID] = (float)hit.objid;
 		v[CH_DEPTH] = (float)hit.t;
+		if (!g->identity) {
+			/* the identity's out has no room for them */
+			v[CH_TX] = (float)hit.T[0];
+			v[CH_TY] = (float)hit.T[1];
+			v[CH_TZ] = (float)hit.T[2];
+		}
 		if (!g->identity)
 			for (c = 0; c < g->nch; c++)
 				out[c] = v[g->map[c]];

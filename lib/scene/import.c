@@ -42,6 +42,10 @@ static const struct {
 	{ "albedo.B", { ".DiffCol.B", NULL } },
 	{ "objid", { ".IndexOB.X", ".IndexOB.V", NULL } },
 	{ "roughness", { ".Roughness.V", ".roughness.V", ".Roughness.X" } },
+	/* no standard pass: an AOV named Tangent (or tangent), a vector */
+	{ "T.X", { ".Tangent.X", ".tangent.X", NULL } },
+	{ "T.Y", { ".Tangent.Y", ".tangent.Y", NULL } },
+	{ "T.Z", { ".Tangent.Z", ".tangent.Z", NULL } },
 };
 
 struct input {

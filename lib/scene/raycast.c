@@ -202,6 +202,25 @@ set_material(struct rf_hit *hit, const struct material *m)
 	hit->mask = m->mask;
 }
 
+/* hit->T from the texture's tangent t: its part perpendicular to the
+ * (perhaps bent) normal, unit; any perpendicular when t is along N. */
+static void
+set_tangent(struct rf_hit *hit, const double t[3])
+{
+	double d = rf__dot(t, hit->N), len;
+	int i;
+
+	for (i = 0; i < 3; i++)
+		hit->T[i] = t[i] - d * hit->N[i];
+	len = sqrt(rf__dot(hit->T, hit->T));
+	if (!(len > 1e-12)) {
+		rf__plane_tangent(hit->N, hit->T);
+		return;
+	}
+	for (i = 0; i < 3; i++)
+		hit->T[i] /= len;
+}
+
 static void
 shade_face(const struct material *m, const double d[3], int axis, double plane,
            struct rf_hit *hit)
@@ -209,20 +228,20 @@ shade_face(const struct material *m, const double d[3], int axis, double plane,
 	double t[3], b[3], uv[2];
 
 	hit->P[axis] = plane; /* exactly on the face */
-	hit->Ng[0] = hit->Ng[1] = hit->Ng[2] = 0.0;
-	hit->Ng[axis] = d[axis] > 0 ? -1.0 : 1.0;
 	set_material(hit, m);
+	face_frame(axis, d[axis] > 0 ? 1.0 : -1.0, hit->Ng, t, b);
 	if (m->nm.kind == NM_NONE) {
 		hit->N[0] = hit->Ng[0];
 		hit->N[1] = hit->Ng[1];
 		hit->N[2] = hit->Ng[2];
+		set_tangent(hit, t);
 		return;
 	}
-	face_frame(axis, d[axis] > 0 ? 1.0 : -1.0, hit->Ng, t, b);
 	/* World-anchored coordinates: patterns line up across faces. */
 	uv[0] = rf__dot(hit->P, t);
 	uv[1] = rf__dot(hit->P, b);
 	rf__normalmap_apply(&m->nm, uv, t, b, hit->Ng, hit->N);
+	set_tangent(hit, t);
 }
 
 static void
@@ -236,18 +255,18 @@ shade_sphere(const struct object *ob, const double d[3], struct rf_hit *hit)
 		ng[i] = (hit->P[i] - ob->center[i]) * ob->inv_radius;
 	flip = rf__dot(ng, d) > 0;
 	set_material(hit, m);
+	/* Longitude phi about +Y, colatitude theta from the bottom pole:
+	 * u runs along the equator, v up the meridians, in metres. */
+	sin_theta = sqrt(ng[0] * ng[0] + ng[2] * ng[2]);
+	if (sin_theta > 1e-9) {
+		t[0] = ng[2] / sin_theta;
+		t[1] = 0.0;
+		t[2] = -ng[0] / sin_theta;
+	} else {
+		t[0] = 1.0;
+		t[1] = t[2] = 0.0;
+	}
 	if (m->nm.kind != NM_NONE) {
-		/* Longitude phi about +Y, colatitude theta from the bottom pole:
-		 * u runs along the equator, v up the meridians, in metres. */
-		sin_theta = sqrt(ng[0] * ng[0] + ng[2] * ng[2]);
-		if (sin_theta > 1e-9) {
-			t[0] = ng[2] / sin_theta;
-			t[1] = 0.0;
-			t[2] = -ng[0] / sin_theta;
-		} else {
-			t[0] = 1.0;
-			t[1] = t[2] = 0.0;
-		}
 		uv[0] = ob->radius * (atan2(-ng[2], ng[0]) + 3.14159265358979323846);
 		uv[1] = ob->radius * acos(ng[1] < -1 ? 1.0 : ng[1] > 1 ? -1.0 : -ng[1]);
 		if (flip)
@@ -255,6 +274,7 @@ shade_sphere(const struct object *ob, const double d[3], struct rf_hit *hit)
 				ng[i] = -ng[i];
 		rf__cross(ng, t, b);
 		rf__normalmap_apply(&m->nm, uv, t, b, ng, hit->N);
+		set_tangent(hit, t);
 		return;
 	}
 	if (flip)
@@ -262,6 +282,7 @@ shade_sphere(const struct object *ob, const double d[3], struct rf_hit *hit)
 			ng[i] = -ng[i];
 	for (i = 0; i < 3; i++)
 		hit->N[i] = ng[i];
+	set_tangent(hit, t);
 }
 
 static void
@@ -286,6 +307,7 @@ shade_rect(const struct object *ob, const double d[3], struct rf_hit *hit)
 	if (m->nm.kind == NM_NONE) {
 		for (i = 0; i < 3; i++)
 			hit->N[i] = hit->Ng[i];
+		set_tangent(hit, ob->t);
 		return;
 	}
 	/* Coordinates from the corner, so that an image starts there. */
@@ -296,6 +318,7 @@ shade_rect(const struct object *ob, const double d[3], struct rf_hit *hit)
 	for (i = 0; i < 3; i++)
 		b[i] = flip ? -ob->b[i] : ob->b[i];
 	rf__normalmap_apply(&m->nm, uv, ob->t, b, hit->Ng, hit->N);
+	set_tangent(hit, ob->t);
 }
 
 int
@@ -358,6 +381,7 @@ rf__trace(const rf_scene *s, const double o[3], const double *k, const double d[
 			hit->N[j] = hit->Ng[j] = -d[j];
 			hit->albedo[j] = 0.0f;
 		}
+		rf__plane_tangent(hit->N, hit->T);
 		hit->roughness = 1.0f;
 		hit->metallic = 0.0f;
 		hit->mask = 0.0f;

@@ -278,6 +278,67 @@ TEST(tilted_normal_map_follows_the_tangent_frame)
 	remove(path);
 }
 
+/* The tangent: unit, perpendicular to N (a bent one too), along the
+ * texture's u: +X on a floor, (0, 0, -1) on the wall x = min (y x n),
+ * the equator's east on a sphere. */
+TEST(tangents_by_hand)
+{
+	rf_scene *s = parse("probe box -10 0 -10 10 10 10\n"
+	                    "sphere center 0 5 0 radius 1\n"
+	                    "rect plane y 2 min 4 4 max 6 6 normalmap bumps scale 0.3\n");
+	const double down[3] = { 0, -1, 0 }, west[3] = { -1, 0, 0 }, back[3] = { 0, 0, -1 };
+	const double o1[3] = { -3, 1, 3 }, o2[3] = { 0, 5, 5 };
+	int i, j;
+	struct rf_hit h;
+
+	ASSERT(s);
+	rf_scene_trace(s, o1, down, &h); /* the floor y = 0 */
+	ASSERT(h.Ng[1] == 1.0);
+	ASSERT_NEAR(h.T[0], 1, 1e-12);
+	ASSERT_NEAR(h.T[1], 0, 1e-12);
+	ASSERT_NEAR(h.T[2], 0, 1e-12);
+	rf_scene_trace(s, o1, west, &h); /* the wall x = -10, N = (1, 0, 0) */
+	ASSERT(h.Ng[0] == 1.0);
+	ASSERT_NEAR(h.T[2], -1, 1e-12);
+	rf_scene_trace(s, o2, back, &h); /* the sphere's front, N = (0, 0, 1) */
+	ASSERT_EQ(h.objid, 1);
+	ASSERT_NEAR(h.T[0], 1, 1e-12);
+	ASSERT_NEAR(h.T[2], 0, 1e-12);
+	for (i = 0; i < 20; i++) /* bumped: perpendicular to the bent N */
+		for (j = 0; j < 20; j++) {
+			const double o[3] = { 4.05 + 0.1 * i, 3, 4.05 + 0.1 * j };
+
+			rf_scene_trace(s, o, down, &h);
+			ASSERT(is_unit(h.T, 1e-12));
+			ASSERT(fabs(h.T[0] * h.N[0] + h.T[1] * h.N[1] + h.T[2] * h.N[2]) < 1e-12);
+			ASSERT(h.T[0] > 0.5); /* still along +X, leaning with N */
+		}
+	rf_scene_destroy(s);
+	/* the G-buffer gives them on request, the same numbers */
+	{
+		rf_scene *d = parse("probe box -3 0 -2 3 3 2\ncamera position 0 1.5 1.9 target 0 1 0\n"
+		                    "sphere center 0 1 0 radius 0.5 normalmap tiles scale 0.2\n");
+		rf_gbuffer *g;
+		char err[256];
+		float px[16 * 12 * 6];
+		int k;
+
+		ASSERT(d);
+		ASSERT_EQ(rf_gbuffer_create(&g, d, 16, 12, "N T", 1, err, sizeof(err)), 0);
+		ASSERT_EQ(rf_gbuffer_nchannels(g), 6);
+		ASSERT_EQ(rf_gbuffer_render(g, px, 0, 12), 0);
+		for (k = 0; k < 16 * 12; k++) {
+			const float *q = px + 6 * k;
+			double t[3] = { q[3], q[4], q[5] };
+
+			ASSERT(is_unit(t, 1e-6));
+			ASSERT(fabs(q[0] * q[3] + q[1] * q[4] + q[2] * q[5]) < 1e-6);
+		}
+		rf_gbuffer_destroy(g);
+		rf_scene_destroy(d);
+	}
+}
+
 TEST(procedural_maps_perturb_and_stay_unit)
 {
 	static const char *const kinds[] = { "tiles", "bumps", "noise" };
@@ -634,5 +695,6 @@ main(void)
 	RUN(parse_errors_name_the_place);
 	RUN(format_details);
 	RUN(relative_paths_follow_the_scene_file);
+	RUN(tangents_by_hand);
 	TAP_DONE();
 }
