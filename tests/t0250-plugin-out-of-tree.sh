@@ -179,6 +179,91 @@ test_expect_success 'the uninstalled tools load it as well' '
 	test_cmp_numbers full got2 0
 '
 
+# The installed reflect-shade, with the examples built below.
+shade () {
+	LD_LIBRARY_PATH="$prefix/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
+	REFLECT_PLUGIN_PATH="$oot/ex" REFLECT_PLUGIN_SYSTEM_PATH="$(cat plugindir)" \
+		"$prefix/bin/reflect-shade" "$@"
+}
+
+# The installed examples and their Makefile, built where an author
+# would copy them: ratio (an effective-roughness model) and taps (four
+# reads of the lobe through sample_many and texel_solid_angle).
+test_expect_success 'the installed examples build with their Makefile' '
+	ex="$prefix/share/doc/reflect/examples" &&
+	test -f "$ex/Makefile" && test -f "$ex/ratio.c" && test -f "$ex/taps.c" &&
+	mkdir "$oot/ex" && cp "$ex"/* "$oot/ex/" &&
+	cat >"$oot/pc" <<-EOF &&
+	#!/bin/sh
+	PKG_CONFIG_PATH="$prefix/lib/pkgconfig" PKG_CONFIG_LIBDIR= exec pkg-config --define-prefix "\$@"
+	EOF
+	chmod +x "$oot/pc" &&
+	(unset MAKEFLAGS MFLAGS MAKELEVEL && make -C "$oot/ex" PKG_CONFIG="$oot/pc" \
+		CFLAGS="-O2 -Werror -pedantic" >make.log 2>&1) &&
+	test -f "$oot/ex/sphere.so" && test -f "$oot/ex/ratio.so" && test -f "$oot/ex/taps.so"
+'
+
+# ratio: alpha' = r^2 lerp(1, min(1, d/L), strength), written as its
+# square root.  r = 0.5, d = 1, L = 2, strength 1: alpha' = 0.125,
+# 0.353553; strength 0.5: 0.1875, 0.433013; d = 3 > L: r itself; +inf
+# distances: r itself.
+test_expect_success 'the installed reflect-shade runs ratio: by hand' '
+	cat >rgb <<-\EOF &&
+	#?REFLECT1
+	NCOLS=4
+	NROWS=1
+	NCOMP=6
+	CHANNELS=roughness hit.dist probe.dist D.X D.Y D.Z
+	FORMAT=ascii
+
+	0.5	1	2	0	1	0
+	0.5	3	2	0	1	0
+	0.8	inf	inf	0	1	0
+	0.3	0	5	0	1	0
+	EOF
+	shade -fa -m ratio rgb >out 2>/dev/null &&
+	data out | cut -f7 >got &&
+	printf "%s\n" 0.353553 0.5 0.8 0 >expect &&
+	test_cmp_numbers expect got 1e-6 &&
+	shade -fa -m ratio:strength=0.5 rgb >out 2>/dev/null &&
+	data out | sed -n 1p | cut -f7 >got &&
+	echo 0.433013 >expect &&
+	test_cmp_numbers expect got 1e-6
+'
+
+# taps under a sky of one radiance in every level: 1 whatever the lobe;
+# at roughness 0, the mirror read none makes.
+test_expect_success 'the installed reflect-shade runs taps: a uniform sky, a mirror' '
+	awk "BEGIN { n = 8; for (k = 0; k < 4; k++) {
+		printf \"#?REFLECT1\\nENVMAP=CUBE\\nLEVEL=%d\\nLEVELS=4\\nPREFILTER=ggx\\n\", k
+		printf \"MAPPING=unity\\nSTEPS=3\\nNCOLS=%d\\nNROWS=%d\\n\", n, 6 * n
+		printf \"NCOMP=3\\nCHANNELS=R G B\\nFORMAT=ascii\\n\\n\"
+		for (j = 0; j < 6 * n * n; j++) print 0.75, 0.75, 0.75
+		n = n / 2 } }" >sky.rfl &&
+	shade -fa -m taps --env=sky.rfl rgb >out 2>/dev/null &&
+	data out | cut -f7-9 >got &&
+	printf "0.75 0.75 0.75\n%.0s" 1 2 3 4 >expect &&
+	test_cmp_numbers expect got 1e-6 &&
+	cat >mirror <<-\EOF &&
+	#?REFLECT1
+	NCOLS=4
+	NROWS=1
+	NCOMP=6
+	CHANNELS=roughness hit.dist probe.dist D.X D.Y D.Z
+	FORMAT=ascii
+
+	0	1	2	0	1	0
+	0	1	2	0.6	0.8	0
+	0	1	2	-0.48	0.6	-0.64
+	0	1	2	0	0	-1
+	EOF
+	shade -fa -m none mirror >n.txt 2>/dev/null &&
+	shade -fa -m taps mirror >t.txt 2>/dev/null &&
+	data n.txt | cut -f8-10 >a &&
+	data t.txt | cut -f7-9 >b &&
+	test_cmp_numbers a b 1e-5
+'
+
 test_expect_success 'clean up the out-of-tree directory' '
 	rm -rf "$oot"
 '
