@@ -24,7 +24,8 @@
  *        the pass's kernels, and sample_many; fail, for run();
  *        the probe's bevel and bevel_grown, and declare_bevel;
  *        RF_PARAM_STRING parameters and param_string; face_size,
- *        texel_solid_angle, pixel_footprint and random_pairs.
+ *        texel_solid_angle, pixel_footprint and random_pairs; the
+ *        probe list (nprobes, probes, probe_blend, probe_weights).
  * A minor bump only appends fields at the end of a struct, or defines new
  * flag bits or kinds; a major bump is anything else.  The host accepts a
  * plugin when its major equals the host's and its minor is not newer, and
@@ -250,7 +251,21 @@ struct rf_host {
 	 * values.  Frame 0 is a still: pass the stream's FRAME to animate. */
 	void (*random_pairs)(void *ctx, int pattern, uint32_t x, uint32_t y, uint32_t frame,
 	                     uint32_t i0, uint32_t n, uint32_t n_all, float *u0, float *u1);
+	/* Every probe of the frame (PROBE_*, PROBE2_*, ...; the first is
+	 * probe, as the tool's options have it), at most RF_PROBES_MAX, with
+	 * their blend distances, and each one's weight at a point p (nprobes
+	 * floats) as HDRP blends them: w = smoothstep(sat(the distance from p
+	 * to the box's nearest face / blend)), 1 inside a probe without a
+	 * blend distance, 0 outside its box; taken smallest box first, each
+	 * clipped to what the ones before left, w' = min(w, 1 - sum); the
+	 * return is the rest, 1 - sum, for the sky or an infinite probe. */
+	uint32_t nprobes;
+	const struct rf_probe *probes;
+	const float *probe_blend;
+	float (*probe_weights)(void *ctx, const float p[3], float *weights);
 };
+
+#define RF_PROBES_MAX 16
 
 /* The patterns of random_pairs (the raytraced mode's pattern=). */
 #define RF_SEQUENCE_WHITE 0

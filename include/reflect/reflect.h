@@ -154,6 +154,13 @@ struct rf_probe;
 RF_EXTERN int rf_probe_resolve(struct rf_probe *probe, const rf_header *h,
                                const char *box, const char *center,
                                const char *projection, char *err, size_t errlen);
+/* Every probe of a frame, from its keys (PROBE_*, then PROBE2_*, ...
+ * while they have a box) into probes and their blend distances
+ * (PROBE_BLEND..., 0 when absent), at most max: how many (a probe whose
+ * keys do not parse ends the list), or RF_EINVAL when the first's do
+ * not. */
+RF_EXTERN int rf_probe_list_read(struct rf_probe *probes, float *blend, size_t max,
+                                 const rf_header *h);
 /* Writes the probe as PROBE_BOX, PROBE_CENTER, PROBE_BOX_PROJECTION and
  * PROBE_BEVEL (removed for the box). */
 RF_EXTERN int rf_probe_to_header(const struct rf_probe *probe, rf_header *h);

@@ -202,3 +202,52 @@ rf_probe_resolve(struct rf_probe *probe, const rf_header *h, const char *box_arg
 	}
 	return 0;
 }
+
+/* Probe index's keys (PROBE_BOX for 0, PROBE2_BOX for 1...) into *probe
+ * and its blend distance; 1 when it has a box, 0 when not, RF_EINVAL for
+ * a value that does not parse. */
+static int
+probe_at(const rf_header *h, size_t index, struct rf_probe *probe, float *blend)
+{
+	char key[64];
+	float box[6];
+	const char *v;
+	int i;
+
+	memset(probe, 0, sizeof(*probe));
+	probe->box_projection = 1;
+	*blend = 0.0f;
+	rf__header_probe_key(key, sizeof(key), index, RF_KEY_PROBE_BOX);
+	if (!(v = rf_header_get(h, key)))
+		return 0;
+	if (scan_floats(v, box, 6) < 0)
+		return RF_EINVAL;
+	for (i = 0; i < 3; i++) {
+		probe->box_min[i] = box[i];
+		probe->box_max[i] = box[i + 3];
+		if (!(box[i] < box[i + 3]))
+			return RF_EINVAL;
+		probe->center[i] = 0.5f * (box[i] + box[i + 3]);
+	}
+	rf__header_probe_key(key, sizeof(key), index, RF_KEY_PROBE_CENTER);
+	if ((v = rf_header_get(h, key)) && scan_floats(v, probe->center, 3) < 0)
+		return RF_EINVAL;
+	rf__header_probe_key(key, sizeof(key), index, RF_KEY_PROBE_BOX_PROJECTION);
+	if ((v = rf_header_get(h, key)))
+		probe->box_projection = !(!strcmp(v, "0") || !strcmp(v, "off"));
+	rf__header_probe_key(key, sizeof(key), index, RF_KEY_PROBE_BLEND);
+	if ((v = rf_header_get(h, key)) && (scan_floats(v, blend, 1) < 0 || *blend < 0.0f))
+		return RF_EINVAL;
+	return 1;
+}
+
+int
+rf_probe_list_read(struct rf_probe *probes, float *blend, size_t max, const rf_header *h)
+{
+	size_t n = 0;
+	int rc = 0;
+
+	while (n < max && (rc = probe_at(h, n, &probes[n], &blend[n])) == 1)
+		n++;
+	return rc < 0 && n == 0 ? rc : (int)n;
+}

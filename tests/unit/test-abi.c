@@ -58,7 +58,7 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_param, flags, 40),
 	OFFSET(struct rf_param, choices, 48),
 
-	SIZE(struct rf_host, 176),
+	SIZE(struct rf_host, 208),
 	OFFSET(struct rf_host, size, 0),
 	OFFSET(struct rf_host, abi_major, 4),
 	OFFSET(struct rf_host, abi_minor, 8),
@@ -85,6 +85,10 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_host, texel_solid_angle, 152),
 	OFFSET(struct rf_host, pixel_footprint, 160),
 	OFFSET(struct rf_host, random_pairs, 168),
+	OFFSET(struct rf_host, nprobes, 176),
+	OFFSET(struct rf_host, probes, 184),
+	OFFSET(struct rf_host, probe_blend, 192),
+	OFFSET(struct rf_host, probe_weights, 200),
 
 	SIZE(struct rf_span, 72),
 	OFFSET(struct rf_span, size, 0),
@@ -150,6 +154,7 @@ TEST(constants)
 	ASSERT_EQ(RF_SEQUENCE_WHITE, 0);
 	ASSERT_EQ(RF_SEQUENCE_BLUE, 1);
 	ASSERT_EQ(RF_SEQUENCE_LOW_DISCREPANCY, 2);
+	ASSERT_EQ(RF_PROBES_MAX, 16);
 	ASSERT_EQ(RF_PARAM_KNOWN_FLAGS, 0xf);
 	ASSERT_EQ(RF_PLUGIN_RADIANCE, 0x1);
 	ASSERT_EQ(RF_PLUGIN_KNOWN_FLAGS, 0x1);

@@ -374,6 +374,61 @@ TEST(random_pairs_of_the_host)
 	rf_plugin_host_destroy(h);
 }
 
+/* The probe list from the keys and HDRP's weights, by hand.  A: the box
+ * 0..4 on every axis, blend 1 (volume 64); B: 3..8 x 0..4 x 0..4, blend 1
+ * (volume 80), so A is taken first.
+ *   (3.5, 2, 2): 0.5 from A's x = 4 and from B's x = 3: smoothstep(0.5)
+ *   = 0.5 each; A 0.5, B min(0.5, 1 - 0.5) = 0.5, sky 0.
+ *   (2, 2, 2): A 1 (2 from every face), B 0 (outside).
+ *   (3.8, 0.2, 2): 0.2 from the floor in both: smoothstep(0.2) = 0.104
+ *   each, sky 0.792.
+ *   (9, 2, 2): outside both: sky 1. */
+TEST(probe_list_and_weights)
+{
+	rf_plugin_host *h;
+	const struct rf_host *t;
+	rf_header *frame;
+	static const float pts[4][3] = { { 3.5f, 2, 2 }, { 2, 2, 2 }, { 3.8f, 0.2f, 2 },
+		                         { 9, 2, 2 } };
+	static const float want[4][3] = { { 0.5f, 0.5f, 0 }, { 1, 0, 0 },
+		                          { 0.104f, 0.104f, 0.792f }, { 0, 0, 1 } };
+	struct rf_probe first;
+	char err[256];
+	float w[RF_PROBES_MAX], sky;
+	int i;
+
+	ASSERT_EQ(rf_plugin_host_create(&h), 0);
+	t = rf_plugin_host_table(h);
+	ASSERT_EQ(t->nprobes, 0);
+	ASSERT_EQ(rf_header_create(&frame), 0);
+	ASSERT_EQ(rf_header_set_size(frame, 1, 1), 0);
+	ASSERT_EQ(rf_header_set(frame, "PROBE_BOX", "0 0 0 4 4 4"), 0);
+	ASSERT_EQ(rf_header_set(frame, "PROBE_BLEND", "1"), 0);
+	ASSERT_EQ(rf_header_set(frame, "PROBE2_BOX", "3 0 0 8 4 4"), 0);
+	ASSERT_EQ(rf_header_set(frame, "PROBE2_CENTER", "5 2 2"), 0);
+	ASSERT_EQ(rf_header_set(frame, "PROBE2_BLEND", "1"), 0);
+	ASSERT_EQ(rf_probe_resolve(&first, frame, NULL, NULL, NULL, err, sizeof(err)), 0);
+	rf_plugin_host_set_frame(h, frame);
+	rf_plugin_host_set_probe(h, &first);
+	ASSERT_EQ(t->nprobes, 2);
+	ASSERT(t->probes[1].center[0] == 5 && t->probes[1].box_min[0] == 3);
+	ASSERT(t->probe_blend[0] == 1 && t->probe_blend[1] == 1);
+	for (i = 0; i < 4; i++) {
+		sky = t->probe_weights(t->ctx, pts[i], w);
+		ASSERT_NEAR(w[0], want[i][0], 1e-6);
+		ASSERT_NEAR(w[1], want[i][1], 1e-6);
+		ASSERT_NEAR(sky, want[i][2], 1e-6);
+	}
+	/* without a blend distance, a probe is all or nothing */
+	ASSERT_EQ(rf_header_unset(frame, "PROBE_BLEND"), 0);
+	rf_plugin_host_set_frame(h, frame);
+	rf_plugin_host_set_probe(h, &first);
+	sky = t->probe_weights(t->ctx, pts[2], w);
+	ASSERT(w[0] == 1 && w[1] == 0 && sky == 0);
+	rf_header_destroy(frame);
+	rf_plugin_host_destroy(h);
+}
+
 /* sample_radiance: the plain levels of the environment's level 0. */
 TEST(radiance_reads_plain_levels)
 {
@@ -421,6 +476,7 @@ main(void)
 	RUN(environment_geometry);
 	RUN(pixel_footprint_by_hand);
 	RUN(random_pairs_of_the_host);
+	RUN(probe_list_and_weights);
 	RUN(radiance_reads_plain_levels);
 	TAP_DONE();
 }
