@@ -14,7 +14,8 @@ usage(void)
 	fprintf(stderr, "usage: %s [-lvV] [-m MODE[:KEY=VALUE...]] [-j THREADS] "
 	        "[--env=FILE] [--layout=L] [--prefiltered] [--srgb=auto|on|off] "
 	        "[--rgbm=M[,E]] [--intensity=X] [--size=N] "
-	        "[--mapping=unity|linear|exact] [--steps=N] [--samples=N] [--final] "
+	        "[--mapping=unity|linear|exact] [--steps=N] [--samples=N] "
+	        "[--final[=split-sum|unity|hdrp]] "
 	        "[--box=XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX] [--center=X,Y,Z] "
 	        "[--box-projection=on|off] [--lod=L] [--seed=N] " CLI_INVALID_USAGE " "
 	        CLI_IO_USAGE
@@ -39,7 +40,7 @@ static const struct option long_options[] = {
 	{ "mapping", required_argument, NULL, OPT_MAPPING },
 	{ "steps", required_argument, NULL, OPT_STEPS },
 	{ "samples", required_argument, NULL, OPT_SAMPLES },
-	{ "final", no_argument, NULL, OPT_FINAL },
+	{ "final", optional_argument, NULL, OPT_FINAL },
 	{ "box", required_argument, NULL, OPT_BOX },
 	{ "center", required_argument, NULL, OPT_CENTER },
 	{ "box-projection", required_argument, NULL, OPT_PROJECTION },
@@ -347,7 +348,14 @@ main(int argc, char **argv)
 		case OPT_SAMPLES:
 			o.samples = (unsigned)parse_whole("samples", optarg, 65536);
 			break;
-		case OPT_FINAL: o.final = 1; break;
+		case OPT_FINAL: {
+			enum rf_final f = RF_FINAL_SPLIT_SUM;
+
+			if (optarg && rf_final_parse(optarg, &f) < 0)
+				die("--final: '%s' is not split-sum, unity or hdrp", optarg);
+			o.final = (int)f;
+			break;
+		}
 		case OPT_BOX: o.probe.box = optarg; break;
 		case OPT_CENTER:
 			parse_floats(optarg, "--center", centre, 3);
@@ -379,7 +387,8 @@ main(int argc, char **argv)
 			       "      raw ones are prefiltered on the fly: --samples=N\n"
 			       "  --prefiltered --layout=L --srgb= --rgbm= --intensity= --size=N\n"
 			       "  --mapping=unity|linear|exact --steps=N  roughness to lod\n"
-			       "  --final  also R G B = spec x (F0 A + B), the split-sum BRDF\n"
+			       "  --final[=split-sum|unity|hdrp]  also R G B: spec x the split sum's\n"
+			       "      F0 A + B, Unity Standard's or HDRP's term\n"
 			       "  --box=... --center=X,Y,Z --box-projection=on|off  the probe (off:\n"
 			       "      every mode the classic lookup along R)\n"
 			       "  --lod=L  every mirror read at lod L (the mips' debug view)\n"

@@ -94,8 +94,19 @@ RF_EXTERN int rf_shade_environment(rf_cubemap **env, enum rf_mapping *mapping,
 
 typedef struct rf_shade rf_shade;
 
+/* The final colour's BRDF term (reflect-shade --final=...). */
+enum rf_final {
+	RF_FINAL_NONE = 0,     /* no R G B */
+	RF_FINAL_SPLIT_SUM = 1, /* spec (F0 A + B) */
+	RF_FINAL_UNITY = 2,    /* Unity Standard's surface reduction and grazing term */
+	RF_FINAL_HDRP = 3      /* HDRP's FGD with multiple-scattering compensation */
+};
+/* "split-sum", "unity" or "hdrp"; RF_EINVAL for anything else. */
+RF_EXTERN int rf_final_parse(const char *name, enum rf_final *final);
+
 struct rf_shade_options {
-	int final;    /* also R G B */
+	int final;    /* also R G B: an enum rf_final (1, any true value of
+	                 before, is the split sum) */
 	int nthreads; /* < 1 means 1 */
 	/* 1: the mode wrote spec.R spec.G spec.B itself (a Monte-Carlo mode
 	 * sampling through the host's services): reflective pixels keep

@@ -95,7 +95,9 @@ rf_shade_create(rf_shade **sp, const struct rf_shade_options *o)
 	*sp = NULL;
 	if (!(s = calloc(1, sizeof(*s))))
 		return RF_ENOMEM;
-	s->final = o && o->final;
+	s->final = o && o->final ? (o->final >= RF_FINAL_SPLIT_SUM && o->final <= RF_FINAL_HDRP
+	                                ? o->final : RF_FINAL_SPLIT_SUM)
+	                         : RF_FINAL_NONE;
 	s->mode_radiance = o && o->mode_radiance;
 	s->force_lod = o && o->force_lod;
 	s->lod = o ? o->lod : 0.0f;
@@ -177,6 +179,20 @@ rf_shade_destroy(rf_shade *s)
 	rf_header_destroy(s->out_h);
 	rf__rgba_levels_destroy(&s->levels);
 	free(s);
+}
+
+int
+rf_final_parse(const char *name, enum rf_final *final)
+{
+	static const char *const names[] = { "split-sum", "unity", "hdrp" };
+	int i;
+
+	for (i = 0; i < 3; i++)
+		if (!strcmp(name, names[i])) {
+			*final = (enum rf_final)(RF_FINAL_SPLIT_SUM + i);
+			return 0;
+		}
+	return RF_EINVAL;
 }
 
 void
@@ -431,14 +447,34 @@ shade_pixel(const rf_shade *s, const float *p, float *o, const struct reads *r, 
 		float nv = p[s->in[IN_NX]] * p[s->in[IN_VX]] +
 		           p[s->in[IN_NY]] * p[s->in[IN_VY]] +
 		           p[s->in[IN_NZ]] * p[s->in[IN_VZ]];
-		float metal = sat(or_one(s, p, IN_METAL)), a, b;
+		float metal = sat(or_one(s, p, IN_METAL)), pr = sat(p[s->in[IN_ROUGH]]), a, b;
 
-		rf_dfg_lookup(nv, p[s->in[IN_ROUGH]], &a, &b);
-		for (k = 0; k < 3; k++) {
-			float albedo = sat(or_one(s, p, IN_AR + k));
-			float f0 = 0.04f + (albedo - 0.04f) * metal;
+		if (s->final == RF_FINAL_UNITY) {
+			/* Unity Standard (BRDF1, linear): surfaceReduction x
+			 * lerp(F0, grazing, (1 - n.v)^5) */
+			const float alpha = pr * pr, reduction = 1.0f / (alpha * alpha + 1.0f);
+			const float one_minus_refl = 0.96f * (1.0f - metal);
+			const float grazing = sat((1.0f - pr) + (1.0f - one_minus_refl));
+			const float c = 1.0f - sat(nv), c5 = c * c * c * c * c;
 
-			rgb[k] *= f0 * a + b;
+			for (k = 0; k < 3; k++) {
+				float albedo = sat(or_one(s, p, IN_AR + k));
+				float f0 = 0.04f + (albedo - 0.04f) * metal;
+
+				rgb[k] *= reduction * (f0 + (grazing - f0) * c5);
+			}
+		} else {
+			rf_dfg_lookup(nv, pr, &a, &b);
+			for (k = 0; k < 3; k++) {
+				float albedo = sat(or_one(s, p, IN_AR + k));
+				float f0 = 0.04f + (albedo - 0.04f) * metal, fgd = f0 * a + b;
+
+				/* HDRP: the energy lost to single scattering, E = A + B,
+				 * given back in proportion to F0 */
+				if (s->final == RF_FINAL_HDRP && a + b > 0.0f)
+					fgd *= 1.0f + f0 * (1.0f / (a + b) - 1.0f);
+				rgb[k] *= fgd;
+			}
 		}
 	}
 	/* Every input is read: now the outputs, which may overwrite them. */

@@ -1,0 +1,72 @@
+#!/bin/sh
+test_description='reflect-shade --final=split-sum|unity|hdrp: the engines final colours by hand'
+. "$srcdir/tests/lib.sh"
+. "$srcdir/tests/shade-lib.sh"
+
+# A sky of one radiance in every level: spec = 1, so R G B is the BRDF
+# term alone.  Rows: N = (0,1,0); V at n.v = 1 or 0.5; roughness 0.5 or
+# 1; metallic 1, albedo 1 (a white metal, F0 = 1) or metallic 0, albedo
+# 0.5 (a dielectric, F0 = 0.04).
+test_expect_success 'setup: a uniform sky and a few pixels' '
+	awk "BEGIN { n = 8; for (k = 0; k < 4; k++) {
+		printf \"#?REFLECT1\\nENVMAP=CUBE\\nLEVEL=%d\\nLEVELS=4\\nPREFILTER=ggx\\n\", k
+		printf \"MAPPING=unity\\nSTEPS=3\\nNCOLS=%d\\nNROWS=%d\\n\", n, 6 * n
+		printf \"NCOMP=3\\nCHANNELS=R G B\\nFORMAT=ascii\\n\\n\"
+		for (j = 0; j < 6 * n * n; j++) print 1, 1, 1
+		n = n / 2 } }" >sky.rfl &&
+	stream px.txt 5 1 "N.X N.Y N.Z V.X V.Y V.Z D.X D.Y D.Z roughness metallic albedo.R albedo.G albedo.B" <<-\EOF
+	0 1 0 0 1 0 0 1 0 0.5 1 1 1 1
+	0 1 0 0 1 0 0 1 0 1 1 1 1 1
+	0 1 0 0 1 0 0 1 0 0.5 0 0.5 0.5 0.5
+	0 1 0 0.866025 0.5 0 0 1 0 0.5 1 1 1 1
+	0 1 0 0.866025 0.5 0 0 1 0 0.5 0 0.5 0.5 0.5
+	EOF
+'
+
+test_expect_success 'unity: surface reduction 1 / (alpha^2 + 1) times lerp(F0, grazing, (1 - n.v)^5)' '
+	# metal: grazing = sat(1 - r + 1) = 1, F0 = 1: 1 / (r^4 + 1) = 0.941176
+	# at r = 0.5 and 0.5 at r = 1.  Dielectric at n.v = 1: 0.04 / 1.0625
+	# = 0.0376471; at n.v = 0.5: grazing = 0.5 + 0.04 = 0.54, (0.5)^5 =
+	# 0.03125, lerp = 0.04 + 0.5 x 0.03125 = 0.055625, / 1.0625 = 0.0523529
+	reflect-shade -fa -m none --final=unity --env=sky.rfl px.txt >u.txt &&
+	column u.txt R G B >got &&
+	cat >expect <<-\EOF &&
+	0.941176 0.941176 0.941176
+	0.5 0.5 0.5
+	0.0376471 0.0376471 0.0376471
+	0.941176 0.941176 0.941176
+	0.0523529 0.0523529 0.0523529
+	EOF
+	cmp_numbers expect got 2e-6
+'
+
+test_expect_success 'split-sum is the default --final, spec x (F0 A + B)' '
+	reflect-shade -fa -m none --final --env=sky.rfl px.txt >s.txt &&
+	reflect-shade -fa -m none --final=split-sum --env=sky.rfl px.txt >s2.txt &&
+	column s.txt R G B >a && column s2.txt R G B >b && cmp a b &&
+	# a white metal loses energy to single scattering, the more the
+	# rougher: E = A + B, 0.916 at roughness 0.5, 0.307 at 1
+	awk "NR == 1 { e1 = \$1 } NR == 2 { e2 = \$1 }
+		END { exit !(e1 > 0.9 && e1 < 0.93 && e2 > 0.29 && e2 < 0.32) }" a
+'
+
+test_expect_success 'hdrp: (F0 A + B)(1 + F0 (1/E - 1)): a white metal keeps all its energy' '
+	reflect-shade -fa -m none --final=hdrp --env=sky.rfl px.txt >h.txt &&
+	column h.txt R >h &&
+	column s.txt R >e &&
+	# rows 1, 2, 4: F0 = 1, so E (1 + 1/E - 1) = 1; rows 3 and 5 from the
+	# split sum of the same pixel and the white metal beside it (E)
+	paste -d" " h e | awk "
+		NR == 1 || NR == 2 || NR == 4 { if (\$1 < 0.999999 || \$1 > 1.000001) bad++ }
+		NR == 1 { e1 = \$2 } NR == 4 { e4 = \$2 }
+		NR == 3 { w = \$2 * (1 + 0.04 * (1 / e1 - 1)); if (\$1 - w > 1e-6 || w - \$1 > 1e-6) bad++ }
+		NR == 5 { w = \$2 * (1 + 0.04 * (1 / e4 - 1)); if (\$1 - w > 1e-6 || w - \$1 > 1e-6) bad++ }
+		END { exit bad > 0 }"
+'
+
+test_expect_success 'an unknown --final is refused' '
+	test_expect_code 1 reflect-shade --final=unreal --env=sky.rfl px.txt >/dev/null 2>err &&
+	test_grep "final: .unreal. is not split-sum, unity or hdrp" err
+'
+
+test_done
