@@ -15,7 +15,8 @@ usage(void)
 	        "[--env=FILE] [--layout=L] [--prefiltered] [--srgb=auto|on|off] "
 	        "[--rgbm=M[,E]] [--intensity=X] [--size=N] "
 	        "[--mapping=unity|linear|exact] [--steps=N] [--samples=N] "
-	        "[--final[=split-sum|unity|hdrp]] "
+	        "[--final[=split-sum|unity|hdrp]] [--diffuse=on|off] "
+	        "[--diffuse-projection=off|box] "
 	        "[--box=XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX] [--center=X,Y,Z] "
 	        "[--box-projection=on|off] [--lod=L] [--seed=N] " CLI_INVALID_USAGE " "
 	        CLI_IO_USAGE
@@ -26,7 +27,8 @@ usage(void)
 enum {
 	OPT_ENVMAP = 256, /* handed to envmap_opts_parse by name */
 	OPT_MAPPING, OPT_STEPS, OPT_SAMPLES, OPT_FINAL, OPT_BOX, OPT_CENTER,
-	OPT_PROJECTION, OPT_LOD, OPT_SEED, OPT_INVALID, OPT_HELP
+	OPT_PROJECTION, OPT_LOD, OPT_SEED, OPT_INVALID, OPT_DIFFUSE, OPT_DIFFUSE_PROJECTION,
+	OPT_HELP
 };
 
 static const struct option long_options[] = {
@@ -45,6 +47,8 @@ static const struct option long_options[] = {
 	{ "center", required_argument, NULL, OPT_CENTER },
 	{ "box-projection", required_argument, NULL, OPT_PROJECTION },
 	{ "lod", required_argument, NULL, OPT_LOD },
+	{ "diffuse", required_argument, NULL, OPT_DIFFUSE },
+	{ "diffuse-projection", required_argument, NULL, OPT_DIFFUSE_PROJECTION },
 	{ "seed", required_argument, NULL, OPT_SEED },
 	{ "invalid", required_argument, NULL, OPT_INVALID },
 	{ "help", no_argument, NULL, OPT_HELP },
@@ -230,6 +234,7 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	/* Box projection off: the classic lookup along R for every mode, the
 	 * distances infinite as for a probe without box projection. */
 	rf_shade_set_unprojected(shade, prc == 0 && !probe.box_projection);
+	rf_shade_set_probe(shade, prc == 0 && probe.box_projection ? &probe : NULL);
 	check_frame(o, shade, in, center);
 
 	name = o->env.path ? o->env.path : rf_header_get(in, RF_KEY_PROBE_ENV);
@@ -368,6 +373,16 @@ main(int argc, char **argv)
 				die("--box-projection: '%s' is not on or off", optarg);
 			o.probe.projection = optarg;
 			break;
+		case OPT_DIFFUSE:
+			if (strcmp(optarg, "on") && strcmp(optarg, "off"))
+				die("--diffuse: '%s' is not on or off", optarg);
+			so.diffuse = !strcmp(optarg, "on");
+			break;
+		case OPT_DIFFUSE_PROJECTION:
+			if (strcmp(optarg, "off") && strcmp(optarg, "box"))
+				die("--diffuse-projection: '%s' is not off or box", optarg);
+			so.diffuse_box = !strcmp(optarg, "box");
+			break;
 		case OPT_LOD:
 			so.lod = (float)parse_number("lod", optarg, 0, 64);
 			so.force_lod = 1;
@@ -392,6 +407,8 @@ main(int argc, char **argv)
 			       "  --box=... --center=X,Y,Z --box-projection=on|off  the probe (off:\n"
 			       "      every mode the classic lookup along R)\n"
 			       "  --lod=L  every mirror read at lod L (the mips' debug view)\n"
+			       "  --diffuse=on|off  with --final, albedo (1 - metallic) E(N) / pi too (off)\n"
+			       "  --diffuse-projection=off|box  E at N, or box-projected from P\n"
 			       "  --seed=N  for modes that draw samples\n"
 			       "  --invalid=error|clamp|zero  NaN, Inf, roughness out of [0, 1]\n"
 			       "  -j N  threads   -v  say which plugin and environment   -V  versions\n"

@@ -69,4 +69,44 @@ test_expect_success 'an unknown --final is refused' '
 	test_grep "final: .unreal. is not split-sum, unity or hdrp" err
 '
 
+# Diffuse light: E = pi under a sky of radiance 1, so albedo (1 -
+# metallic) E / pi = 0.5 for the dielectric rows (3 and 5), 0 for metal.
+test_expect_success '--diffuse=on: albedo (1 - metallic) E(N) / pi, added to R G B' '
+	reflect-shade -fa -m none --final --diffuse=on --env=sky.rfl px.txt >d.txt &&
+	test_grep "^CHANNELS=.* R G B diffuse.R diffuse.G diffuse.B$" d.txt &&
+	column d.txt diffuse.R diffuse.G diffuse.B >got &&
+	printf "0 0 0\n0 0 0\n0.5 0.5 0.5\n0 0 0\n0.5 0.5 0.5\n" >expect &&
+	cmp_numbers expect got 1e-4 &&
+	column d.txt R >with && column s.txt R >without &&
+	paste -d" " with without got | awk "{ d = \$1 - \$2 - \$3; if (d > 1e-5 || d < -1e-5) bad++ }
+		END { exit bad > 0 }" &&
+	! grep "diffuse" s.txt
+'
+
+# Box-projected diffuse light: from the capture point itself it is E at N;
+# from elsewhere it reads another direction.  Level 0 of this chain holds
+# 10 + f on face f, so E changes with the direction.
+test_expect_success '--diffuse-projection=box: E along N projected from P' '
+	level_chain faces.rfl 16 5 unity 10 &&
+	stream b.txt 2 1 "P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z D.X D.Y D.Z roughness metallic" \
+		PROBE_BOX="-3 0 -2 3 3 2" PROBE_CENTER="0 1.5 0" <<-\EOF &&
+	0 1.5 0 0.6 0.8 0 0 1 0 0 1 0 0.5 0
+	2.5 0.2 1.5 0.6 0.8 0 0 1 0 0 1 0 0.5 0
+	EOF
+	reflect-shade -fa -m none --final --diffuse=on --env=faces.rfl b.txt >off.txt &&
+	reflect-shade -fa -m none --final --diffuse=on --diffuse-projection=box \
+		--env=faces.rfl b.txt >box.txt &&
+	column off.txt diffuse.R >a && column box.txt diffuse.R >b &&
+	sed -n 1p a >a1 && sed -n 1p b >b1 && cmp_numbers a1 b1 1e-6 &&
+	sed -n 2p a >a2 && sed -n 2p b >b2 && ! cmp_numbers a2 b2 1e-3 2>/dev/null
+'
+
+test_expect_success 'bad --diffuse values are refused' '
+	test_expect_code 1 reflect-shade --final --diffuse=maybe --env=sky.rfl px.txt 2>err >/dev/null &&
+	test_grep "diffuse: .maybe. is not on or off" err &&
+	test_expect_code 1 reflect-shade --final --diffuse-projection=sphere --env=sky.rfl px.txt \
+		2>err >/dev/null &&
+	test_grep "diffuse-projection: .sphere. is not off or box" err
+'
+
 test_done

@@ -101,6 +101,14 @@ RF_EXTERN void rf_cubemap_sample(const rf_cubemap *c, const float dir[3], float 
                                  float rgb[3]);
 /* Solid-angle-weighted mean of a level, per channel. */
 RF_EXTERN void rf_cubemap_level_mean(const rf_cubemap *c, size_t level, double rgb[3]);
+/* A level's radiance as 9 spherical-harmonic coefficients a channel
+ * (sh[3 k + channel], k the basis function of bands 0, 1, 2 in the order
+ * 1, y, z, x, xy, yz, 3z^2 - 1, xz, x^2 - y^2), and the irradiance they
+ * give at a normal n (need not be unit): the cosine-weighted integral of
+ * the radiance over n's hemisphere, so that a Lambert surface of albedo a
+ * reflects a E / pi. */
+RF_EXTERN void rf_cubemap_sh9(const rf_cubemap *c, size_t level, float sh[27]);
+RF_EXTERN void rf_sh9_irradiance(const float sh[27], const float n[3], float rgb[3]);
 
 /* ---- environment images ---------------------------------------------- */
 

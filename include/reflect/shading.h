@@ -117,9 +117,20 @@ struct rf_shade_options {
 	 * affected. */
 	int force_lod;
 	float lod;
+	/* With final: 1 adds the diffuse light of the environment's
+	 * irradiance (9 spherical harmonics of its level 0), albedo (1 -
+	 * metallic) E(N) / pi, to R G B and writes it as diffuse.R G B;
+	 * box (with diffuse) reads E along N box-projected from P, as the
+	 * specular lookup is. */
+	int diffuse;
+	int diffuse_box;
 };
 
 RF_EXTERN int rf_shade_create(rf_shade **s, const struct rf_shade_options *o);
+/* The probe box the diffuse light's box projection uses, for the frames
+ * that follow (NULL: none, the irradiance at N itself). */
+struct rf_probe;
+RF_EXTERN void rf_shade_set_probe(rf_shade *s, const struct rf_probe *probe);
 /* For the frames that follow: 1 looks up along the reflection vector R
  * (box projection off: the classic lookup), not along D; 0 (the
  * default) along D. */

@@ -13,6 +13,8 @@
 #include "util/pixels.h"
 #include "util/pool.h"
 #include "reflect/shading.h"
+#include "reflect/plugin.h"
+#include "project/projection.h"
 
 
 /* Input channels; -1 when absent (only the optional ones may be). */
@@ -33,16 +35,22 @@ static const char *const in_names[IN_COUNT] = {
 	RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHADE_SPEC_B
 };
 
-enum { OUT_SR, OUT_SG, OUT_SB, OUT_R, OUT_G, OUT_B, OUT_COUNT };
+enum { OUT_SR, OUT_SG, OUT_SB, OUT_R, OUT_G, OUT_B, OUT_DR, OUT_DG, OUT_DB, OUT_COUNT };
 
 static const char *const out_names[OUT_COUNT] = {
-	RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHADE_SPEC_B, "R", "G", "B"
+	RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHADE_SPEC_B, "R", "G", "B",
+	"diffuse.R", "diffuse.G", "diffuse.B"
 };
 
 struct rf_shade {
 	int final, nthreads, mode_radiance;
 	int force_lod, unprojected;
 	float lod;
+	/* The diffuse light: the environment's irradiance coefficients, and
+	 * the probe box it is box-projected in (diffuse_box). */
+	int diffuse, diffuse_box, has_box;
+	float sh[27];
+	struct box box;
 	int in[IN_COUNT];
 	int out[OUT_COUNT];
 	size_t nout;
@@ -104,7 +112,9 @@ rf_shade_create(rf_shade **sp, const struct rf_shade_options *o)
 	s->nthreads = o && o->nthreads > 1 ? o->nthreads : 1;
 	if (s->nthreads > RF__THREADS_MAX)
 		s->nthreads = RF__THREADS_MAX;
-	s->nout = s->final ? OUT_COUNT : OUT_R;
+	s->diffuse = s->final && o->diffuse;
+	s->diffuse_box = s->diffuse && o->diffuse_box;
+	s->nout = s->final ? (s->diffuse ? OUT_COUNT : OUT_DR) : OUT_R;
 	if (rf__pool_create(&s->pool, s->nthreads) < 0) {
 		free(s);
 		return RF_ENOMEM;
@@ -196,6 +206,14 @@ rf_final_parse(const char *name, enum rf_final *final)
 }
 
 void
+rf_shade_set_probe(rf_shade *s, const struct rf_probe *probe)
+{
+	s->has_box = probe != NULL;
+	if (probe)
+		s->box = box_of_probe(probe);
+}
+
+void
 rf_shade_set_unprojected(rf_shade *s, int unprojected)
 {
 	s->unprojected = unprojected;
@@ -219,6 +237,8 @@ rf_shade_set_environment(rf_shade *s, const rf_cubemap *env, enum rf_mapping map
 		return rc;
 	s->env = env;
 	s->vector = rf__rgba_levels_simd_usable(&s->levels);
+	if (s->diffuse)
+		rf_cubemap_sh9(env, 0, s->sh);
 	s->mapping = mapping;
 	s->steps = steps;
 	return 0;
@@ -424,11 +444,37 @@ plan_reads(const rf_shade *s, const float *in, size_t in_ncomp, size_t y, struct
 	return n;
 }
 
+/* Lambert's albedo (1 - metallic) E(N) / pi, E from the irradiance
+ * coefficients at N, or with the box projection at the direction from
+ * the capture point to where P + t N leaves the probe box. */
+static void
+diffuse_light(const rf_shade *s, const float *p, float e[3])
+{
+	float n[3] = { p[s->in[IN_NX]], p[s->in[IN_NY]], p[s->in[IN_NZ]] }, dir[3], t, reach;
+	float metal = sat(or_one(s, p, IN_METAL));
+	int k;
+
+	for (k = 0; k < 3; k++)
+		dir[k] = n[k];
+	if (s->diffuse_box && s->has_box && s->in[IN_PX] >= 0) {
+		const float pos[3] = { p[s->in[IN_PX]], p[s->in[IN_PY]], p[s->in[IN_PZ]] };
+		float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), u[3];
+
+		for (k = 0; k < 3; k++)
+			u[k] = len > 0.0f ? n[k] / len : n[k];
+		if (box_exit(&s->box, pos, u, &t) == 0)
+			lookup_from_hit(&s->box, pos, u, t, dir, &reach);
+	}
+	rf_sh9_irradiance(s->sh, dir, e);
+	for (k = 0; k < 3; k++)
+		e[k] *= sat(or_one(s, p, IN_AR + k)) * (1.0f - metal) * (float)(1.0 / 3.14159265358979);
+}
+
 /* Pixel p's outputs into o (which may be p) from its reads. */
 static void
 shade_pixel(const rf_shade *s, const float *p, float *o, const struct reads *r, size_t x)
 {
-	float rgb[3] = { 0, 0, 0 }, wall[3] = { 0, 0, 0 }, spec[3], m = r->mask[x];
+	float rgb[3] = { 0, 0, 0 }, wall[3] = { 0, 0, 0 }, spec[3], diffuse[3], m = r->mask[x];
 	int k;
 
 	if (m > 0.0f && s->mode_radiance) {
@@ -477,6 +523,16 @@ shade_pixel(const rf_shade *s, const float *p, float *o, const struct reads *r, 
 			}
 		}
 	}
+	if (s->diffuse) {
+		float e[3] = { 0, 0, 0 };
+
+		if (m > 0.0f)
+			diffuse_light(s, p, e);
+		for (k = 0; k < 3; k++) {
+			diffuse[k] = e[k];
+			rgb[k] += e[k];
+		}
+	}
 	/* Every input is read: now the outputs, which may overwrite them. */
 	for (k = 0; k < 3; k++)
 		o[s->out[OUT_SR + k]] = m * spec[k] + (1.0f - m) * wall[k];
@@ -484,6 +540,9 @@ shade_pixel(const rf_shade *s, const float *p, float *o, const struct reads *r, 
 	if (s->final)
 		for (k = 0; k < 3; k++)
 			o[s->out[OUT_R + k]] = m * rgb[k] + (1.0f - m) * wall[k];
+	if (s->diffuse)
+		for (k = 0; k < 3; k++)
+			o[s->out[OUT_DR + k]] = m * diffuse[k];
 }
 
 /* A row of ncols pixels: its reads gathered, made in one go (eight at a

@@ -346,6 +346,52 @@ TEST(bad_sizes_refused)
 	rf_cubemap_destroy(c);
 }
 
+/* Irradiance from 9 coefficients, by hand.  A sky of radiance 1 all
+ * round: E = pi at any normal.  Radiance 1 above the horizon (y > 0), 0
+ * below: L00 = 2 pi Y00 = 1.7725, L1,y = 0.4886 pi, band 2's zonal term
+ * integrates 3 y^2 - 1 over the hemisphere to 0, so E(up) = pi Y00 L00
+ * + (2 pi / 3) Y1 L1,y = pi/2 + pi/2 = pi (exact: the hemisphere), E(down)
+ * = 0, E(horizontal) = pi / 2. */
+TEST(irradiance_by_hand)
+{
+	rf_cubemap *c;
+	const float up[3] = { 0, 1, 0 }, down[3] = { 0, -2, 0 }, side[3] = { 1, 0, 0 };
+	float sh[27], e[3];
+	size_t i, j;
+	int f;
+
+	ASSERT_EQ(rf_cubemap_create(&c, 64, 1), 0);
+	for (f = 0; f < 6; f++)
+		for (j = 0; j < 64; j++)
+			for (i = 0; i < 64; i++) {
+				float *t = rf_cubemap_texel(c, 0, (enum rf_face)f, i, j);
+
+				t[0] = t[1] = t[2] = 1.0f;
+			}
+	rf_cubemap_sh9(c, 0, sh);
+	rf_sh9_irradiance(sh, up, e);
+	ASSERT_NEAR(e[0], M_PI, 1e-4);
+	rf_sh9_irradiance(sh, side, e);
+	ASSERT_NEAR(e[2], M_PI, 1e-4);
+	for (f = 0; f < 6; f++)
+		for (j = 0; j < 64; j++)
+			for (i = 0; i < 64; i++) {
+				float *t = rf_cubemap_texel(c, 0, (enum rf_face)f, i, j), d[3];
+
+				rf_cube_direction((enum rf_face)f, (i + 0.5f) / 64, (j + 0.5f) / 64, d);
+				t[0] = t[1] = t[2] = d[1] > 0 ? 1.0f : 0.0f;
+			}
+	rf_cubemap_sh9(c, 0, sh);
+	ASSERT_NEAR(sh[0], 2 * M_PI * 0.282094792, 2e-3);
+	rf_sh9_irradiance(sh, up, e);
+	ASSERT_NEAR(e[1], M_PI, 5e-3);
+	rf_sh9_irradiance(sh, down, e);
+	ASSERT_NEAR(e[1], 0, 5e-3);
+	rf_sh9_irradiance(sh, side, e);
+	ASSERT_NEAR(e[1], M_PI / 2, 5e-3);
+	rf_cubemap_destroy(c);
+}
+
 TEST(mapping_values)
 {
 	enum rf_mapping m;
@@ -399,6 +445,7 @@ main(void)
 	RUN(trilinear_between_levels);
 	RUN(box_chain_keeps_the_mean);
 	RUN(bad_sizes_refused);
+	RUN(irradiance_by_hand);
 	RUN(mapping_values);
 	RUN(mapping_roundtrips);
 	TAP_DONE();
