@@ -75,6 +75,8 @@ struct environment {
 	enum rf_mapping mapping;
 	float steps;
 	int fresh; /* loaded since the sampling pass last took it */
+	int has_sh9; /* the chain kept its irradiance coefficients */
+	float sh9[27];
 };
 
 static double
@@ -141,6 +143,8 @@ load_environment(const struct shade_opts *o, const char *name, struct environmen
 	                               err, sizeof(err))) < 0)
 		die_status(rc, err);
 	e->fresh = 1;
+	e->has_sh9 = info.has_sh9;
+	memcpy(e->sh9, info.sh9, sizeof(e->sh9));
 	if (o->verbose)
 		warn("environment '%s': %zu texels, %zu levels, mapping %s, steps %g", name,
 		     rf_cubemap_size(e->cube), rf_cubemap_levels(e->cube),
@@ -274,6 +278,8 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	    (rc = rf_shade_set_environment(shade, env->cube, env->mapping,
 	                                   env->steps)) < 0)
 		die_status(rc, NULL);
+	if (env->fresh && env->has_sh9)
+		rf_shade_set_irradiance(shade, env->sh9);
 	env->fresh = 0;
 
 	cli_record_command(out);

@@ -109,4 +109,24 @@ test_expect_success 'bad --diffuse values are refused' '
 	test_grep "diffuse-projection: .sphere. is not off or box" err
 '
 
+test_expect_success 'reflect-prefilter keeps the coefficients with the chain, and shade uses them' '
+	reflect-prefilter --size=16 -o room.rfl 2>/dev/null &&
+	reflect-info room.rfl | grep "^	IRRADIANCE_SH9=" >key &&
+	test_line_count 1 key &&
+	test "$(sed "s/.*=//" key | wc -w)" = 27 &&
+	# the same numbers as projecting level 0 on load: the key removed
+	sed "/^IRRADIANCE_SH9=/d" room.rfl >bare.rfl &&
+	reflect-shade -h -m none --final --diffuse=on --env=room.rfl px.txt >a.raw &&
+	reflect-shade -h -m none --final --diffuse=on --env=bare.rfl px.txt >b.raw &&
+	cmp a.raw b.raw &&
+	# and they are read: zero coefficients give no diffuse light
+	zeros=$(printf "0 %.0s" $(seq 27)) &&
+	sed "s/^IRRADIANCE_SH9=.*/IRRADIANCE_SH9=$zeros/" room.rfl >zero.rfl &&
+	reflect-shade -fa -m none --final --diffuse=on --env=zero.rfl px.txt >z.txt &&
+	column z.txt diffuse.R | sort -u >got && echo 0 >expect && diff expect got &&
+	sed "s/^IRRADIANCE_SH9=.*/IRRADIANCE_SH9=1 2 x/" room.rfl >bad.rfl &&
+	test_expect_code 1 reflect-shade -m none --final --diffuse=on --env=bad.rfl px.txt >/dev/null 2>err &&
+	test_grep "IRRADIANCE_SH9.*needs 27 finite numbers" err
+'
+
 test_done

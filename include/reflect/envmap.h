@@ -200,6 +200,10 @@ struct rf_chain_info {
 	float steps;              /* the lod of its roughest level */
 	unsigned samples;         /* GGX samples at level 1 (0: brute force) */
 	int base_copied;          /* 1: level 0 is the source as it was */
+	/* Level 0's irradiance coefficients (rf_cubemap_sh9), kept with a
+	 * chain stream as IRRADIANCE_SH9 (written always, read when there). */
+	int has_sh9;
+	float sh9[27];
 };
 
 /* How an environment is read: the options of reflect-prefilter(1) and

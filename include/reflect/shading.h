@@ -127,6 +127,9 @@ struct rf_shade_options {
 };
 
 RF_EXTERN int rf_shade_create(rf_shade **s, const struct rf_shade_options *o);
+/* The diffuse light's coefficients as a chain file kept them (after
+ * rf_shade_set_environment, which projects level 0 itself otherwise). */
+RF_EXTERN void rf_shade_set_irradiance(rf_shade *s, const float sh9[27]);
 /* The probe box the diffuse light's box projection uses, for the frames
  * that follow (NULL: none, the irradiance at N itself). */
 struct rf_probe;

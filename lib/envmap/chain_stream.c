@@ -1,9 +1,11 @@
 /* Cube chains as streams: one ENVMAP=CUBE frame per level. */
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "envmap/envmap-internal.h"
+#include "stream/stream-internal.h"
 #include "reflect/envmap.h"
 
 static void
@@ -43,6 +45,18 @@ rf_chain_write_stream(const rf_cubemap *c, const struct rf_chain_info *info,
 		if (info->prefiltered)
 			set_number(h, "SAMPLES", info->samples);
 		rf_header_set(h, "BASE", info->base_copied ? "copied" : "filtered");
+		if (k == 0) {
+			/* the diffuse light's coefficients, so a shade tool need
+			 * not project the level itself */
+			float sh[27];
+			double v[27];
+			int i;
+
+			rf_cubemap_sh9(c, 0, sh);
+			for (i = 0; i < 27; i++)
+				v[i] = sh[i];
+			rf__header_set_numbers(h, "IRRADIANCE_SH9", v, 27);
+		}
 		if ((rc = rf_writer_begin_frame(w, h)) < 0) {
 			rf__format(err, errlen, "%s", rf_writer_error(w));
 			rf_header_destroy(h);
@@ -175,6 +189,21 @@ rf_chain_read_stream(rf_cubemap **cp, struct rf_chain_info *info, rf_reader *r,
 	info->base_copied = !(v = rf_header_get(h, "BASE")) || strcmp(v, "filtered");
 	info->steps = (float)steps;
 	info->samples = (unsigned)samples;
+	if ((v = rf_header_get(h, "IRRADIANCE_SH9"))) {
+		char *end;
+		int i;
+
+		for (i = 0; i < 27; i++) {
+			info->sh9[i] = strtof(v, &end);
+			if (end == v || !isfinite(info->sh9[i])) {
+				rf__format(err, errlen, "header key IRRADIANCE_SH9: '%.60s' needs 27 "
+				           "finite numbers", rf_header_get(h, "IRRADIANCE_SH9"));
+				return RF_EFORMAT;
+			}
+			v = end;
+		}
+		info->has_sh9 = 1;
+	}
 	if ((rc = rf_cubemap_check_size(n, (size_t)levels, err, errlen)) < 0)
 		return rc;
 	if ((rc = rf_cubemap_create(cp, n, (size_t)levels)) < 0) {

@@ -206,6 +206,12 @@ rf_final_parse(const char *name, enum rf_final *final)
 }
 
 void
+rf_shade_set_irradiance(rf_shade *s, const float sh9[27])
+{
+	memcpy(s->sh, sh9, sizeof(s->sh));
+}
+
+void
 rf_shade_set_probe(rf_shade *s, const struct rf_probe *probe)
 {
 	s->has_box = probe != NULL;
