@@ -329,7 +329,7 @@ main(int argc, char **argv)
 	const rf_header *in;
 	rf_plugin_host *host;
 	rf_shade *shade;
-	int c, idx, list = 0, rc;
+	int c, idx, list = 0, rc, diffuse_given = 0;
 
 	cli_init(argc, argv);
 	memset(&o, 0, sizeof(o));
@@ -383,6 +383,7 @@ main(int argc, char **argv)
 			if (strcmp(optarg, "on") && strcmp(optarg, "off"))
 				die("--diffuse: '%s' is not on or off", optarg);
 			so.diffuse = !strcmp(optarg, "on");
+			diffuse_given = 1;
 			break;
 		case OPT_DIFFUSE_PROJECTION:
 			if (strcmp(optarg, "off") && strcmp(optarg, "box"))
@@ -413,7 +414,7 @@ main(int argc, char **argv)
 			       "  --box=... --center=X,Y,Z --box-projection=on|off  the probe (off:\n"
 			       "      every mode the classic lookup along R)\n"
 			       "  --lod=L  every mirror read at lod L (the mips' debug view)\n"
-			       "  --diffuse=on|off  with --final, albedo (1 - metallic) E(N) / pi too (off)\n"
+			       "  --diffuse=on|off  with --final, albedo (1 - metallic) E(N) / pi too (on)\n"
 			       "  --diffuse-projection=off|box  E at N, or box-projected from P\n"
 			       "  --seed=N  for modes that draw samples\n"
 			       "  --invalid=error|clamp|zero  NaN, Inf, roughness out of [0, 1]\n"
@@ -433,6 +434,8 @@ main(int argc, char **argv)
 	o.env.load.nthreads = o.nthreads;
 	mode_load(&o.mode, RF_KIND_SHADE, o.spec, o.verbose);
 	so.final = o.final;
+	if (!diffuse_given)
+		so.diffuse = 1; /* with --final, the probe's diffuse light too */
 	so.mode_radiance = rf_plugin_writes_radiance(o.mode.plugin);
 	so.nthreads = o.nthreads;
 	if ((rc = rf_shade_create(&shade, &so)) < 0 || (rc = rf_plugin_host_create(&host)) < 0)

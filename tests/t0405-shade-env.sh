@@ -15,7 +15,7 @@ do
 		reflect-shade -h -j1 -m $m --final --env=room.rfl scene.rfl >j1 &&
 		reflect-shade -h -j2 -m $m --final --env=room.rfl scene.rfl >j2 &&
 		reflect-shade -h -j7 -m $m --final --env=room.rfl scene.rfl >j7 &&
-		test $(wc -c <j1) -eq $((2 * 40 * 24 * (20 + 8 + 4 + 3) * 4)) &&
+		test $(wc -c <j1) -eq $((2 * 40 * 24 * (20 + 8 + 4 + 3 + 3) * 4)) &&
 		cmp j1 j2 &&
 		cmp j1 j7 &&
 		REFLECT_THREADS=3 reflect-shade -h -m $m --final --env=room.rfl scene.rfl >j3 &&
@@ -34,14 +34,14 @@ test_expect_success 'vector and plain reads of the environment agree' '
 	test_cmp_numbers plain vector 2e-3
 '
 
-# Rows of 1500 pixels of 35 channels: a block of 4 MB holds 19 of them,
+# Rows of 1500 pixels of 38 channels: a block of 4 MB holds 18 of them,
 # so a frame of 50 rows is three blocks, read ahead into two buffers in
 # turn.
 test_expect_success 'several blocks and frames: any thread count, every frame alike' '
 	reflect-gbuffer -x 1500 -y 50 -n 2 | reflect-project >wide.rfl &&
 	reflect-shade -h -j1 -m approx --final --env=room.rfl wide.rfl >w1 &&
 	reflect-shade -h -j2 -m approx --final --env=room.rfl wide.rfl >w2 &&
-	frame=$((1500 * 50 * 35 * 4)) &&
+	frame=$((1500 * 50 * 38 * 4)) &&
 	test $(wc -c <w1) -eq $((2 * frame)) &&
 	cmp w1 w2 &&
 	# The two frames have the same camera: the same bytes (nothing of a

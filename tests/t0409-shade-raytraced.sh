@@ -38,7 +38,7 @@ do
 		reflect-shade -h -j1 -m $m --final --env=room.rfl scene.rfl >j1 &&
 		reflect-shade -h -j2 -m $m --final --env=room.rfl scene.rfl >j2 &&
 		reflect-shade -h -j5 -m $m --final --env=room.rfl scene.rfl >j5 &&
-		test $(wc -c <j1) -eq $((2 * npix * (20 + 8 + 3 + 3) * 4)) &&
+		test $(wc -c <j1) -eq $((2 * npix * (20 + 8 + 3 + 3 + 3) * 4)) &&
 		cmp j1 j2 &&
 		cmp j1 j5
 	'
@@ -47,7 +47,7 @@ done
 test_expect_success 'it writes spec and, with --final, R G B; every value finite' '
 	reflect-shade -fa -m raytraced:samples=8 --final --env=room.rfl scene.rfl >out.txt &&
 	test_grep "^SHADE=raytraced:samples=8$" out.txt &&
-	test_grep "^CHANNELS=.* spec.R spec.G spec.B R G B$" out.txt &&
+	test_grep "^CHANNELS=.* spec.R spec.G spec.B R G B diffuse.R diffuse.G diffuse.B$" out.txt &&
 	! grep -i "nan\|inf" out.txt | grep -v "^[A-Z_]*=" | grep -q . &&
 	column out.txt spec.R spec.G spec.B R G B | awk "NF != 6 { exit 1 }"
 '

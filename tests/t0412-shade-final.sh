@@ -28,7 +28,7 @@ test_expect_success 'unity: surface reduction 1 / (alpha^2 + 1) times lerp(F0, g
 	# at r = 0.5 and 0.5 at r = 1.  Dielectric at n.v = 1: 0.04 / 1.0625
 	# = 0.0376471; at n.v = 0.5: grazing = 0.5 + 0.04 = 0.54, (0.5)^5 =
 	# 0.03125, lerp = 0.04 + 0.5 x 0.03125 = 0.055625, / 1.0625 = 0.0523529
-	reflect-shade -fa -m none --final=unity --env=sky.rfl px.txt >u.txt &&
+	reflect-shade -fa -m none --final=unity --diffuse=off --env=sky.rfl px.txt >u.txt &&
 	column u.txt R G B >got &&
 	cat >expect <<-\EOF &&
 	0.941176 0.941176 0.941176
@@ -41,8 +41,8 @@ test_expect_success 'unity: surface reduction 1 / (alpha^2 + 1) times lerp(F0, g
 '
 
 test_expect_success 'split-sum is the default --final, spec x (F0 A + B)' '
-	reflect-shade -fa -m none --final --env=sky.rfl px.txt >s.txt &&
-	reflect-shade -fa -m none --final=split-sum --env=sky.rfl px.txt >s2.txt &&
+	reflect-shade -fa -m none --final --diffuse=off --env=sky.rfl px.txt >s.txt &&
+	reflect-shade -fa -m none --final=split-sum --diffuse=off --env=sky.rfl px.txt >s2.txt &&
 	column s.txt R G B >a && column s2.txt R G B >b && cmp a b &&
 	# a white metal loses energy to single scattering, the more the
 	# rougher: E = A + B, 0.916 at roughness 0.5, 0.307 at 1
@@ -51,7 +51,7 @@ test_expect_success 'split-sum is the default --final, spec x (F0 A + B)' '
 '
 
 test_expect_success 'hdrp: (F0 A + B)(1 + F0 (1/E - 1)): a white metal keeps all its energy' '
-	reflect-shade -fa -m none --final=hdrp --env=sky.rfl px.txt >h.txt &&
+	reflect-shade -fa -m none --final=hdrp --diffuse=off --env=sky.rfl px.txt >h.txt &&
 	column h.txt R >h &&
 	column s.txt R >e &&
 	# rows 1, 2, 4: F0 = 1, so E (1 + 1/E - 1) = 1; rows 3 and 5 from the
@@ -80,7 +80,10 @@ test_expect_success '--diffuse=on: albedo (1 - metallic) E(N) / pi, added to R G
 	column d.txt R >with && column s.txt R >without &&
 	paste -d" " with without got | awk "{ d = \$1 - \$2 - \$3; if (d > 1e-5 || d < -1e-5) bad++ }
 		END { exit bad > 0 }" &&
-	! grep "diffuse" s.txt
+	! grep "^CHANNELS=.*diffuse" s.txt &&
+	# on by default with --final
+	reflect-shade -fa -m none --final --env=sky.rfl px.txt >default.txt &&
+	column default.txt diffuse.R >dflt && column d.txt diffuse.R >on && cmp dflt on
 '
 
 # Box-projected diffuse light: from the capture point itself it is E at N;
