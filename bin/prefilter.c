@@ -15,7 +15,7 @@ usage(void)
 	        "[--steps=N] [--method=filtered|brute] [--plain] [--lod-bias=B] "
 	        "[--layout=L] [--size=N] [--srgb=auto|on|off] [--rgbm=M[,E]] "
 	        "[--intensity=X] [--dump=latlong|cube|vcross|hcross] "
-	        "[--edge-fixup=none|average] [-f a|f] [-h] "
+	        "[--edge-fixup=none|average] [--irradiance=FILE] [-f a|f] [-h] "
 	        "[ENV]\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
@@ -23,6 +23,7 @@ usage(void)
 struct prefilter_opts {
 	const char *output;
 	const char *dump;
+	const char *irradiance; /* --irradiance=FILE */
 	struct rf_prefilter_options pf;
 	size_t levels, min_size;
 	int plain, verbose;
@@ -83,7 +84,7 @@ dump_levels(const rf_cubemap *c, const char *spec)
 }
 
 static void
-write_chain(const struct prefilter_opts *o, const rf_cubemap *c,
+write_chain(const struct prefilter_opts *o, const char *output, const rf_cubemap *c,
             const struct rf_chain_info *info)
 {
 	struct rf_writer_options wopt = { o->format, o->no_header };
@@ -97,18 +98,18 @@ write_chain(const struct prefilter_opts *o, const rf_cubemap *c,
 	if ((rc = rf_header_create(&base)) < 0)
 		die_status(rc, NULL);
 
-	if (o->output) {
-		const char *dot = strrchr(o->output, '.');
+	if (output) {
+		const char *dot = strrchr(output, '.');
 
 		if (dot && strcmp(dot, ".rfl") && strcmp(dot, ".stream")) {
-			if ((rc = rf_chain_write_file(c, info, o->output, err, sizeof(err))) < 0)
+			if ((rc = rf_chain_write_file(c, info, output, err, sizeof(err))) < 0)
 				die_status(rc, err);
 			rf_header_destroy(base);
 			return;
 		}
-		if (!(fp = fopen(o->output, "wb")))
-			die("cannot open '%s':", o->output);
-		name = o->output;
+		if (!(fp = fopen(output, "wb")))
+			die("cannot open '%s':", output);
+		name = output;
 	}
 	cli_record_command(base);
 	if ((rc = rf_writer_open(&w, fp, name, &wopt)) < 0)
@@ -141,6 +142,7 @@ main(int argc, char **argv)
 		{ "lod-bias", required_argument, NULL, 'B' },
 		{ "dump", required_argument, NULL, 'D' },
 		{ "edge-fixup", required_argument, NULL, 'E' },
+		{ "irradiance", required_argument, NULL, 'I' },
 		{ "help", no_argument, NULL, 'Q' },
 		{ NULL, 0, NULL, 0 },
 	};
@@ -187,6 +189,7 @@ main(int argc, char **argv)
 		case 'N': o.plain = 1; break;
 		case 'B': o.pf.lod_bias = (float)parse_number("lod-bias", optarg, -4, 4); break;
 		case 'D': o.dump = optarg; break;
+		case 'I': o.irradiance = optarg; break;
 		case 'E':
 			if (!strcmp(optarg, "average")) o.edge_average = 1;
 			else if (strcmp(optarg, "none")) die("--edge-fixup: '%s' is not none or average", optarg);
@@ -202,6 +205,7 @@ main(int argc, char **argv)
 			       "  --method=filtered|brute  --plain (box mips)  --lod-bias=B\n"
 			       "  --dump=latlong|cube|vcross|hcross  each level to levelK-LAYOUT.exr\n"
 			       "  --edge-fixup=none|average  equal edge texels for per-face readers\n"
+			       "  --irradiance=FILE  also a 32-texel cube of E / pi (diffuse light)\n"
 			       "  -j N threads  -S refuse NaN/Inf  -v  -V\n", argv0);
 			fshut(stdout, "<stdout>");
 			return 0;
@@ -217,6 +221,18 @@ main(int argc, char **argv)
 	if (isatty(STDERR_FILENO))
 		o.pf.progress = progress;
 	src = envmap_load(&eo, &info);
+	if (o.irradiance) {
+		/* the diffuse light as a cube of its own: 32 texels a face */
+		struct rf_chain_info ii = info;
+		rf_cubemap *irr = envmap_cube_new(32, 1);
+
+		if ((rc = rf_cubemap_irradiance(src, 0, irr)) < 0)
+			die_status(rc, NULL);
+		ii.prefiltered = 0;
+		ii.steps = 0;
+		write_chain(&o, o.irradiance, irr, &ii);
+		rf_cubemap_destroy(irr);
+	}
 	if (info.prefiltered || rf_cubemap_levels(src) > 1) {
 		/* A chain is written as it is: a change of form, not of content. */
 		warn("'%s' is already a %s chain of %zu levels; writing it as it is", eo.path,
@@ -224,7 +240,7 @@ main(int argc, char **argv)
 		if (o.dump)
 			dump_levels(src, o.dump);
 		if (!o.dump || o.output)
-			write_chain(&o, src, &info);
+			write_chain(&o, o.output, src, &info);
 		rf_cubemap_destroy(src);
 		fshut(stdout, "<stdout>");
 		return 0;
@@ -285,7 +301,7 @@ main(int argc, char **argv)
 	if (o.dump)
 		dump_levels(out, o.dump);
 	if (!o.dump || o.output)
-		write_chain(&o, out, &info);
+		write_chain(&o, o.output, out, &info);
 	rf_cubemap_destroy(src);
 	rf_cubemap_destroy(out);
 	fshut(stdout, "<stdout>");

@@ -242,4 +242,23 @@ test_expect_success 'a stream cube on stdin is an environment' '
 	test "$(frame_keys NCOLS from-stdin.txt | tr "\n" " ")" = "8 4 "
 '
 
+# Under a sky of one radiance E(n) = pi L: the cube holds L everywhere,
+# to the discretisation of 32 texels a face.
+test_expect_success '--irradiance: a 32-texel cube of E / pi, L under a uniform sky' '
+	awk "BEGIN { printf \"#?REFLECT1\\nENVMAP=CUBE\\nLEVEL=0\\nLEVELS=1\\nPREFILTER=box\\n\"
+		printf \"NCOLS=16\\nNROWS=96\\nNCOMP=3\\nCHANNELS=R G B\\nFORMAT=ascii\\n\\n\"
+		for (j = 0; j < 6 * 16 * 16; j++) print 0.75, 0.5, 2 }" >flat.rfl &&
+	reflect-prefilter --levels=2 --irradiance=irr.rfl -o chain.rfl flat.rfl 2>/dev/null &&
+	reflect-info irr.rfl >info &&
+	test_grep "^	NCOLS=32$" info && test_grep "^	NROWS=192$" info &&
+	test_grep "^	LEVELS=1$" info &&
+	reflect-info -s irr.rfl | awk "
+		\$1 == \"R\" && (\$2 < 0.747 || \$3 > 0.753) { bad++ }
+		\$1 == \"G\" && (\$2 < 0.498 || \$3 > 0.502) { bad++ }
+		\$1 == \"B\" && (\$2 < 1.992 || \$3 > 2.008) { bad++ }
+		END { exit bad > 0 }" &&
+	reflect-prefilter --size=32 --levels=2 --irradiance=irr.exr -o /dev/null 2>/dev/null &&
+	test -s irr.exr
+'
+
 test_done

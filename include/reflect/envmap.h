@@ -109,6 +109,12 @@ RF_EXTERN void rf_cubemap_level_mean(const rf_cubemap *c, size_t level, double r
  * reflects a E / pi. */
 RF_EXTERN void rf_cubemap_sh9(const rf_cubemap *c, size_t level, float sh[27]);
 RF_EXTERN void rf_sh9_irradiance(const float sh[27], const float n[3], float rgb[3]);
+/* An irradiance cube: level 0 of out (any size) gets, for each texel's
+ * direction n, E(n) / pi, the radiance a white Lambert surface facing n
+ * reflects: the cosine convolution of src's level, read from a
+ * box-filtered copy of at most 32 texels a face (a hemisphere's lobe
+ * keeps nothing finer).  RF_ENOMEM. */
+RF_EXTERN int rf_cubemap_irradiance(const rf_cubemap *src, size_t level, rf_cubemap *out);
 
 /* ---- environment images ---------------------------------------------- */
 
