@@ -190,17 +190,10 @@ rf_chain_read_stream(rf_cubemap **cp, struct rf_chain_info *info, rf_reader *r,
 	info->steps = (float)steps;
 	info->samples = (unsigned)samples;
 	if ((v = rf_header_get(h, "IRRADIANCE_SH9"))) {
-		char *end;
-		int i;
-
-		for (i = 0; i < 27; i++) {
-			info->sh9[i] = strtof(v, &end);
-			if (end == v || !isfinite(info->sh9[i])) {
-				rf__format(err, errlen, "header key IRRADIANCE_SH9: '%.60s' needs 27 "
-				           "finite numbers", rf_header_get(h, "IRRADIANCE_SH9"));
-				return RF_EFORMAT;
-			}
-			v = end;
+		if (rf__scan_floats(v, info->sh9, 27) < 0) {
+			rf__format(err, errlen, "header key IRRADIANCE_SH9: '%.60s' needs 27 "
+			           "finite numbers", v);
+			return RF_EFORMAT;
 		}
 		info->has_sh9 = 1;
 	}

@@ -90,29 +90,6 @@ rf_probe_to_header(const struct rf_probe *probe, rf_header *h)
 	return rf_header_unset(h, RF_KEY_PROBE_BEVEL);
 }
 
-/* n numbers separated by commas or spaces; 0 on success. */
-static int
-scan_floats(const char *s, float *out, int n)
-{
-	char *end;
-	int i;
-
-	for (i = 0; i < n; i++) {
-		double v;
-
-		while (*s == ' ' || (i && *s == ','))
-			s++;
-		errno = 0;
-		v = strtod(s, &end);
-		if (end == s || errno == ERANGE || !isfinite(v))
-			return -1;
-		out[i] = (float)v;
-		s = end;
-	}
-	while (*s == ' ')
-		s++;
-	return *s ? -1 : 0;
-}
 
 int
 rf_probe_resolve(struct rf_probe *probe, const rf_header *h, const char *box_arg,
@@ -126,13 +103,13 @@ rf_probe_resolve(struct rf_probe *probe, const rf_header *h, const char *box_arg
 	memset(probe, 0, sizeof(*probe));
 	probe->box_projection = 1;
 	if (box_arg) {
-		if (scan_floats(box_arg, box, 6) < 0) {
+		if (rf__scan_floats(box_arg, box, 6) < 0) {
 			rf__format(err, errlen, "--box: '%s' needs 6 comma-separated "
 			           "numbers XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX", box_arg);
 			return RF_EINVAL;
 		}
 	} else if ((v = rf_header_get(h, RF_KEY_PROBE_BOX))) {
-		if (scan_floats(v, box, 6) < 0) {
+		if (rf__scan_floats(v, box, 6) < 0) {
 			rf__format(err, errlen, "header key %s: '%s' needs 6 numbers",
 			           RF_KEY_PROBE_BOX, v);
 			return RF_EINVAL;
@@ -153,13 +130,13 @@ rf_probe_resolve(struct rf_probe *probe, const rf_header *h, const char *box_arg
 		}
 	}
 	if (center_arg) {
-		if (scan_floats(center_arg, probe->center, 3) < 0) {
+		if (rf__scan_floats(center_arg, probe->center, 3) < 0) {
 			rf__format(err, errlen, "--center: '%s' needs 3 comma-separated "
 			           "numbers X,Y,Z", center_arg);
 			return RF_EINVAL;
 		}
 	} else if ((v = rf_header_get(h, RF_KEY_PROBE_CENTER))) {
-		if (scan_floats(v, probe->center, 3) < 0) {
+		if (rf__scan_floats(v, probe->center, 3) < 0) {
 			rf__format(err, errlen, "header key %s: '%s' needs 3 numbers",
 			           RF_KEY_PROBE_CENTER, v);
 			return RF_EINVAL;
@@ -173,7 +150,7 @@ rf_probe_resolve(struct rf_probe *probe, const rf_header *h, const char *box_arg
 		char num[64];
 
 		snprintf(num, sizeof(num), "%.*s", grown ? (int)(grown - v) : (int)strlen(v), v);
-		if ((grown && strcmp(grown, " grown")) || scan_floats(num, &probe->bevel, 1) < 0 ||
+		if ((grown && strcmp(grown, " grown")) || rf__scan_floats(num, &probe->bevel, 1) < 0 ||
 		    probe->bevel < 0.0f) {
 			rf__format(err, errlen, "header key %s: '%s' needs a radius of 0 or "
 			           "more, then optionally 'grown'", RF_KEY_PROBE_BEVEL, v);
@@ -220,7 +197,7 @@ probe_at(const rf_header *h, size_t index, struct rf_probe *probe, float *blend)
 	rf__header_probe_key(key, sizeof(key), index, RF_KEY_PROBE_BOX);
 	if (!(v = rf_header_get(h, key)))
 		return 0;
-	if (scan_floats(v, box, 6) < 0)
+	if (rf__scan_floats(v, box, 6) < 0)
 		return RF_EINVAL;
 	for (i = 0; i < 3; i++) {
 		probe->box_min[i] = box[i];
@@ -230,13 +207,13 @@ probe_at(const rf_header *h, size_t index, struct rf_probe *probe, float *blend)
 		probe->center[i] = 0.5f * (box[i] + box[i + 3]);
 	}
 	rf__header_probe_key(key, sizeof(key), index, RF_KEY_PROBE_CENTER);
-	if ((v = rf_header_get(h, key)) && scan_floats(v, probe->center, 3) < 0)
+	if ((v = rf_header_get(h, key)) && rf__scan_floats(v, probe->center, 3) < 0)
 		return RF_EINVAL;
 	rf__header_probe_key(key, sizeof(key), index, RF_KEY_PROBE_BOX_PROJECTION);
 	if ((v = rf_header_get(h, key)))
 		probe->box_projection = !(!strcmp(v, "0") || !strcmp(v, "off"));
 	rf__header_probe_key(key, sizeof(key), index, RF_KEY_PROBE_BLEND);
-	if ((v = rf_header_get(h, key)) && (scan_floats(v, blend, 1) < 0 || *blend < 0.0f))
+	if ((v = rf_header_get(h, key)) && (rf__scan_floats(v, blend, 1) < 0 || *blend < 0.0f))
 		return RF_EINVAL;
 	return 1;
 }
