@@ -344,34 +344,24 @@ face_size(void *ctx, uint32_t level)
 
 	if (!h->env || level >= rf_cubemap_levels(h->env))
 		return 0;
-	return (uint32_t)(rf_cubemap_size(h->env) >> level ? rf_cubemap_size(h->env) >> level
-	                                                    : 1);
+	return (uint32_t)rf_cubemap_level_size(h->env, level);
 }
 
 static float
 texel_solid_angle(void *ctx, const float dir[3], float lod)
 {
 	const rf_plugin_host *h = ctx;
-	const double ax = fabs(dir[0]), ay = fabs(dir[1]), az = fabs(dir[2]);
-	const double m = ax > ay ? (ax > az ? ax : az) : (ay > az ? ay : az);
-	const double size = h->env ? (double)rf_cubemap_size(h->env) : 1.0;
-	double u, v, base;
+	const double size = (double)rf_cubemap_size(h->env);
+	float u, v;
+	double x, y;
 
-	if (!(m > 0.0) || !isfinite(m))
+	if (!isfinite(dir[0]) || !isfinite(dir[1]) || !isfinite(dir[2]) ||
+	    !(dir[0] != 0.0f || dir[1] != 0.0f || dir[2] != 0.0f))
 		return 0.0f;
-	/* face coordinates: the two other components over the major one */
-	if (ax == m) {
-		u = ay / m;
-		v = az / m;
-	} else if (ay == m) {
-		u = ax / m;
-		v = az / m;
-	} else {
-		u = ax / m;
-		v = ay / m;
-	}
-	base = 4.0 / (size * size) / pow(1.0 + u * u + v * v, 1.5);
-	return (float)(base * exp2(2.0 * lod));
+	rf_cube_face(dir, &u, &v);
+	x = 2.0 * u - 1.0;
+	y = 2.0 * v - 1.0;
+	return (float)(4.0 / (size * size) / pow(1.0 + x * x + y * y, 1.5) * exp2(2.0 * lod));
 }
 
 /* The hit of the camera ray through image point (px, py) with the plane
@@ -613,7 +603,6 @@ rf_plugin_host_set_frame(rf_plugin_host *h, const rf_header *frame)
 {
 	const char *v = frame ? rf_header_get(frame, RF_KEY_CAMERA) : NULL;
 	double c[10];
-	char *end;
 	int k;
 
 	h->frame = frame;
@@ -627,14 +616,8 @@ rf_plugin_host_set_frame(rf_plugin_host *h, const rf_header *frame)
 			h->probe_list[0] = h->probe;
 		order_probes(h);
 	}
-	if (!v)
+	if (!v || rf__scan_doubles(v, c, 10) < 0)
 		return;
-	for (k = 0; k < 10; k++) {
-		c[k] = strtod(v, &end);
-		if (end == v || !isfinite(c[k]))
-			return;
-		v = end;
-	}
 	for (k = 0; k < 3; k++) {
 		h->camera.position[k] = c[k];
 		h->camera.target[k] = c[3 + k];
