@@ -290,13 +290,8 @@ main(int argc, char **argv)
 	in.width = rf_picture_width(a);
 	in.height = rf_picture_height(a);
 	in.keep = keep;
-	rf_compare_stats(&st, &in, o.peak, o.fail);
-	if (o.warn >= 0) {
-		struct rf_compare_stats ws;
-
-		rf_compare_stats(&ws, &in, o.peak, o.warn);
-		warn_share = ws.npixels ? 100.0 * (double)ws.nover / (double)ws.npixels : 0.0;
-	}
+	rf_compare_stats(&st, &in, o.peak, o.fail, o.warn >= 0 ? o.warn : o.fail);
+	warn_share = st.npixels ? 100.0 * (double)st.nwarn / (double)st.npixels : 0.0;
 	if (o.heatmap)
 		write_heatmap(o.heatmap, &in, o.scale > 0 ? o.scale
 		                                          : (isfinite(st.max_error) && st.max_error > 0

@@ -61,11 +61,13 @@ struct rf_compare_stats {
 	double max_error; /* the largest |A - B| (+inf with a value not finite) */
 	size_t max_x, max_y, max_channel; /* where it is */
 	size_t nover;     /* pixels with a value over the threshold (or not finite) */
+	size_t nwarn;     /* the same over the warning threshold */
 };
 
-/* The statistics, with peak for PSNR and threshold for nover. */
+/* The statistics, with peak for PSNR, threshold for nover and warn for
+ * nwarn, in one pass. */
 RF_EXTERN void rf_compare_stats(struct rf_compare_stats *st, const struct rf_compare_input *in,
-                                double peak, double threshold);
+                                double peak, double threshold, double warn);
 
 /* The width of a heat map of a width-pixel image: the image and, at its
  * right, the colour bar. */

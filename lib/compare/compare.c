@@ -41,7 +41,7 @@ rf_compare_mask(unsigned char *keep, size_t width, size_t height, const float *m
 
 void
 rf_compare_stats(struct rf_compare_stats *st, const struct rf_compare_input *in, double peak,
-                 double threshold)
+                 double threshold, double warn)
 {
 	double sum2 = 0.0, sumb = 0.0;
 	size_t x, y, k;
@@ -51,7 +51,7 @@ rf_compare_stats(struct rf_compare_stats *st, const struct rf_compare_input *in,
 		for (x = 0; x < in->width; x++) {
 			const size_t p = y * in->width + x;
 			const float *a = in->a + p * in->a_stride, *b = in->b + p * in->b_stride;
-			int over = 0;
+			int over = 0, warned = 0;
 
 			if (in->keep && !in->keep[p])
 				continue;
@@ -62,7 +62,7 @@ rf_compare_stats(struct rf_compare_stats *st, const struct rf_compare_input *in,
 
 				if (!isfinite(va) || !isfinite(vb)) {
 					st->nonfinite++;
-					over = 1;
+					over = warned = 1;
 					if (st->max_error < INFINITY) {
 						st->max_error = INFINITY;
 						st->max_x = x;
@@ -76,6 +76,7 @@ rf_compare_stats(struct rf_compare_stats *st, const struct rf_compare_input *in,
 				sum2 += d * d;
 				sumb += vb;
 				over |= d > threshold;
+				warned |= d > warn;
 				if (d > st->max_error) {
 					st->max_error = d;
 					st->max_x = x;
@@ -84,6 +85,7 @@ rf_compare_stats(struct rf_compare_stats *st, const struct rf_compare_input *in,
 				}
 			}
 			st->nover += (size_t)over;
+			st->nwarn += (size_t)warned;
 		}
 	if (st->nvalues) {
 		st->rmse = sqrt(sum2 / (double)st->nvalues);
