@@ -454,10 +454,10 @@ plan_reads(const rf_shade *s, const float *in, size_t in_ncomp, size_t y, struct
  * coefficients at N, or with the box projection at the direction from
  * the capture point to where P + t N leaves the probe box. */
 static void
-diffuse_light(const rf_shade *s, const float *p, float e[3])
+diffuse_light(const rf_shade *s, const float *p, const float albedo[3], float metal,
+              float e[3])
 {
 	float n[3] = { p[s->in[IN_NX]], p[s->in[IN_NY]], p[s->in[IN_NZ]] }, dir[3], t, reach;
-	float metal = sat(or_one(s, p, IN_METAL));
 	int k;
 
 	for (k = 0; k < 3; k++)
@@ -473,14 +473,59 @@ diffuse_light(const rf_shade *s, const float *p, float e[3])
 	}
 	rf_sh9_irradiance(s->sh, dir, e);
 	for (k = 0; k < 3; k++)
-		e[k] *= sat(or_one(s, p, IN_AR + k)) * (1.0f - metal) * (float)(1.0 / 3.14159265358979);
+		e[k] *= albedo[k] * (1.0f - metal) * (float)(1.0 / 3.14159265358979);
+}
+
+/* The final colour's BRDF term of a reflective pixel, on rgb in place,
+ * the engine's (s->final), and with the diffuse light into diffuse. */
+static void
+final_colour(const rf_shade *s, const float *p, float rgb[3], float diffuse[3])
+{
+	float nv = p[s->in[IN_NX]] * p[s->in[IN_VX]] + p[s->in[IN_NY]] * p[s->in[IN_VY]] +
+	           p[s->in[IN_NZ]] * p[s->in[IN_VZ]];
+	float metal = sat(or_one(s, p, IN_METAL)), pr = sat(p[s->in[IN_ROUGH]]), a, b;
+	float albedo[3], f0[3];
+	int k;
+
+	for (k = 0; k < 3; k++) {
+		albedo[k] = sat(or_one(s, p, IN_AR + k));
+		f0[k] = 0.04f + (albedo[k] - 0.04f) * metal;
+	}
+	if (s->final == RF_FINAL_UNITY) {
+		/* Unity Standard (BRDF1, linear): surfaceReduction x
+		 * lerp(F0, grazing, (1 - n.v)^5) */
+		const float alpha = pr * pr, reduction = 1.0f / (alpha * alpha + 1.0f);
+		const float one_minus_refl = 0.96f * (1.0f - metal);
+		const float grazing = sat((1.0f - pr) + (1.0f - one_minus_refl));
+		const float c = 1.0f - sat(nv), c5 = c * c * c * c * c;
+
+		for (k = 0; k < 3; k++)
+			rgb[k] *= reduction * (f0[k] + (grazing - f0[k]) * c5);
+	} else {
+		rf_dfg_lookup(nv, pr, &a, &b);
+		for (k = 0; k < 3; k++) {
+			float fgd = f0[k] * a + b;
+
+			/* HDRP: the energy lost to single scattering, E = A + B,
+			 * given back in proportion to F0 */
+			if (s->final == RF_FINAL_HDRP && a + b > 0.0f)
+				fgd *= 1.0f + f0[k] * (1.0f / (a + b) - 1.0f);
+			rgb[k] *= fgd;
+		}
+	}
+	if (s->diffuse) {
+		diffuse_light(s, p, albedo, metal, diffuse);
+		for (k = 0; k < 3; k++)
+			rgb[k] += diffuse[k];
+	}
 }
 
 /* Pixel p's outputs into o (which may be p) from its reads. */
 static void
 shade_pixel(const rf_shade *s, const float *p, float *o, const struct reads *r, size_t x)
 {
-	float rgb[3] = { 0, 0, 0 }, wall[3] = { 0, 0, 0 }, spec[3], diffuse[3], m = r->mask[x];
+	float rgb[3] = { 0, 0, 0 }, wall[3] = { 0, 0, 0 }, spec[3], diffuse[3] = { 0, 0, 0 };
+	float m = r->mask[x];
 	int k;
 
 	if (m > 0.0f && s->mode_radiance) {
@@ -495,50 +540,8 @@ shade_pixel(const rf_shade *s, const float *p, float *o, const struct reads *r, 
 			wall[k] = r->rgb[r->wall[x]][k];
 	for (k = 0; k < 3; k++)
 		spec[k] = rgb[k];
-	if (s->final && m > 0.0f) {
-		float nv = p[s->in[IN_NX]] * p[s->in[IN_VX]] +
-		           p[s->in[IN_NY]] * p[s->in[IN_VY]] +
-		           p[s->in[IN_NZ]] * p[s->in[IN_VZ]];
-		float metal = sat(or_one(s, p, IN_METAL)), pr = sat(p[s->in[IN_ROUGH]]), a, b;
-
-		if (s->final == RF_FINAL_UNITY) {
-			/* Unity Standard (BRDF1, linear): surfaceReduction x
-			 * lerp(F0, grazing, (1 - n.v)^5) */
-			const float alpha = pr * pr, reduction = 1.0f / (alpha * alpha + 1.0f);
-			const float one_minus_refl = 0.96f * (1.0f - metal);
-			const float grazing = sat((1.0f - pr) + (1.0f - one_minus_refl));
-			const float c = 1.0f - sat(nv), c5 = c * c * c * c * c;
-
-			for (k = 0; k < 3; k++) {
-				float albedo = sat(or_one(s, p, IN_AR + k));
-				float f0 = 0.04f + (albedo - 0.04f) * metal;
-
-				rgb[k] *= reduction * (f0 + (grazing - f0) * c5);
-			}
-		} else {
-			rf_dfg_lookup(nv, pr, &a, &b);
-			for (k = 0; k < 3; k++) {
-				float albedo = sat(or_one(s, p, IN_AR + k));
-				float f0 = 0.04f + (albedo - 0.04f) * metal, fgd = f0 * a + b;
-
-				/* HDRP: the energy lost to single scattering, E = A + B,
-				 * given back in proportion to F0 */
-				if (s->final == RF_FINAL_HDRP && a + b > 0.0f)
-					fgd *= 1.0f + f0 * (1.0f / (a + b) - 1.0f);
-				rgb[k] *= fgd;
-			}
-		}
-	}
-	if (s->diffuse) {
-		float e[3] = { 0, 0, 0 };
-
-		if (m > 0.0f)
-			diffuse_light(s, p, e);
-		for (k = 0; k < 3; k++) {
-			diffuse[k] = e[k];
-			rgb[k] += e[k];
-		}
-	}
+	if (s->final && m > 0.0f)
+		final_colour(s, p, rgb, diffuse);
 	/* Every input is read: now the outputs, which may overwrite them. */
 	for (k = 0; k < 3; k++)
 		o[s->out[OUT_SR + k]] = m * spec[k] + (1.0f - m) * wall[k];
