@@ -33,6 +33,7 @@
 #include <errno.h>
 
 #include "envmap/envmap-internal.h"
+#include "envmap/texel.h"
 #include "reflect/envmap.h"
 
 #define DDS_MAGIC 0x20534444u /* "DDS " */
@@ -58,99 +59,11 @@
 
 static const char *const face_names[6] = { "+X", "-X", "+Y", "-Y", "+Z", "-Z" };
 
-/* How a texel is stored. */
-enum texel_kind {
-	TEXEL_F32,      /* nch 32-bit floats: 1 (grey), 3 or 4 */
-	TEXEL_F16,      /* 4 half floats */
-	TEXEL_R11G11B10,
-	TEXEL_RGB9E5,
-	TEXEL_RGBA8,    /* bytes R G B A */
-	TEXEL_BGRA8     /* bytes B G R A (or X) */
-};
-
-struct texel_format {
-	enum texel_kind kind;
-	unsigned nch;   /* TEXEL_F32 only */
-	unsigned bytes; /* per texel */
-	int srgb;       /* 8-bit kinds: decode sRGB to linear */
-};
-
 static uint32_t
 le32(const unsigned char *p)
 {
 	return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 |
 	       (uint32_t)p[3] << 24;
-}
-
-static float
-f32_of(const unsigned char *p)
-{
-	uint32_t u = le32(p);
-	float f;
-
-	memcpy(&f, &u, sizeof(f));
-	return f;
-}
-
-/* A float of 5 exponent bits (bias 15) and mbits mantissa bits, no sign:
- * half floats (with the sign done by the caller) and the 11- and 10-bit
- * floats of R11G11B10 share it. */
-static float
-small_float(unsigned e, unsigned m, unsigned mbits)
-{
-	if (e == 0)
-		return ldexpf((float)m, -14 - (int)mbits); /* denormal */
-	if (e == 31)
-		return m ? NAN : INFINITY;
-	return ldexpf((float)(m | (1u << mbits)), (int)e - 15 - (int)mbits);
-}
-
-static float
-half_to_float(unsigned h)
-{
-	float v = small_float((h >> 10) & 31u, h & 1023u, 10);
-
-	return h & 0x8000u ? -v : v;
-}
-
-/* Decodes one texel into RGB (alpha ignored). */
-static void
-decode_texel(const struct texel_format *fmt, const unsigned char *p, float rgb[3])
-{
-	uint32_t u;
-	int c;
-
-	switch (fmt->kind) {
-	case TEXEL_F32:
-		for (c = 0; c < 3; c++)
-			rgb[c] = f32_of(p + 4 * (fmt->nch == 1 ? 0 : c));
-		break;
-	case TEXEL_F16:
-		for (c = 0; c < 3; c++)
-			rgb[c] = half_to_float((unsigned)p[2 * c] | (unsigned)p[2 * c + 1] << 8);
-		break;
-	case TEXEL_R11G11B10:
-		u = le32(p);
-		rgb[0] = small_float((u >> 6) & 31u, u & 63u, 6);
-		rgb[1] = small_float((u >> 17) & 31u, (u >> 11) & 63u, 6);
-		rgb[2] = small_float((u >> 27) & 31u, (u >> 22) & 31u, 5);
-		break;
-	case TEXEL_RGB9E5:
-		/* Three 9-bit mantissas without a hidden bit, one exponent
-		 * (bias 15): m * 2^(e - 15 - 9). */
-		u = le32(p);
-		for (c = 0; c < 3; c++)
-			rgb[c] = ldexpf((float)((u >> (9 * c)) & 511u), (int)(u >> 27) - 24);
-		break;
-	case TEXEL_RGBA8:
-	case TEXEL_BGRA8:
-		for (c = 0; c < 3; c++) {
-			float v = (float)p[fmt->kind == TEXEL_BGRA8 ? 2 - c : c] / 255.0f;
-
-			rgb[c] = fmt->srgb ? rf_srgb_decode(v) : v;
-		}
-		break;
-	}
 }
 
 /* Short names for the refusal message: the block-compressed families by
@@ -183,19 +96,19 @@ dxgi_name(uint32_t f)
 }
 
 static int
-dxgi_format(uint32_t f, struct texel_format *fmt)
+dxgi_format(uint32_t f, struct rf__texel_format *fmt)
 {
 	switch (f) {
-	case 2: *fmt = (struct texel_format){ TEXEL_F32, 4, 16, 0 }; return 0;
-	case 6: *fmt = (struct texel_format){ TEXEL_F32, 3, 12, 0 }; return 0;
-	case 10: *fmt = (struct texel_format){ TEXEL_F16, 4, 8, 0 }; return 0;
-	case 26: *fmt = (struct texel_format){ TEXEL_R11G11B10, 3, 4, 0 }; return 0;
-	case 67: *fmt = (struct texel_format){ TEXEL_RGB9E5, 3, 4, 0 }; return 0;
-	case 28: *fmt = (struct texel_format){ TEXEL_RGBA8, 4, 4, 0 }; return 0;
-	case 29: *fmt = (struct texel_format){ TEXEL_RGBA8, 4, 4, 1 }; return 0;
+	case 2: *fmt = (struct rf__texel_format){ RF__TEXEL_F32, 4, 16, 0 }; return 0;
+	case 6: *fmt = (struct rf__texel_format){ RF__TEXEL_F32, 3, 12, 0 }; return 0;
+	case 10: *fmt = (struct rf__texel_format){ RF__TEXEL_F16, 4, 8, 0 }; return 0;
+	case 26: *fmt = (struct rf__texel_format){ RF__TEXEL_R11G11B10, 3, 4, 0 }; return 0;
+	case 67: *fmt = (struct rf__texel_format){ RF__TEXEL_RGB9E5, 3, 4, 0 }; return 0;
+	case 28: *fmt = (struct rf__texel_format){ RF__TEXEL_RGBA8, 4, 4, 0 }; return 0;
+	case 29: *fmt = (struct rf__texel_format){ RF__TEXEL_RGBA8, 4, 4, 1 }; return 0;
 	/* B8G8R8X8 is B8G8R8A8 once alpha is ignored. */
-	case 87: case 88: *fmt = (struct texel_format){ TEXEL_BGRA8, 4, 4, 0 }; return 0;
-	case 91: case 93: *fmt = (struct texel_format){ TEXEL_BGRA8, 4, 4, 1 }; return 0;
+	case 87: case 88: *fmt = (struct rf__texel_format){ RF__TEXEL_BGRA8, 4, 4, 0 }; return 0;
+	case 91: case 93: *fmt = (struct rf__texel_format){ RF__TEXEL_BGRA8, 4, 4, 1 }; return 0;
 	}
 	return RF_EFORMAT;
 }
@@ -225,7 +138,7 @@ fourcc_name(uint32_t cc)
 
 /* The texel format of the legacy pixel format (no DX10 header). */
 static int
-legacy_format(const char *path, const unsigned char *pf, struct texel_format *fmt,
+legacy_format(const char *path, const unsigned char *pf, struct rf__texel_format *fmt,
               char *err, size_t errlen)
 {
 	uint32_t flags = le32(pf + 4), cc = le32(pf + 8), bits = le32(pf + 12);
@@ -234,9 +147,9 @@ legacy_format(const char *path, const unsigned char *pf, struct texel_format *fm
 
 	if (flags & DDPF_FOURCC) {
 		switch (cc) {
-		case 113: *fmt = (struct texel_format){ TEXEL_F16, 4, 8, 0 }; return 0;
-		case 116: *fmt = (struct texel_format){ TEXEL_F32, 4, 16, 0 }; return 0;
-		case 114: *fmt = (struct texel_format){ TEXEL_F32, 1, 4, 0 }; return 0;
+		case 113: *fmt = (struct rf__texel_format){ RF__TEXEL_F16, 4, 8, 0 }; return 0;
+		case 116: *fmt = (struct rf__texel_format){ RF__TEXEL_F32, 4, 16, 0 }; return 0;
+		case 114: *fmt = (struct rf__texel_format){ RF__TEXEL_F32, 1, 4, 0 }; return 0;
 		}
 		name = fourcc_name(cc);
 		if (cc > 0xffffu) { /* four characters, not a D3DFORMAT number */
@@ -260,11 +173,11 @@ legacy_format(const char *path, const unsigned char *pf, struct texel_format *fm
 	}
 	if ((flags & DDPF_RGB) && bits == 32) {
 		if (r == 0xffu && g == 0xff00u && b == 0xff0000u) {
-			*fmt = (struct texel_format){ TEXEL_RGBA8, 4, 4, 0 };
+			*fmt = (struct rf__texel_format){ RF__TEXEL_RGBA8, 4, 4, 0 };
 			return 0;
 		}
 		if (r == 0xff0000u && g == 0xff00u && b == 0xffu) {
-			*fmt = (struct texel_format){ TEXEL_BGRA8, 4, 4, 0 };
+			*fmt = (struct rf__texel_format){ RF__TEXEL_BGRA8, 4, 4, 0 };
 			return 0;
 		}
 	}
@@ -280,7 +193,7 @@ legacy_format(const char *path, const unsigned char *pf, struct texel_format *fm
 
 /* Everything the header says, checked. */
 struct dds_layout {
-	struct texel_format fmt;
+	struct rf__texel_format fmt;
 	uint32_t size;        /* face width = height */
 	uint32_t file_levels; /* mip levels stored per face */
 	size_t levels;        /* those reflect keeps */
@@ -446,10 +359,10 @@ static int
 read_levels(FILE *fp, const char *path, const struct dds_layout *l, rf_cubemap *c,
             size_t *nonfinite, char *err, size_t errlen)
 {
-	size_t row_bytes = (size_t)l->size * l->fmt.bytes, bad = 0, k, i, j;
+	size_t row_bytes = (size_t)l->size * l->fmt.bytes, bad = 0, k, j;
 	unsigned char *row = malloc(row_bytes);
 	uint64_t off;
-	int f, ch;
+	int f;
 
 	if (!row)
 		return RF_ENOMEM;
@@ -457,27 +370,15 @@ read_levels(FILE *fp, const char *path, const struct dds_layout *l, rf_cubemap *
 		off = l->data + (uint64_t)f * l->face_bytes;
 		for (k = 0; k < l->levels; k++) {
 			size_t n = l->size >> k;
+
 			/* X and Z faces are mirrored left to right, Y faces top
 			 * to bottom (see the top of this file). */
-			int flip_u = f != RF_FACE_POS_Y && f != RF_FACE_NEG_Y;
-
 			if (fseeko(fp, (off_t)off, SEEK_SET) != 0)
 				goto io;
 			for (j = 0; j < n; j++) {
 				if (fread(row, l->fmt.bytes, n, fp) != n)
 					goto io;
-				for (i = 0; i < n; i++) {
-					float *t = rf_cubemap_texel(c, k, (enum rf_face)f,
-					                            flip_u ? n - 1 - i : i,
-					                            flip_u ? j : n - 1 - j);
-
-					decode_texel(&l->fmt, row + i * l->fmt.bytes, t);
-					for (ch = 0; ch < 3; ch++)
-						if (!isfinite(t[ch])) {
-							t[ch] = 0.0f;
-							bad++;
-						}
-				}
+				bad += rf__texel_store_gl_row(c, k, f, j, row, &l->fmt);
 			}
 			off += level_bytes(l, (uint32_t)k);
 		}
