@@ -88,6 +88,44 @@ RF_EXTERN int rf_image_read_level(rf_image **img, const char *path, size_t level
 RF_EXTERN void rf_image_label(float *px, size_t width, size_t height, size_t x0, size_t y0,
                               const char *text, size_t s);
 
+/*
+ * Resolving a supersampled frame (reflect-gbuffer --supersample): a
+ * width x height frame of nchannels becomes one factor times smaller on
+ * each axis, each pixel the box average of its factor x factor samples or
+ * a Gaussian of standard deviation sigma output pixels (taps within 3
+ * sigma, weights normalised over the frame) around its centre.  Channels
+ * marked in nearest (NULL: none) take the sample at the pixel's centre
+ * (for an even factor, the one just below and right of it) instead, for
+ * identifiers such as objid.  Rows go in top first, in blocks of any
+ * size; each push writes the output rows it completes.
+ */
+typedef struct rf_downsampler rf_downsampler;
+
+enum rf_resolve_filter {
+	RF_RESOLVE_BOX = 0,
+	RF_RESOLVE_GAUSSIAN = 1
+};
+
+#define RF_RESOLVE_SIGMA_DEFAULT 0.4
+#define RF_RESOLVE_SIGMA_MIN 0.1
+#define RF_RESOLVE_SIGMA_MAX 4.0
+
+/* RF_EINVAL unless width and height are multiples of factor >= 1 and
+ * sigma (for the Gaussian) lies in [RF_RESOLVE_SIGMA_MIN, _MAX]. */
+RF_EXTERN int rf_downsampler_create(rf_downsampler **d, size_t width, size_t height,
+                                    size_t nchannels, size_t factor,
+                                    enum rf_resolve_filter filter, double sigma,
+                                    const unsigned char *nearest);
+RF_EXTERN void rf_downsampler_destroy(rf_downsampler *d);
+RF_EXTERN size_t rf_downsampler_width(const rf_downsampler *d);
+RF_EXTERN size_t rf_downsampler_height(const rf_downsampler *d);
+/* At most how many output rows a push of nrows input rows completes. */
+RF_EXTERN size_t rf_downsampler_max_rows(const rf_downsampler *d, size_t nrows);
+/* Takes nrows input rows; writes *nout finished output rows to out.
+ * RF_EINVAL past the frame's last row. */
+RF_EXTERN int rf_downsampler_push(rf_downsampler *d, const float *rows, size_t nrows,
+                                  float *out, size_t *nout);
+
 /* Display encoding: exposure scale, an optional tone curve, sRGB. */
 enum rf_tone {
 	RF_TONE_NONE = 0,  /* clamp to [0, 1] only */
