@@ -11,7 +11,8 @@ usage(void)
 {
 	fprintf(stderr, "usage: %s -o FILE [-V] [-c CHANNELS] [-e STOPS] "
 	        "[--tone=none|filmic] [--srgb=on|off] [--depth=8|16|half|float] "
-	        "[--half] [-H -x W -y H -c CHANNELS] [file]\n", argv0);
+	        "[--half] [--downsample=N] [--filter=box|gaussian[:SIGMA]] "
+	        "[-H -x W -y H -c CHANNELS] [file]\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
 
@@ -53,6 +54,9 @@ struct export_opts {
 	enum rf_tone tone;
 	int srgb;  /* -1: on for 8- and 16-bit files, off for half and float */
 	int depth; /* -1: the file type's own; else an rf_pixel_type */
+	long downsample; /* -1: the frame's SUPERSAMPLE key, else 1 */
+	enum rf_resolve_filter filter;
+	double sigma;
 	/* Resolved once from the output name. */
 	const struct format *format;
 	int type;
@@ -203,31 +207,67 @@ is_alpha_name(const char *name)
 	return !strcmp(name, "A") || (n > 2 && !strcmp(name + n - 2, ".A"));
 }
 
-/* A block of rows on its way to the file: the chosen channels, encoded. */
+/* How many times smaller the picture is than the frame: --downsample, or
+ * the SUPERSAMPLE key reflect-gbuffer --supersample wrote. */
+static size_t
+resolve_factor(const struct export_opts *o, const rf_header *h, size_t frame)
+{
+	const char *v = rf_header_get(h, RF_KEY_SUPERSAMPLE);
+	size_t f = o->downsample > 0 ? (size_t)o->downsample : 1;
+	unsigned long n;
+	char *end;
+
+	if (o->downsample < 0 && v) {
+		n = strtoul(v, &end, 10);
+		if (end == v || *end || n < 1 || n > 16)
+			die("frame %zu: header key %s='%s' is not a whole number in [1, 16]",
+			    frame, RF_KEY_SUPERSAMPLE, v);
+		f = n;
+	}
+	if (rf_header_ncols(h) % f || rf_header_nrows(h) % f)
+		die("frame %zu: a %zux%zu frame does not downsample by %zu (its sides are "
+		    "not multiples of it); choose another --downsample", frame,
+		    rf_header_ncols(h), rf_header_nrows(h), f);
+	return f;
+}
+
+/* A block of rows on its way to the file: the chosen channels, resolved
+ * when the frame is supersampled, encoded. */
 struct export_block {
 	const struct export_opts *o;
 	rf_image_writer *w;
+	rf_downsampler *down; /* NULL: the frame is the picture */
 	const int *map;
 	const unsigned char *alpha;
-	size_t nch, ncomp, ncols;
+	size_t nch, ncomp, ncols, out_cols, out_y;
 	struct rf_file_encoding enc;
-	float *out;
+	float *out, *resolved;
 };
 
 static int
 export_block(void *arg, const float *in, float *out, size_t y, size_t n)
 {
 	struct export_block *eb = arg;
+	float *rows = eb->out;
 	size_t i, c;
 	int rc;
 
 	(void)out;
+	(void)y;
 	for (i = 0; i < n * eb->ncols; i++)
 		for (c = 0; c < eb->nch; c++)
 			eb->out[i * eb->nch + c] = in[i * eb->ncomp + (size_t)eb->map[c]];
-	rf_file_encode(eb->out, n * eb->ncols, eb->nch, eb->alpha, &eb->enc);
-	if ((rc = rf_image_writer_write_rows(eb->w, y, n, eb->out)) < 0)
+	if (eb->down) {
+		if ((rc = rf_downsampler_push(eb->down, eb->out, n, eb->resolved, &n)) < 0)
+			die_status(rc, NULL);
+		rows = eb->resolved;
+	}
+	if (!n)
+		return 0;
+	rf_file_encode(rows, n * eb->out_cols, eb->nch, eb->alpha, &eb->enc);
+	if ((rc = rf_image_writer_write_rows(eb->w, eb->out_y, n, rows)) < 0)
 		die_status(rc, rf_image_writer_error(eb->w));
+	eb->out_y += n;
 	return 0;
 }
 
@@ -237,10 +277,10 @@ export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
 {
 	static int map[RF_CHANNELS_MAX];
 	static const char *names[RF_CHANNELS_MAX];
-	static unsigned char alpha[RF_CHANNELS_MAX];
+	static unsigned char alpha[RF_CHANNELS_MAX], nearest[RF_CHANNELS_MAX];
 	char path[4096], err[1024];
 	size_t nch, ncomp = rf_header_nchannels(h), ncols = rf_header_ncols(h);
-	size_t nrows = rf_header_nrows(h), rows, c, k;
+	size_t nrows = rf_header_nrows(h), rows, c, k, factor = resolve_factor(o, h, frame);
 	int integer = is_integer(o->type), srgb, rc;
 	struct export_block eb;
 	rf_image_writer *w;
@@ -256,6 +296,8 @@ export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
 	for (c = 0; c < nch; c++) {
 		names[c] = rf_header_channel(h, (size_t)map[c]);
 		alpha[c] = (unsigned char)is_alpha_name(names[c]);
+		/* An average of object numbers is no object's. */
+		nearest[c] = !strcmp(names[c], "objid");
 	}
 	if (integer && nch >= 3) {
 		/* 8- and 16-bit files are pictures: R G B and alpha. */
@@ -274,7 +316,7 @@ export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
 					    "holds each name once", names[c]);
 	srgb = o->srgb >= 0 ? o->srgb : integer;
 	output_name(path, sizeof(path), o->output, frame);
-	if ((rc = rf_image_writer_open(&w, path, ncols, nrows, nch, names,
+	if ((rc = rf_image_writer_open(&w, path, ncols / factor, nrows / factor, nch, names,
 	                               (enum rf_pixel_type)o->type, err,
 	                               sizeof(err))) < 0)
 		die_status(rc, err);
@@ -288,6 +330,17 @@ export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
 	eb.nch = nch;
 	eb.ncomp = ncomp;
 	eb.ncols = ncols;
+	eb.out_cols = ncols / factor;
+	eb.out_y = 0;
+	eb.down = NULL;
+	eb.resolved = NULL;
+	if (factor > 1) {
+		if ((rc = rf_downsampler_create(&eb.down, ncols, nrows, nch, factor, o->filter,
+		                                o->sigma, nearest)) < 0)
+			die_status(rc, NULL);
+		eb.resolved = emalloc(rf_downsampler_max_rows(eb.down, rows) * eb.out_cols *
+		                      nch * sizeof(float));
+	}
 	eb.enc.scale = o->scale;
 	eb.enc.tone = o->tone;
 	eb.enc.srgb = srgb;
@@ -296,6 +349,8 @@ export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
 	eb.out = emalloc(rows * ncols * nch * sizeof(float));
 	rc = cli_blocks(io, nrows, rows, ncols * ncomp, 0, export_block, &eb);
 	free(eb.out);
+	free(eb.resolved);
+	rf_downsampler_destroy(eb.down);
 	if (rc < 0)
 		cli_io_read_failed(io, rc);
 	if ((rc = rf_image_writer_close(w, err, sizeof(err))) < 0)
@@ -310,10 +365,13 @@ main(int argc, char **argv)
 		{ "srgb", required_argument, NULL, 'S' },
 		{ "depth", required_argument, NULL, 'D' },
 		{ "half", no_argument, NULL, 'F' },
+		{ "downsample", required_argument, NULL, 'W' },
+		{ "filter", required_argument, NULL, 'L' },
 		{ "help", no_argument, NULL, 'Q' },
 		{ NULL, 0, NULL, 0 },
 	};
-	struct export_opts o = { NULL, NULL, 1.0f, RF_TONE_NONE, -1, -1, NULL, 0 };
+	struct export_opts o = { NULL, NULL, 1.0f, RF_TONE_NONE, -1, -1, -1, RF_RESOLVE_BOX,
+	                         RF_RESOLVE_SIGMA_DEFAULT, NULL, 0 };
 	struct cli_io io = { 0 };
 	const rf_header *h;
 	const char *channels = NULL;
@@ -352,6 +410,25 @@ main(int argc, char **argv)
 			o.depth = (int)k;
 			break;
 		case 'F': o.depth = RF_PIXEL_HALF; break;
+		case 'W':
+			stops = parse_number("downsample", optarg, 1, 16);
+			if (stops != floor(stops))
+				die("--downsample: '%s' is not a whole number in [1, 16]", optarg);
+			o.downsample = (long)stops;
+			break;
+		case 'L':
+			if (!strcmp(optarg, "box")) {
+				o.filter = RF_RESOLVE_BOX;
+			} else if (!strcmp(optarg, "gaussian")) {
+				o.filter = RF_RESOLVE_GAUSSIAN;
+			} else if (!strncmp(optarg, "gaussian:", 9)) {
+				o.filter = RF_RESOLVE_GAUSSIAN;
+				o.sigma = parse_number("filter=gaussian", optarg + 9,
+				                       RF_RESOLVE_SIGMA_MIN, RF_RESOLVE_SIGMA_MAX);
+			} else {
+				die("--filter: '%s' is not box or gaussian[:SIGMA]", optarg);
+			}
+			break;
 		case 'H': case 'x': case 'y':
 			cli_io_option(&io, c, optarg);
 			break;
@@ -364,6 +441,9 @@ main(int argc, char **argv)
 			       "  -c spec | R,G,B | all  the channels (default R,G,B, else spec)\n"
 			       "  -e STOPS  exposure   --tone=none|filmic   --srgb=on|off\n"
 			       "  --depth=8|16|half|float  pixel type   --half  same as --depth=half\n"
+			       "  --downsample=N  resolve N x N samples a pixel (default: the\n"
+			       "                  frame's SUPERSAMPLE, from reflect-gbuffer)\n"
+			       "  --filter=box|gaussian[:SIGMA]  its filter (SIGMA in pixels, 0.4)\n"
 			       "  -H -x W -y H -c CHANNELS  headerless input (all channels written)\n"
 			       "  -V  versions\n", argv0);
 			fshut(stdout, "<stdout>");

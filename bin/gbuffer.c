@@ -1,5 +1,6 @@
 /* reflect-gbuffer: ray cast a scene into a G-buffer stream. */
 #include <getopt.h>
+#include <math.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -11,16 +12,17 @@ usage(void)
 {
 	fprintf(stderr, "usage: %s [-vV] [-x WIDTH] [-y HEIGHT] [-n FRAMES] "
 	        "[-j THREADS] [-c CHANNELS] [--orbit=DEGREES] "
-	        "[--path=orbit:DEGREES|line:X,Y,Z] [-f a|f] [-h] "
+	        "[--path=orbit:DEGREES|line:X,Y,Z] [--supersample=N] [-f a|f] [-h] "
 	        "[--print-default-scene] [scene]\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
 
-enum { OPT_ORBIT = 256, OPT_PATH, OPT_PRINT_DEFAULT, OPT_HELP };
+enum { OPT_ORBIT = 256, OPT_PATH, OPT_SUPERSAMPLE, OPT_PRINT_DEFAULT, OPT_HELP };
 
 static const struct option long_options[] = {
 	{ "orbit", required_argument, NULL, OPT_ORBIT },
 	{ "path", required_argument, NULL, OPT_PATH },
+	{ "supersample", required_argument, NULL, OPT_SUPERSAMPLE },
 	{ "print-default-scene", no_argument, NULL, OPT_PRINT_DEFAULT },
 	{ "help", no_argument, NULL, OPT_HELP },
 	{ NULL, 0, NULL, 0 },
@@ -38,6 +40,8 @@ help(void)
 	       "  -n N               N frames, FRAME=0..N-1\n"
 	       "  --orbit=DEGREES    turn the camera about its target over the frames\n"
 	       "  --path=line:X,Y,Z  move the camera (and its target) to X,Y,Z\n"
+	       "  --supersample=N    N x N samples a pixel: a frame N times larger,\n"
+	       "                     resolved by reflect-export\n"
 	       "  -c CHANNELS        channels to write, e.g. P,N,V,roughness\n"
 	       "  -j N  threads   -v  flag a camera inside an object   -V  versions\n"
 	       "  -f a|f  output format   -h  no output header\n"
@@ -101,8 +105,9 @@ load_scene(const char *path)
 
 static rf_header *
 frame_header(const rf_scene *s, const rf_gbuffer *g, const struct rf_camera *cam,
-             size_t frame, size_t width, size_t height)
+             size_t frame, size_t width, size_t height, size_t supersample)
 {
+	char buf[32];
 	rf_header *h;
 	size_t i;
 	int rc;
@@ -116,6 +121,9 @@ frame_header(const rf_scene *s, const rf_gbuffer *g, const struct rf_camera *cam
 	/* A probe's env path may be too long for a header line. */
 	if ((rc = rf_scene_frame_keys(s, cam, frame, h)) < 0)
 		die_header_key(rc);
+	snprintf(buf, sizeof(buf), "%zu", supersample);
+	if (supersample > 1 && rf_header_set(h, RF_KEY_SUPERSAMPLE, buf) < 0)
+		die_sys("out of memory");
 	return h;
 }
 
@@ -156,7 +164,7 @@ main(int argc, char **argv)
 	struct rf_camera start, cam;
 	struct rf_writer_options wopt;
 	const char *channels = NULL, *threads = NULL, *file;
-	size_t width = 640, height = 360, frames = 1, frame, rows;
+	size_t width = 640, height = 360, frames = 1, frame, rows, supersample = 1;
 	char err[1024];
 	rf_gbuffer *g;
 	rf_scene *s;
@@ -175,6 +183,14 @@ main(int argc, char **argv)
 		case 'f': case 'h': cli_io_option(&io, c, optarg); break;
 		case OPT_ORBIT: parse_orbit(optarg, "--orbit", &path); break;
 		case OPT_PATH: parse_path(optarg, &path); break;
+		case OPT_SUPERSAMPLE: {
+			double n = parse_number("supersample", optarg, 1, 16);
+
+			if (n != floor(n))
+				die("--supersample: '%s' is not a whole number in [1, 16]", optarg);
+			supersample = (size_t)n;
+			break;
+		}
 		case OPT_PRINT_DEFAULT:
 			fputs(rf_scene_default_text(), stdout);
 			fshut(stdout, "<stdout>");
@@ -186,6 +202,13 @@ main(int argc, char **argv)
 	if (argc - optind > 1)
 		usage();
 	file = optind < argc ? argv[optind] : NULL;
+	/* The samples of a pixel are the pixels of a frame N times larger:
+	 * their rays cross it at the centres of an N x N grid. */
+	if (width > ((size_t)1 << 20) / supersample || height > ((size_t)1 << 20) / supersample)
+		die("--supersample=%zu: a %zux%zu frame is more than %d samples across; "
+		    "lower N or the size", supersample, width, height, 1 << 20);
+	width *= supersample;
+	height *= supersample;
 	s = load_scene(file);
 	if ((rc = rf_gbuffer_create(&g, s, width, height, channels, cli_threads(threads),
 	                            err, sizeof(err))) < 0)
@@ -207,7 +230,7 @@ main(int argc, char **argv)
 			die("frame %zu: %s", frame, err);
 		if (verbose)
 			flag_camera(s, &cam, file ? file : "<default>", frame);
-		h = frame_header(s, g, &cam, frame, width, height);
+		h = frame_header(s, g, &cam, frame, width, height, supersample);
 		cli_io_begin(&io, h);
 		rf_header_destroy(h);
 		cli_blocks(&io, height, rows, 0, width * rf_gbuffer_nchannels(g), render_block, g);

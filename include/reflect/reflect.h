@@ -128,6 +128,7 @@ RF_EXTERN const char *rf_header_line(const rf_header *h, size_t i);
 #define RF_KEY_SCENE "SCENE"           /* the scene's name */
 #define RF_KEY_CAMERA "CAMERA"         /* position, target, up (3 each), fov */
 #define RF_KEY_FRAME "FRAME"           /* the frame's number, from 0 */
+#define RF_KEY_SUPERSAMPLE "SUPERSAMPLE" /* N: a pixel is N x N samples */
 #define RF_KEY_PROBE_BOX "PROBE_BOX"   /* XMIN YMIN ZMIN XMAX YMAX ZMAX */
 #define RF_KEY_PROBE_CENTER "PROBE_CENTER" /* X Y Z, the capture point */
 #define RF_KEY_PROBE_BOX_PROJECTION "PROBE_BOX_PROJECTION" /* 1 or 0 */
