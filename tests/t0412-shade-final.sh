@@ -132,4 +132,17 @@ test_expect_success 'reflect-prefilter keeps the coefficients with the chain, an
 	test_grep "IRRADIANCE_SH9.*needs 27 finite numbers" err
 '
 
+# An EXR chain stores its texels as halves; its coefficients come from
+# the float level 0 as the stream's do, so the diffuse light is the same
+# to the last bit, where projecting the half texels would not be.
+test_expect_success 'an EXR chain keeps the same coefficients as an attribute' '
+	reflect-prefilter --size=16 -o room.exr 2>/dev/null &&
+	tr -c "[:print:]" "\n" <room.exr | grep "reflect:irradianceSH9" >attr &&
+	test_line_count 1 attr &&
+	reflect-shade -fa -m none --final --diffuse=on --env=room.exr px.txt >x.txt &&
+	reflect-shade -fa -m none --final --diffuse=on --env=room.rfl px.txt >r.txt &&
+	column x.txt diffuse.R >xd && column r.txt diffuse.R >rd &&
+	cmp xd rd
+'
+
 test_done

@@ -39,8 +39,10 @@ rf_chain_write_file(const rf_cubemap *c, const struct rf_chain_info *info,
 	size_t n = rf_cubemap_size(c), levels = rf_cubemap_levels(c), total, k;
 	size_t w[32], h[32];
 	float *px[32] = { 0 };
-	char nlev[32], steps[32], samples[32];
+	char nlev[32], steps[32], samples[32], sh9[27 * 18];
 	const char *attrs[20];
+	float sh[27];
+	size_t used = 0;
 	int rc = 0, a = 0;
 
 	/* OpenEXR's chain goes down to 1x1, each side halved rounding down. */
@@ -84,6 +86,14 @@ rf_chain_write_file(const rf_cubemap *c, const struct rf_chain_info *info,
 	attrs[a++] = samples;
 	attrs[a++] = "reflect:base";
 	attrs[a++] = info->base_copied ? "copied" : "filtered";
+	/* The diffuse light's coefficients from the float level 0, which
+	 * the file keeps only in half precision. */
+	rf_cubemap_sh9(c, 0, sh);
+	for (k = 0; k < 27; k++)
+		used += (size_t)snprintf(sh9 + used, sizeof(sh9) - used, "%s%.9g",
+		                         k ? " " : "", (double)sh[k]);
+	attrs[a++] = "reflect:irradianceSH9";
+	attrs[a++] = sh9;
 	attrs[a] = NULL;
 	rc = rf_image_write_levels(path, total, w, h, 3, names, (const float *const *)px,
 	                           attrs, RF_PIXEL_HALF, err, errlen);
@@ -139,6 +149,16 @@ rf_chain_read_file(rf_cubemap **cp, struct rf_chain_info *info, int *is_reflect,
 		if ((v = rf_image_attribute(img, "reflect:levels")) &&
 		    (l = strtoul(v, &end, 10)) >= 1 && !*end && l <= levels)
 			levels = l;
+		if ((v = rf_image_attribute(img, "reflect:irradianceSH9"))) {
+			if (rf__scan_floats(v, info->sh9, 27) < 0) {
+				rf__format(err, errlen, "'%s': attribute reflect:irradianceSH9 "
+				           "needs 27 finite numbers", path);
+				rc = RF_EFORMAT;
+				rf_image_destroy(img);
+				return rc;
+			}
+			info->has_sh9 = 1;
+		}
 	}
 	if ((rc = rf_cubemap_check_size(n, levels, err, errlen)) < 0 ||
 	    (rc = rf_cubemap_create(cp, n, levels)) < 0)
