@@ -8,7 +8,7 @@ setup_say () {
 
 # Debian packages the build and the tests need.
 setup_packages="autoconf automake libtool pkg-config make gcc g++ \
-libopenimageio-dev libopenexr-dev libpng-dev"
+libopenimageio-dev libopenexr-dev libpng-dev libzstd-dev"
 # Used by some tests when present (they skip otherwise).
 setup_optional_packages="python3-numpy valgrind clang strace"
 
@@ -26,8 +26,9 @@ setup_missing () {
 		pkg-config --exists OpenImageIO || missing="$missing libopenimageio-dev"
 		pkg-config --exists 'OpenEXR >= 3.1' || missing="$missing libopenexr-dev"
 		pkg-config --exists libpng || missing="$missing libpng-dev"
+		pkg-config --exists libzstd || missing="$missing libzstd-dev"
 	else
-		missing="$missing libopenimageio-dev libopenexr-dev libpng-dev"
+		missing="$missing libopenimageio-dev libopenexr-dev libpng-dev libzstd-dev"
 	fi
 	echo $missing
 }

@@ -277,6 +277,39 @@ RF_EXTERN int rf_chain_read_file(rf_cubemap **c, struct rf_chain_info *info,
 RF_EXTERN int rf_chain_read_dds(rf_cubemap **c, struct rf_chain_info *info,
                                 size_t *nonfinite, const char *path, char *err,
                                 size_t errlen);
+/* Reads a KTX 1 or KTX 2 cube map (told apart by the file's identifier)
+ * with its mip levels, kept as rf_chain_read_dds keeps them: float,
+ * half, R11G11B10, RGB9E5 and 8-bit RGB(A)/BGRA texels (sRGB decoded),
+ * KTX 2 levels plain or Zstandard-supercompressed (with libzstd).  Both
+ * store faces in OpenGL's orientation, that of DDS, and are mirrored to
+ * OpenEXR's the same way.  Block-compressed and Basis Universal formats,
+ * arrays, 3D textures and non-square faces are refused by name.  Info
+ * is that of a DDS chain, or what reflect wrote into the file's
+ * reflect:* keys, *is_reflect (may be NULL) then 1. */
+RF_EXTERN int rf_chain_read_ktx(rf_cubemap **c, struct rf_chain_info *info,
+                                int *is_reflect, size_t *nonfinite, const char *path,
+                                char *err, size_t errlen);
+
+/* How a chain is written as KTX: version 1 or 2, RGBA half floats or
+ * floats (alpha 1), KTX 2 levels Zstandard-supercompressed at zstd
+ * (1 to 22; 0: none). */
+enum rf_ktx_texel {
+	RF_KTX_RGBA16F = 0,
+	RF_KTX_RGBA32F = 1
+};
+struct rf_ktx_options {
+	int version;
+	enum rf_ktx_texel texel;
+	int zstd;
+};
+/* Writes every level of the chain, and nothing past them, as a KTX cube
+ * map in OpenGL's orientation (KTXorientation rd) with the chain's info
+ * in reflect:* keys; through a file beside path renamed over it, so a
+ * failure leaves path as it was.  RF_EINVAL for options it cannot do
+ * (zstd in KTX 1, or without libzstd). */
+RF_EXTERN int rf_chain_write_ktx(const rf_cubemap *c, const struct rf_chain_info *info,
+                                 const char *path, const struct rf_ktx_options *o,
+                                 char *err, size_t errlen);
 
 /* ---- the embedded environment ----------------------------------------- */
 

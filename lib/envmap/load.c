@@ -1,8 +1,8 @@
 /*
  * Loading an environment from a path: the embedded room, a stream (from
  * a file, a pipe or standard input), six face images, a chain as one
- * file per level, a DDS cube, a MIP-mapped OpenEXR chain, or one image
- * in any layout.  The tools' --env, --layout, --prefiltered, --srgb,
+ * file per level, a DDS or KTX cube, a MIP-mapped OpenEXR chain, or one
+ * image in any layout.  The tools' --env, --layout, --prefiltered, --srgb,
  * --rgbm, --intensity and --size are the fields of rf_envmap_options.
  */
 #include <errno.h>
@@ -350,6 +350,37 @@ load_dds(struct load *ld, const char *path, rf_cubemap **c, struct rf_chain_info
 	return rc;
 }
 
+/* A KTX cube: its levels as a chain when reflect wrote it or with
+ * --prefiltered, else its level 0 as a raw environment. */
+static int
+load_ktx(struct load *ld, const char *path, rf_cubemap **c, struct rf_chain_info *info)
+{
+	size_t bad = 0;
+	rf_cubemap *chain;
+	int rc, ours;
+
+	if ((rc = rf_chain_read_ktx(&chain, info, &ours, &bad, path, ld->err,
+	                            ld->errlen)) < 0)
+		return image_status(rc);
+	if ((rc = count_nonfinite(ld, path, bad)) < 0) {
+		rf_cubemap_destroy(chain);
+		return rc;
+	}
+	if (ours || ld->o->prefiltered) {
+		if (ld->o->prefiltered)
+			info->prefiltered = 1;
+		*c = chain;
+		return 0;
+	}
+	if ((rc = cube_new(ld, c, rf_cubemap_size(chain), 1)) == 0)
+		rf__cubemap_copy_level(*c, 0, chain, 0);
+	rf_cubemap_destroy(chain);
+	memset(info, 0, sizeof(*info));
+	info->mapping = RF_MAPPING_DEFAULT;
+	info->base_copied = 1;
+	return rc;
+}
+
 /*
  * The environment file, opened without waiting for a writer: a regular
  * file, or (*piped) a pipe such as --env=<(reflect-prefilter ...), which
@@ -449,6 +480,8 @@ load_path(struct load *ld, const char *path, rf_cubemap **c, struct rf_chain_inf
 		                          : load_faces(ld, path, c);
 	if (has_suffix(path, ".dds"))
 		return load_dds(ld, path, c, info);
+	if (has_suffix(path, ".ktx") || has_suffix(path, ".ktx2"))
+		return load_ktx(ld, path, c, info);
 	if ((rc = open_env_file(ld, path, &fp, &piped)) < 0)
 		return rc;
 	/* A pipe can only carry a stream: its reader says if it is none. */
