@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "envmap/envmap-internal.h"
 #include "envmap/rgba_levels.h"
 #include "envmap/rgba_levels_simd.h"
 #include "plugin/plugin-internal.h"
@@ -50,6 +51,8 @@ struct rf_shade {
 	 * the probe box it is box-projected in (diffuse_box). */
 	int diffuse, diffuse_box, has_box;
 	float sh[27];
+	float shq[3][9];  /* the same as a quadratic in N */
+	int sh_known;     /* sh holds the environment's (given or projected) */
 	struct box box;
 	int in[IN_COUNT];
 	int out[OUT_COUNT];
@@ -209,6 +212,8 @@ void
 rf_shade_set_irradiance(rf_shade *s, const float sh9[27])
 {
 	memcpy(s->sh, sh9, sizeof(s->sh));
+	rf__sh9_quadratic(s->sh, s->shq);
+	s->sh_known = 1;
 }
 
 void
@@ -243,8 +248,9 @@ rf_shade_set_environment(rf_shade *s, const rf_cubemap *env, enum rf_mapping map
 		return rc;
 	s->env = env;
 	s->vector = rf__rgba_levels_simd_usable(&s->levels);
-	if (s->diffuse)
-		rf_cubemap_sh9(env, 0, s->sh);
+	/* Projected when the first block needs them, unless the chain's own
+	 * coefficients come first (rf_shade_set_irradiance). */
+	s->sh_known = 0;
 	s->mapping = mapping;
 	s->steps = steps;
 	return 0;
@@ -458,20 +464,31 @@ diffuse_light(const rf_shade *s, const float *p, const float albedo[3], float me
               float e[3])
 {
 	float n[3] = { p[s->in[IN_NX]], p[s->in[IN_NY]], p[s->in[IN_NZ]] }, dir[3], t, reach;
+	float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 	int k;
 
+	if (!(len > 0.0f) || !(len < INFINITY)) {
+		e[0] = e[1] = e[2] = 0.0f;
+		return;
+	}
 	for (k = 0; k < 3; k++)
-		dir[k] = n[k];
+		dir[k] = n[k] / len;
 	if (s->diffuse_box && s->has_box && s->in[IN_PX] >= 0) {
 		const float pos[3] = { p[s->in[IN_PX]], p[s->in[IN_PY]], p[s->in[IN_PZ]] };
-		float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), u[3];
+		float u[3] = { dir[0], dir[1], dir[2] }, l;
 
-		for (k = 0; k < 3; k++)
-			u[k] = len > 0.0f ? n[k] / len : n[k];
-		if (box_exit(&s->box, pos, u, &t) == 0)
+		if (box_exit(&s->box, pos, u, &t) == 0) {
 			lookup_from_hit(&s->box, pos, u, t, dir, &reach);
+			l = sqrtf(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+			if (!(l > 0.0f)) {
+				e[0] = e[1] = e[2] = 0.0f;
+				return;
+			}
+			for (k = 0; k < 3; k++)
+				dir[k] /= l;
+		}
 	}
-	rf_sh9_irradiance(s->sh, dir, e);
+	rf__sh9_quadratic_eval(s->shq, dir, e);
 	for (k = 0; k < 3; k++)
 		e[k] *= albedo[k] * (1.0f - metal) * (float)(1.0 / 3.14159265358979);
 }
@@ -598,6 +615,12 @@ block_begin(rf_shade *s)
 {
 	int t;
 
+	if (s->diffuse && !s->sh_known) {
+		float sh[27];
+
+		rf_cubemap_sh9(s->env, 0, sh);
+		rf_shade_set_irradiance(s, sh);
+	}
 	for (t = 0; t < s->nthreads; t++)
 		rf__first_invalid_clear(&s->reads[t].first);
 }
