@@ -521,14 +521,18 @@ parse_ktx2(struct ktx *k, const unsigned char *h, size_t got)
 
 /* ---- reflect's keys ----------------------------------------------------- */
 
-static void
+static int
 reflect_key(const char *key, const char *v, struct rf_chain_info *info, size_t *levels,
             int *ours)
 {
 	char *end;
 	unsigned long n;
 
-	if (!strcmp(key, "reflect:prefilter")) {
+	if (!strcmp(key, "reflect:irradianceSH9")) {
+		if (rf__scan_floats(v, info->sh9, 27) < 0)
+			return RF_EFORMAT;
+		info->has_sh9 = 1;
+	} else if (!strcmp(key, "reflect:prefilter")) {
 		*ours = 1;
 		info->prefiltered = !strcmp(v, "ggx");
 	} else if (!strcmp(key, "reflect:mapping")) {
@@ -544,6 +548,7 @@ reflect_key(const char *key, const char *v, struct rf_chain_info *info, size_t *
 		if (n >= 1 && !*end && n <= *levels)
 			*levels = n;
 	}
+	return 0;
 }
 
 /*
@@ -571,7 +576,7 @@ read_keys(struct ktx *k, struct rf_chain_info *info, int *ours)
 	while (k->kv_length - at >= 4) {
 		uint32_t n = rd32(k, kv + at);
 		const char *key = (const char *)kv + at + 4, *nul;
-		char value[64];
+		char value[512];
 		size_t vlen;
 
 		if (n > k->kv_length - at - 4 || !(nul = memchr(key, 0, n)))
@@ -580,7 +585,12 @@ read_keys(struct ktx *k, struct rf_chain_info *info, int *ours)
 		if (!strncmp(key, "reflect:", 8) && vlen < sizeof(value)) {
 			memcpy(value, nul + 1, vlen);
 			value[vlen] = 0;
-			reflect_key(key, value, &got, &levels, &mine);
+			if (reflect_key(key, value, &got, &levels, &mine) < 0) {
+				rf__format(k->err, k->errlen, "'%s': key %s needs 27 finite numbers",
+				           k->path, key);
+				free(kv);
+				return RF_EFORMAT;
+			}
 		}
 		at += 4 + (((size_t)n + 3) & ~(size_t)3);
 	}

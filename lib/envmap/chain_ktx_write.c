@@ -67,7 +67,7 @@ pad(struct out *o, uint64_t at, unsigned align)
 /* ---- key/value data ----------------------------------------------------- */
 
 struct kv {
-	unsigned char buf[512];
+	unsigned char buf[1024];
 	size_t len;
 };
 
@@ -94,9 +94,17 @@ kv_add(struct kv *kv, const char *key, const char *value)
 static void
 kv_fill(struct kv *kv, const rf_cubemap *c, const struct rf_chain_info *info, int version)
 {
-	char levels[32], steps[32], samples[32], writer[64];
+	char levels[32], steps[32], samples[32], writer[64], sh9[27 * 18];
+	size_t used = 0, k;
+	float sh[27];
 
 	kv->len = 0;
+	/* The diffuse light's coefficients from the float level 0, as the
+	 * EXR chain keeps them: the file may hold it in half floats. */
+	rf_cubemap_sh9(c, 0, sh);
+	for (k = 0; k < 27; k++)
+		used += (size_t)snprintf(sh9 + used, sizeof(sh9) - used, "%s%.9g", k ? " " : "",
+		                         (double)sh[k]);
 	rf__format(levels, sizeof(levels), "%zu", rf_cubemap_levels(c));
 	rf__format(steps, sizeof(steps), "%.9g", (double)info->steps);
 	rf__format(samples, sizeof(samples), "%u", info->samples);
@@ -106,6 +114,7 @@ kv_fill(struct kv *kv, const rf_cubemap *c, const struct rf_chain_info *info, in
 	if (version == 2)
 		kv_add(kv, "KTXwriter", writer);
 	kv_add(kv, "reflect:base", info->base_copied ? "copied" : "filtered");
+	kv_add(kv, "reflect:irradianceSH9", sh9);
 	kv_add(kv, "reflect:levels", levels);
 	kv_add(kv, "reflect:mapping", rf_mapping_name(info->mapping));
 	kv_add(kv, "reflect:prefilter", info->prefiltered ? "ggx" : "box");

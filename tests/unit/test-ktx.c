@@ -971,7 +971,18 @@ round_trip(const rf_cubemap *c, const struct rf_ktx_options *o)
 		return 1;
 	}
 	unlink(path);
+	{
+		float sh[27];
+		int m;
+
+		/* the diffuse light's coefficients, from the float level 0 */
+		rf_cubemap_sh9(c, 0, sh);
+		for (m = 0; m < 27 && back.has_sh9; m++)
+			if (back.sh9[m] != sh[m])
+				back.has_sh9 = 0;
+	}
 	if (ours != 1 || bad != 0 || back.prefiltered != 0 || back.mapping != RF_MAPPING_LINEAR ||
+	    !back.has_sh9 ||
 	    back.steps != 3.5f || back.samples != 17 || back.base_copied != 0 ||
 	    rf_cubemap_levels(d) != rf_cubemap_levels(c)) {
 		printf("# info: ours %d, %zu levels, %d %d %g %u %d\n", ours,
@@ -1398,6 +1409,39 @@ TEST(refuses_truncated_files)
 	unlink(path);
 }
 
+/* reflect's keys: another writer's are skipped, a broken SH9 refused as
+ * the EXR chain's attribute is. */
+TEST(reflect_keys)
+{
+	const struct format *fmt = format_named("R16G16B16A16_SFLOAT");
+	struct fixture fx = cube(fmt, 4, 3);
+	struct rf_chain_info info;
+	char path[64], err[512];
+	rf_cubemap *c;
+	int ours = 9;
+
+	fx.kv[0] = "KTXorientation";
+	fx.kv[1] = "rd";
+	fx.kv[2] = "reflect:levels";
+	fx.kv[3] = "2";
+	fx.kv[4] = "reflect:prefilter";
+	fx.kv[5] = "box";
+	ASSERT_EQ(read_fixture(&fx, &c, &info, &ours, NULL, path, err, sizeof(err)), 0);
+	ASSERT_EQ(ours, 1);
+	ASSERT_EQ(info.prefiltered, 0);
+	ASSERT_EQ(info.has_sh9, 0);
+	ASSERT_EQ(rf_cubemap_levels(c), 2);
+	rf_cubemap_destroy(c);
+	fx.kv[2] = "reflect:irradianceSH9";
+	fx.kv[3] = "1 2 3";
+	ASSERT_EQ(refused(&fx, RF_EFORMAT, "'%s': key reflect:irradianceSH9 needs 27 finite "
+	                  "numbers"), 0);
+	fx.kv[0] = "someone:else";
+	fx.kv[1] = "x";
+	fx.kv[2] = NULL;
+	ASSERT_EQ(check_fixture(&fx, fmt, 3), 0);
+}
+
 TEST(refuses_bad_endianness_and_missing_file)
 {
 	struct fixture fx = cube(format_named("GL_RGBA32F"), 4, 1);
@@ -1442,6 +1486,7 @@ main(void)
 	RUN(refuses_non_cubes);
 	RUN(refuses_bad_sizes);
 	RUN(refuses_truncated_files);
+	RUN(reflect_keys);
 	RUN(refuses_bad_endianness_and_missing_file);
 	TAP_DONE();
 }
