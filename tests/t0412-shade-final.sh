@@ -132,6 +132,21 @@ test_expect_success 'reflect-prefilter keeps the coefficients with the chain, an
 	test_grep "IRRADIANCE_SH9.*needs 27 finite numbers" err
 '
 
+test_expect_success 'the diffuse light is the same bytes at 1 and 2 threads' '
+	reflect-gbuffer -x 48 -y 27 | reflect-project >scene.rfl &&
+	for f in split-sum unity hdrp
+	do
+		for p in off box
+		do
+			reflect-shade -h -j 1 -m hdrp --final=$f --diffuse-projection=$p \
+				--env=room.rfl scene.rfl >one.raw &&
+			reflect-shade -h -j 2 -m hdrp --final=$f --diffuse-projection=$p \
+				--env=room.rfl scene.rfl >two.raw &&
+			cmp one.raw two.raw || return 1
+		done || return 1
+	done
+'
+
 # An EXR chain stores its texels as halves; its coefficients come from
 # the float level 0 as the stream's do, so the diffuse light is the same
 # to the last bit, where projecting the half texels would not be.
