@@ -2,6 +2,7 @@
 #include <getopt.h>
 #include <math.h>
 #include <string.h>
+#include <strings.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -15,7 +16,8 @@ usage(void)
 	        "[--steps=N] [--method=filtered|brute] [--plain] [--lod-bias=B] "
 	        "[--layout=L] [--size=N] [--srgb=auto|on|off] [--rgbm=M[,E]] "
 	        "[--intensity=X] [--dump=latlong|cube|vcross|hcross] "
-	        "[--edge-fixup=none|average] [--irradiance=FILE] [-f a|f] [-h] "
+	        "[--edge-fixup=none|average] [--irradiance=FILE] "
+	        "[--ktx-texel=half|float] [--zstd[=LEVEL]] [-f a|f] [-h] "
 	        "[ENV]\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
@@ -30,7 +32,16 @@ struct prefilter_opts {
 	int edge_average; /* --edge-fixup=average */
 	enum rf_format format;
 	int no_header;
+	struct rf_ktx_options ktx; /* --ktx-texel, --zstd */
 };
+
+static int
+ends_ktx2(const char *path)
+{
+	const char *dot = path ? strrchr(path, '.') : NULL;
+
+	return dot && !strcasecmp(dot, ".ktx2");
+}
 
 static double
 now(clockid_t clock)
@@ -101,6 +112,17 @@ write_chain(const struct prefilter_opts *o, const char *output, const rf_cubemap
 	if (output) {
 		const char *dot = strrchr(output, '.');
 
+		if (dot && (!strcasecmp(dot, ".ktx") || !strcasecmp(dot, ".ktx2"))) {
+			struct rf_ktx_options ko = o->ktx;
+
+			ko.version = dot[4] ? 2 : 1;
+			if (ko.version == 1)
+				ko.zstd = 0; /* --zstd is for the .ktx2 of -o or --irradiance */
+			if ((rc = rf_chain_write_ktx(c, info, output, &ko, err, sizeof(err))) < 0)
+				die_status(rc, err);
+			rf_header_destroy(base);
+			return;
+		}
 		if (dot && strcmp(dot, ".rfl") && strcmp(dot, ".stream")) {
 			if ((rc = rf_chain_write_file(c, info, output, err, sizeof(err))) < 0)
 				die_status(rc, err);
@@ -143,6 +165,8 @@ main(int argc, char **argv)
 		{ "dump", required_argument, NULL, 'D' },
 		{ "edge-fixup", required_argument, NULL, 'E' },
 		{ "irradiance", required_argument, NULL, 'I' },
+		{ "ktx-texel", required_argument, NULL, 'K' },
+		{ "zstd", optional_argument, NULL, 'Z' },
 		{ "help", no_argument, NULL, 'Q' },
 		{ NULL, 0, NULL, 0 },
 	};
@@ -190,6 +214,21 @@ main(int argc, char **argv)
 		case 'B': o.pf.lod_bias = (float)parse_number("lod-bias", optarg, -4, 4); break;
 		case 'D': o.dump = optarg; break;
 		case 'I': o.irradiance = optarg; break;
+		case 'K':
+			if (!strcmp(optarg, "half")) o.ktx.texel = RF_KTX_RGBA16F;
+			else if (!strcmp(optarg, "float")) o.ktx.texel = RF_KTX_RGBA32F;
+			else die("--ktx-texel: '%s' is not half or float", optarg);
+			break;
+		case 'Z':
+			o.ktx.zstd = 3; /* zstd's own default */
+			if (optarg) {
+				double z = parse_number("zstd", optarg, 1, 22);
+
+				if (z != (int)z)
+					die("--zstd: '%s' is not a level 1 to 22", optarg);
+				o.ktx.zstd = (int)z;
+			}
+			break;
 		case 'E':
 			if (!strcmp(optarg, "average")) o.edge_average = 1;
 			else if (strcmp(optarg, "none")) die("--edge-fixup: '%s' is not none or average", optarg);
@@ -199,7 +238,10 @@ main(int argc, char **argv)
 			       "Convolves an environment (lat-long, N x 6N cube, cross, six faces\n"
 			       "with %%d or %%s in the name, a stream, or the embedded room when\n"
 			       "none is given) into a GGX mip chain. See reflect-prefilter(1).\n"
-			       "  -o OUT  .exr: MIP-mapped OpenEXR cube; .rfl: stream (stdout without -o)\n"
+			       "  -o OUT  .exr: MIP-mapped OpenEXR cube; .ktx, .ktx2: KTX cube;\n"
+			       "          .rfl: stream (stdout without -o)\n"
+			       "  --ktx-texel=half|float  a KTX file's RGBA texels (half)\n"
+			       "  --zstd[=LEVEL]  Zstandard levels in a .ktx2 file (level 3)\n"
 			       "  -s N  GGX samples at level 1 (64), x3 per rougher level\n"
 			       "  --levels=N --min-size=N --mapping=unity|linear|exact --steps=N\n"
 			       "  --method=filtered|brute  --plain (box mips)  --lod-bias=B\n"
@@ -214,6 +256,8 @@ main(int argc, char **argv)
 	}
 	if (argc - optind > 1 || (argc - optind == 1 && eo.path))
 		usage();
+	if (o.ktx.zstd && !ends_ktx2(o.output) && !ends_ktx2(o.irradiance))
+		die("--zstd: no KTX 2 file to write (-o or --irradiance ending in .ktx2)");
 	if (optind < argc)
 		eo.path = argv[optind];
 	o.pf.nthreads = cli_threads(threads);
