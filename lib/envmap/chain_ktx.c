@@ -573,7 +573,8 @@ read_keys(struct ktx *k, struct rf_chain_info *info, int *ours)
 		free(kv);
 		return rc;
 	}
-	while (k->kv_length - at >= 4) {
+	/* The last pair's padding may be missing: at can pass the end. */
+	while (at <= k->kv_length && k->kv_length - at >= 4) {
 		uint32_t n = rd32(k, kv + at);
 		const char *key = (const char *)kv + at + 4, *nul;
 		char value[512];
