@@ -15,7 +15,7 @@ do
 		reflect-shade -h -j1 -m $m --final --env=room.rfl scene.rfl >j1 &&
 		reflect-shade -h -j2 -m $m --final --env=room.rfl scene.rfl >j2 &&
 		reflect-shade -h -j7 -m $m --final --env=room.rfl scene.rfl >j7 &&
-		test $(wc -c <j1) -eq $((2 * 40 * 24 * (20 + 8 + 4 + 3 + 3) * 4)) &&
+		test $(wc -c <j1) -eq $((2 * 40 * 24 * (23 + 8 + 4 + 3 + 3) * 4)) &&
 		cmp j1 j2 &&
 		cmp j1 j7 &&
 		REFLECT_THREADS=3 reflect-shade -h -m $m --final --env=room.rfl scene.rfl >j3 &&
@@ -41,7 +41,7 @@ test_expect_success 'several blocks and frames: any thread count, every frame al
 	reflect-gbuffer -x 1500 -y 50 -n 2 | reflect-project >wide.rfl &&
 	reflect-shade -h -j1 -m approx --final --env=room.rfl wide.rfl >w1 &&
 	reflect-shade -h -j2 -m approx --final --env=room.rfl wide.rfl >w2 &&
-	frame=$((1500 * 50 * 38 * 4)) &&
+	frame=$((1500 * 50 * 41 * 4)) &&
 	test $(wc -c <w1) -eq $((2 * frame)) &&
 	cmp w1 w2 &&
 	# The two frames have the same camera: the same bytes (nothing of a

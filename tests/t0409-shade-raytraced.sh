@@ -38,7 +38,7 @@ do
 		reflect-shade -h -j1 -m $m --final --env=room.rfl scene.rfl >j1 &&
 		reflect-shade -h -j2 -m $m --final --env=room.rfl scene.rfl >j2 &&
 		reflect-shade -h -j5 -m $m --final --env=room.rfl scene.rfl >j5 &&
-		test $(wc -c <j1) -eq $((2 * npix * (20 + 8 + 3 + 3 + 3) * 4)) &&
+		test $(wc -c <j1) -eq $((2 * npix * (23 + 8 + 3 + 3 + 3) * 4)) &&
 		cmp j1 j2 &&
 		cmp j1 j5
 	'

@@ -11,7 +11,7 @@ test_expect_success 'default size is 640x360, -x -y set it' '
 	reflect-gbuffer -x 7 -y 3 | reflect-info >info &&
 	test_grep "NCOLS=7$" info &&
 	test_grep "NROWS=3$" info &&
-	test_grep "NCOMP=20$" info
+	test_grep "NCOMP=23$" info
 '
 
 # From the centre of a 20 m cube, looking along -Z, fov 90 (tan 45 = 1),

@@ -14,7 +14,7 @@ test_expect_success 'the default scene: header keys for the stages downstream' '
 	test_grep "^PROBE_BLEND=1$" out.txt &&
 	test_grep "^CAMERA=-2.6 1.6 1.8 0.9 0.45 -1 0 1 0 55$" out.txt &&
 	test_grep "^FRAME=0$" out.txt &&
-	test_grep "^CHANNELS=P.X P.Y P.Z N.X N.Y N.Z Ng.X Ng.Y Ng.Z V.X V.Y V.Z roughness metallic albedo.R albedo.G albedo.B mask objid depth$" out.txt
+	test_grep "^CHANNELS=P.X P.Y P.Z N.X N.Y N.Z Ng.X Ng.Y Ng.Z V.X V.Y V.Z roughness metallic albedo.R albedo.G albedo.B mask objid depth emission.R emission.G emission.B$" out.txt
 '
 
 test_expect_success 'the default scene has no NaN and sees no nothing' '
@@ -75,7 +75,7 @@ test_expect_success 'the stream goes on through reflect-project' '
 
 test_expect_success 'raw output with -h is the frame alone' '
 	reflect-gbuffer -x 5 -y 3 -h >raw &&
-	test "$(wc -c <raw)" -eq $((5 * 3 * 20 * 4))
+	test "$(wc -c <raw)" -eq $((5 * 3 * 23 * 4))
 '
 
 test_expect_success '--help on stdout, -V, usage errors' '

@@ -143,8 +143,9 @@ RF_EXTERN void rf_camera_at_frame(const struct rf_camera *start,
 
 typedef struct rf_gbuffer rf_gbuffer;
 
-/* channels: names separated by spaces or commas, where P, N, Ng, V and
- * albedo stand for their three components; NULL for all.  Rows are spread
+/* channels: names separated by spaces or commas, where P, N, Ng, V,
+ * albedo, T and emission stand for their three components; NULL for all
+ * (emission.R G B included when the scene emits, T never).  Rows are spread
  * over nthreads threads; the bytes never depend on it.  The scene must
  * outlive the G-buffer. */
 RF_EXTERN int rf_gbuffer_create(rf_gbuffer **g, const rf_scene *s, size_t width,

@@ -13,18 +13,22 @@ enum {
 	CH_PX, CH_PY, CH_PZ, CH_NX, CH_NY, CH_NZ, CH_NGX, CH_NGY, CH_NGZ,
 	CH_VX, CH_VY, CH_VZ, CH_ROUGHNESS, CH_METALLIC, CH_ALBEDO_R, CH_ALBEDO_G,
 	CH_ALBEDO_B, CH_MASK, CH_OBJID, CH_DEPTH,
+	/* what the surface emits: by default when the scene has emission */
+	CH_ER, CH_EG, CH_EB,
 	/* on request only (-c T): three more floats a pixel on every stream
 	 * for the few models that have a direction on the surface */
 	CH_TX, CH_TY, CH_TZ, CH_COUNT
 };
 
-/* The channels written when none are asked for: all but the tangent. */
+/* The channels written when none are asked for: all but the tangent and
+ * the emission (added for scenes that emit). */
 #define CH_DEFAULT (CH_DEPTH + 1)
 
 static const char *const channel_names[CH_COUNT] = {
 	"P.X", "P.Y", "P.Z", "N.X", "N.Y", "N.Z", "Ng.X", "Ng.Y", "Ng.Z",
 	"V.X", "V.Y", "V.Z", "roughness", "metallic", "albedo.R", "albedo.G",
-	"albedo.B", "mask", "objid", "depth", "T.X", "T.Y", "T.Z"
+	"albedo.B", "mask", "objid", "depth", "emission.R", "emission.G", "emission.B",
+	"T.X", "T.Y", "T.Z"
 };
 
 /* Layer names that stand for three channels. */
@@ -33,7 +37,7 @@ static const struct {
 	int first;
 } layers[] = {
 	{ "P", CH_PX }, { "N", CH_NX }, { "Ng", CH_NGX }, { "V", CH_VX },
-	{ "albedo", CH_ALBEDO_R }, { "T", CH_TX },
+	{ "albedo", CH_ALBEDO_R }, { "T", CH_TX }, { "emission", CH_ER },
 };
 
 
@@ -48,7 +52,8 @@ struct rf_gbuffer {
 	int nthreads;
 	size_t nch;
 	int map[CH_COUNT]; /* output channel -> value index */
-	int identity;      /* map[c] == c for the CH_DEFAULT channels */
+	int identity;      /* map[c] == c for the first nch channels */
+	int emission;      /* an emission channel is written */
 	struct rf_camera cam;
 	struct camera_basis cb;
 	double *k; /* per-object constants for rays from the camera */
@@ -91,9 +96,11 @@ select_channels(rf_gbuffer *g, const char *list, char *err, size_t errlen)
 	int c, rc;
 
 	if (!list) {
-		for (c = 0; c < CH_DEFAULT; c++)
+		int count = CH_DEFAULT + (g->s->has_emission ? 3 : 0);
+
+		for (c = 0; c < count; c++)
 			g->map[c] = c;
-		g->nch = CH_DEFAULT;
+		g->nch = (size_t)count;
 		return 0;
 	}
 	while (*p) {
@@ -115,7 +122,8 @@ select_channels(rf_gbuffer *g, const char *list, char *err, size_t errlen)
 			if (i == sizeof(layers) / sizeof(layers[0])) {
 				rf__format(err, errlen, "unknown G-buffer channel '%.*s' "
 				           "(expected P, N, Ng, T, V, roughness, metallic, "
-				           "albedo, mask, objid, depth or a component such as P.X)",
+				           "albedo, mask, objid, depth, emission or a component "
+				           "such as P.X)",
 				           (int)(n > 64 ? 64 : n), p);
 				return RF_ECHANNEL;
 			}
@@ -156,9 +164,14 @@ rf_gbuffer_create(rf_gbuffer **gp, const rf_scene *s, size_t width, size_t heigh
 		free(g);
 		return rc;
 	}
-	g->identity = g->nch == CH_DEFAULT;
-	for (i = 0; i < g->nch; i++)
+	g->identity = g->nch <= CH_ER + 3;
+	for (i = 0; i < g->nch; i++) {
 		g->identity &= g->map[i] == (int)i;
+		g->emission |= g->map[i] >= CH_ER && g->map[i] <= CH_EB;
+	}
+	/* the identity writes every value straight out: all or none of the
+	 * emission */
+	g->identity &= g->nch == CH_DEFAULT || g->nch == CH_ER + 3;
 	g->k = calloc(s->nobjects + 1, RF__ORIGIN_STRIDE * sizeof(double));
 	g->bounds = calloc(s->nobjects + 1, sizeof(*g->bounds));
 	g->scratch = calloc((size_t)g->nthreads * 2 * (s->nobjects + 1), sizeof(uint32_t));
@@ -335,6 +348,14 @@ render_row(void *arg, size_t task, int thread)
 		v[CH_MASK] = hit.mask;
 		v[CH_OBJID] = (float)hit.objid;
 		v[CH_DEPTH] = (float)hit.t;
+		if (g->emission) {
+			float e[3];
+
+			rf__emission(g->s, &hit, e);
+			v[CH_ER] = e[0];
+			v[CH_EG] = e[1];
+			v[CH_EB] = e[2];
+		}
 		if (!g->identity) {
 			/* the identity's out has no room for them */
 			v[CH_TX] = (float)hit.T[0];

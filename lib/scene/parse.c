@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,7 +26,8 @@ struct parser {
 	/* attribute names seen in it, for duplicates */
 	const struct rf__token *attrs[ATTRS_MAX];
 	size_t nattrs;
-	size_t camera_line, name_line, room_line;
+	size_t camera_line, name_line, room_line, pattern_line;
+	size_t wall_line[RF__FACES];
 };
 
 #define fail_at(p, ...) rf__lexer_fail(&(p)->lx, __VA_ARGS__)
@@ -150,6 +152,21 @@ on_off(struct parser *p, const char *what, int *v)
 	return 0;
 }
 
+/* R G B of a radiance: finite, at least 0. */
+static int
+radiance(struct parser *p, const char *what, float rgb[3])
+{
+	double v;
+	int rc, i;
+
+	for (i = 0; i < 3; i++) {
+		if ((rc = number_in(p, what, 0, 1e30, &v)) < 0)
+			return rc;
+		rgb[i] = (float)v;
+	}
+	return 0;
+}
+
 /* A copy of a path, relative ones taken from the scene file's directory. */
 static int
 resolve_path(struct parser *p, const struct rf__token *t, char **out)
@@ -210,7 +227,7 @@ seen(const struct parser *p, const char *name)
 /* ---- materials ------------------------------------------------------------ */
 
 #define MATERIAL_WORDS "roughness, smoothness, metallic, albedo, reflective, " \
-	"normalmap, strength, scale, tiling, offset"
+	"emission, normalmap, strength, scale, tiling, offset"
 
 /* 1 when key was a material attribute (and its value is read), 0 when it
  * is not one, < 0 on error. */
@@ -241,6 +258,11 @@ material_attribute(struct parser *p, const struct rf__token *key, struct materia
 				return rc;
 			m->albedo[i] = (float)vv[i];
 		}
+	} else if (tok_is(key, "emission")) {
+		if ((rc = radiance(p, "emission", m->em.rgb)) < 0)
+			return rc;
+		m->em.kind = EMIT_COLOUR;
+		p->s->has_emission = 1;
 	} else if (tok_is(key, "reflective")) {
 		if ((rc = on_off(p, "reflective", &on)) < 0)
 			return rc;
@@ -266,7 +288,7 @@ material_attribute(struct parser *p, const struct rf__token *key, struct materia
 				return rc;
 			if ((rc = resolve_path(p, t, &path)) < 0)
 				return rc;
-			rc = rf__scene_image(p->s, path, &img, msg, sizeof(msg));
+			rc = rf__scene_image(p->s, path, 2, "normal map", &img, msg, sizeof(msg));
 			free(path);
 			if (rc == RF_ENOMEM)
 				return rc;
@@ -769,6 +791,208 @@ parse_object(struct parser *p, const struct rf__token *kw)
 	return rc < 0 ? rc : add_object(p, &o);
 }
 
+/* ---- emission: the walls' pattern, each wall, windows --------------------- */
+
+#define FACE_WORDS "+x, -x, +y, -y, +z or -z"
+
+/* A face of the room by the box side it lies on. */
+static int
+face_word(struct parser *p, int *face)
+{
+	static const char *const names[RF__FACES] = { "+x", "-x", "+y", "-y", "+z", "-z" };
+	const struct rf__token *t;
+	int rc, f;
+
+	if ((rc = word(p, "a wall (" FACE_WORDS ")", &t)) < 0)
+		return rc;
+	for (f = 0; f < RF__FACES; f++)
+		if (tok_is(t, names[f])) {
+			*face = f;
+			return 0;
+		}
+	return FAIL_TOK(p, t, "expected a wall (" FACE_WORDS ", the box side it lies on), "
+	                "found " TOKFMT, TOKARG(t));
+}
+
+static int
+parse_pattern(struct parser *p, const struct rf__token *kw)
+{
+	struct pattern *pt = &p->s->pattern;
+	const struct rf__token *key;
+	int rc;
+
+	if (p->pattern_line)
+		return FAIL_TOK(p, kw, "expected one 'pattern' line, the first is line %zu",
+		                p->pattern_line);
+	p->pattern_line = kw->line;
+	while ((rc = attribute(p, &key)) > 0) {
+		if (tok_is(key, "cell"))
+			rc = positive(p, "cell", &pt->cell);
+		else if (tok_is(key, "line-width"))
+			rc = number_in(p, "line-width", 0, 1e9, &pt->line_width);
+		else if (tok_is(key, "base"))
+			rc = number_in(p, "base", 0, 1e30, &pt->base);
+		else if (tok_is(key, "checker"))
+			rc = number_in(p, "checker", -1e30, 1e30, &pt->checker);
+		else if (tok_is(key, "line"))
+			rc = number_in(p, "line", 0, 1e30, &pt->line);
+		else if (tok_is(key, "line-white"))
+			rc = number_in(p, "line-white", 0, 1, &pt->line_white);
+		else
+			rc = unknown_attribute(p, key, "pattern", "cell, line-width, base, "
+			                       "checker, line or line-white");
+		if (rc < 0)
+			return rc;
+	}
+	if (rc < 0)
+		return rc;
+	if (pt->base + (pt->checker < 0 ? pt->checker : 0) < 0)
+		return FAIL_TOK(p, kw, "expected base + checker >= 0 (no negative radiance), "
+		                "found %g + %g", pt->base, pt->checker);
+	return 0;
+}
+
+/* An emission image: its file, the metres it spans, where its lower
+ * left corner lies, its gain. */
+static int
+wall_image(struct parser *p, struct emission *e)
+{
+	const struct rf__token *t;
+	const rf_image *img;
+	const char *cs;
+	char *path, msg[400];
+	int rc;
+
+	if ((rc = word(p, "an image file after 'image'", &t)) < 0)
+		return rc;
+	if ((rc = resolve_path(p, t, &path)) < 0)
+		return rc;
+	rc = rf__scene_image(p->s, path, 1, "emission image", &img, msg, sizeof(msg));
+	free(path);
+	if (rc == RF_ENOMEM)
+		return rc;
+	if (rc < 0)
+		return FAIL_TOK(p, t, "%s", msg);
+	e->kind = EMIT_IMAGE;
+	e->pixels = rf_image_pixels(img);
+	e->width = rf_image_width(img);
+	e->height = rf_image_height(img);
+	e->nchannels = rf_image_nchannels(img);
+	/* 8- and 16-bit pictures are stored sRGB-encoded; float files are
+	 * linear.  OpenImageIO names the file's colour space. */
+	cs = rf_image_attribute(img, "oiio:ColorSpace");
+	e->srgb = cs && (!strcmp(cs, "sRGB") || !strcmp(cs, "srgb_rec709_scene"));
+	return 0;
+}
+
+static int
+parse_wall(struct parser *p, const struct rf__token *kw)
+{
+	struct emission e;
+	const struct rf__token *key, *kind = NULL;
+	int face, rc, i, srgb = -1;
+
+	memset(&e, 0, sizeof(e));
+	e.size[0] = e.size[1] = 1.0;
+	e.rgb[0] = e.rgb[1] = e.rgb[2] = 1.0f;
+	if ((rc = face_word(p, &face)) < 0)
+		return rc;
+	if (p->wall_line[face])
+		return FAIL_TOK(p, kw, "expected one 'wall' line for each wall, the first "
+		                "for this one is line %zu", p->wall_line[face]);
+	p->wall_line[face] = kw->line;
+	while ((rc = attribute(p, &key)) > 0) {
+		if (tok_is(key, "emission") || tok_is(key, "pattern") || tok_is(key, "image")) {
+			if (kind)
+				return FAIL_TOK(p, key, "expected one of emission, pattern or "
+				                "image, " TOKFMT " is at column %zu already",
+				                TOKARG(kind), kind->col);
+			kind = key;
+			if (tok_is(key, "image")) {
+				rc = wall_image(p, &e);
+			} else {
+				rc = radiance(p, tok_is(key, "emission") ? "emission" : "pattern",
+				              e.rgb);
+				e.kind = tok_is(key, "emission") ? EMIT_COLOUR : EMIT_PATTERN;
+			}
+		} else if (tok_is(key, "size")) {
+			if ((rc = positive(p, "size", &e.size[0])) >= 0)
+				rc = positive(p, "size", &e.size[1]);
+		} else if (tok_is(key, "origin")) {
+			rc = numbers(p, "origin", e.origin, 2);
+		} else if (tok_is(key, "gain")) {
+			double g;
+
+			if ((rc = number_in(p, "gain", 0, 1e30, &g)) >= 0)
+				for (i = 0; i < 3; i++)
+					e.rgb[i] = (float)g;
+		} else if (tok_is(key, "srgb")) {
+			rc = on_off(p, "srgb", &srgb);
+		} else {
+			rc = unknown_attribute(p, key, "wall", "emission R G B, pattern R G B, "
+			                       "image FILE, size, origin, gain or srgb");
+		}
+		if (rc < 0)
+			return rc;
+	}
+	if (rc < 0)
+		return rc;
+	if (!kind)
+		return missing(p, kw, "emission R G B, pattern R G B or image FILE");
+	for (i = 0; i < 4; i++) {
+		static const char *const image_words[] = { "size", "origin", "gain", "srgb" };
+
+		if (e.kind != EMIT_IMAGE && (key = seen(p, image_words[i])))
+			return FAIL_TOK(p, key, "expected " TOKFMT " with an 'image' only",
+			                TOKARG(key));
+	}
+	if (srgb >= 0)
+		e.srgb = srgb;
+	p->s->wall_em[face] = e;
+	p->s->has_emission = 1;
+	return 0;
+}
+
+static int
+parse_window(struct parser *p, const struct rf__token *kw)
+{
+	struct window w, *ws;
+	const struct rf__token *key;
+	int rc;
+
+	memset(&w, 0, sizeof(w));
+	if ((rc = face_word(p, &w.face)) < 0)
+		return rc;
+	while ((rc = attribute(p, &key)) > 0) {
+		if (tok_is(key, "min"))
+			rc = numbers(p, "min", w.min, 2);
+		else if (tok_is(key, "max"))
+			rc = numbers(p, "max", w.max, 2);
+		else if (tok_is(key, "radiance"))
+			rc = radiance(p, "radiance", w.rgb);
+		else if (tok_is(key, "mullions")) {
+			if ((rc = positive(p, "mullions", &w.mullion)) >= 0)
+				rc = radiance(p, "mullions", w.mullion_rgb);
+		} else
+			rc = unknown_attribute(p, key, "window", "min U V, max U V, radiance "
+			                       "R G B or mullions WIDTH R G B");
+		if (rc < 0)
+			return rc;
+	}
+	if (rc < 0)
+		return rc;
+	if (!seen(p, "min") || !seen(p, "max") || !seen(p, "radiance"))
+		return missing(p, kw, "min U V, max U V and radiance R G B");
+	if ((rc = box_check(p, seen(p, "min"), w.min, w.max, 2, "UV")) < 0)
+		return rc;
+	if (!(ws = realloc(p->s->windows, (p->s->nwindows + 1) * sizeof(*ws))))
+		return RF_ENOMEM;
+	p->s->windows = ws;
+	ws[p->s->nwindows++] = w;
+	p->s->has_emission = 1;
+	return 0;
+}
+
 static int
 statement(struct parser *p)
 {
@@ -784,8 +1008,15 @@ statement(struct parser *p)
 		return parse_name(p, kw);
 	if (tok_is(kw, "sphere") || tok_is(kw, "box") || tok_is(kw, "rect"))
 		return parse_object(p, kw);
+	if (tok_is(kw, "pattern"))
+		return parse_pattern(p, kw);
+	if (tok_is(kw, "wall"))
+		return parse_wall(p, kw);
+	if (tok_is(kw, "window"))
+		return parse_window(p, kw);
 	return FAIL_TOK(p, kw, "unknown keyword " TOKFMT " (expected name, camera, "
-	                "probe, room, sphere, box or rect)", TOKARG(kw));
+	                "probe, room, sphere, box, rect, pattern, wall or window)",
+	                TOKARG(kw));
 }
 
 /* The scene's name from its file name: the base name without extension. */

@@ -21,9 +21,44 @@ struct normalmap {
 	size_t width, height, nchannels;
 };
 
+/* What a surface emits (reflect-scene(5) EMISSION). */
+enum emit_kind { EMIT_NONE = 0, EMIT_COLOUR, EMIT_PATTERN, EMIT_IMAGE };
+
+struct emission {
+	enum emit_kind kind;
+	float rgb[3]; /* the colour; the pattern's face colour C; the image's gain */
+	/* EMIT_IMAGE: a wall's image, size[0] x size[1] metres from origin in
+	 * the wall's (u, v), repeating; colour values linear */
+	const float *pixels;
+	size_t width, height, nchannels;
+	double size[2], origin[2];
+	int srgb;
+};
+
+/* The walls' procedural pattern: a checker of cells with grid lines. */
+struct pattern {
+	double cell, line_width, base, checker, line, line_white;
+};
+
+/* A window: radiance inside min < (u, v) < max of a wall, over whatever
+ * the wall emits, with an optional cross of mullions through its middle. */
+struct window {
+	int face;        /* RF__FACE_* */
+	double min[2], max[2];
+	float rgb[3];
+	double mullion;  /* the cross's full width (0: none) */
+	float mullion_rgb[3];
+};
+
+/* The room's faces by the box side they lie on, as in the objid channel
+ * (-1 - face) and in the scene file (+x -x +y -y +z -z). */
+enum { RF__FACE_XMAX, RF__FACE_XMIN, RF__FACE_YMAX, RF__FACE_YMIN, RF__FACE_ZMAX,
+       RF__FACE_ZMIN, RF__FACES };
+
 struct material {
 	float roughness, metallic, albedo[3], mask;
 	struct normalmap nm;
+	struct emission em;
 };
 
 enum obj_kind { OBJ_SPHERE, OBJ_BOX, OBJ_RECT };
@@ -54,6 +89,12 @@ struct rf_scene {
 	size_t nprobes;
 	int room; /* draw probe 0's box */
 	struct material room_mat;
+	/* Each wall's emission when set by a wall line, else the room's. */
+	struct emission wall_em[RF__FACES];
+	struct pattern pattern;
+	struct window *windows;
+	size_t nwindows;
+	int has_emission; /* anything emits: the G-buffer writes emission.* */
 	struct object *objects;
 	size_t nobjects;
 	/* Normal map images, loaded once per path. */
@@ -66,11 +107,28 @@ struct rf_scene {
 rf_scene *rf__scene_create(void);
 /* A material with the defaults of an object (or of the room). */
 void rf__material_default(struct material *m, int room);
-/* An image loaded once for the whole scene; err says why it cannot be. */
-int rf__scene_image(rf_scene *s, const char *path, const rf_image **img, char *err,
-                    size_t errlen);
+/* An image loaded once for the whole scene, with at least min_channels
+ * (what names its use in messages); err says why it cannot be. */
+int rf__scene_image(rf_scene *s, const char *path, size_t min_channels, const char *what,
+                    const rf_image **img, char *err, size_t errlen);
 /* Completes an object's derived fields (squares, bounds, frames). */
 void rf__object_prepare(struct object *o);
+
+/* emission.c */
+/* The pattern's defaults: those of the path-traced references. */
+void rf__pattern_default(struct pattern *pt);
+/* What the surface of a hit (as rf__trace returns it) emits toward the
+ * ray; 0 for nothing (objid 0). */
+void rf__emission(const rf_scene *s, const struct rf_hit *hit, float rgb[3]);
+/* A wall's emission at in-plane (u, v) (rf__wall_uv). */
+void rf__wall_emission(const rf_scene *s, int face, const double uv[2], float rgb[3]);
+/* The in-plane coordinates of a point on a wall: (z, y) on the x walls,
+ * (x, z) on the floor and ceiling, (x, y) on the z walls. */
+void rf__wall_uv(int face, const double p[3], double uv[2]);
+/* The face of a wall's objid (RF_WALL_*), or -1. */
+int rf__wall_face(int objid);
+/* The wall's emission: its own or the room's. */
+const struct emission *rf__wall_emission_of(const rf_scene *s, int face);
 
 /* raycast.c */
 /* Fills k[(nobjects + 1) * RF__ORIGIN_STRIDE] for rays from o (the room

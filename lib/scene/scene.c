@@ -17,6 +17,7 @@ rf__scene_create(void)
 		return NULL;
 	s->room = 1;
 	rf__material_default(&s->room_mat, 1);
+	rf__pattern_default(&s->pattern);
 	return s;
 }
 
@@ -52,14 +53,15 @@ rf_scene_destroy(rf_scene *s)
 	free(s->images);
 	free(s->image_paths);
 	free(s->probes);
+	free(s->windows);
 	free(s->objects);
 	free(s->name);
 	free(s);
 }
 
 int
-rf__scene_image(rf_scene *s, const char *path, const rf_image **imgp, char *err,
-                size_t errlen)
+rf__scene_image(rf_scene *s, const char *path, size_t min_channels, const char *what,
+                const rf_image **imgp, char *err, size_t errlen)
 {
 	rf_image **images, *img;
 	char **paths, *copy;
@@ -73,9 +75,10 @@ rf__scene_image(rf_scene *s, const char *path, const rf_image **imgp, char *err,
 		}
 	if ((rc = rf_image_read(&img, path, err, errlen)) < 0)
 		return rc;
-	if (rf_image_nchannels(img) < 2) {
-		rf__format(err, errlen, "normal map '%s' has 1 channel, expected at "
-		           "least 2 (R G)", path);
+	if (rf_image_nchannels(img) < min_channels) {
+		rf__format(err, errlen, "%s '%s' has %zu channel%s, expected at least %zu",
+		           what, path, rf_image_nchannels(img),
+		           rf_image_nchannels(img) == 1 ? "" : "s", min_channels);
 		rf_image_destroy(img);
 		return RF_EIMAGE;
 	}

@@ -25,6 +25,7 @@ enum {
 	IN_ROUGH, IN_NX, IN_NY, IN_NZ, IN_VX, IN_VY, IN_VZ, /* --final */
 	IN_METAL, IN_AR, IN_AG, IN_AB, /* --final, optional */
 	IN_SR, IN_SG, IN_SB, /* radiance a mode wrote itself */
+	IN_ER, IN_EG, IN_EB, /* what the surface emits, optional */
 	IN_COUNT
 };
 
@@ -33,7 +34,8 @@ static const char *const in_names[IN_COUNT] = {
 	"mask", "P.X", "P.Y", "P.Z",
 	"roughness", "N.X", "N.Y", "N.Z", "V.X", "V.Y", "V.Z",
 	"metallic", "albedo.R", "albedo.G", "albedo.B",
-	RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHADE_SPEC_B
+	RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHADE_SPEC_B,
+	"emission.R", "emission.G", "emission.B"
 };
 
 enum { OUT_SR, OUT_SG, OUT_SB, OUT_R, OUT_G, OUT_B, OUT_DR, OUT_DG, OUT_DB, OUT_COUNT };
@@ -55,6 +57,10 @@ struct rf_shade {
 	int sh_known;     /* sh holds the environment's (given or projected) */
 	struct box box;
 	int in[IN_COUNT];
+	/* The stream says what its walls emit (a scene's G-buffer): walls
+	 * show it, and --final adds it to reflective pixels, instead of
+	 * looking the walls up in the environment. */
+	int emission;
 	int out[OUT_COUNT];
 	size_t nout;
 	float center[3];
@@ -304,6 +310,7 @@ rf_shade_begin_frame(rf_shade *s, const rf_header *in, const float center[3],
 	s->error[0] = '\0';
 	for (i = 0; i < IN_COUNT; i++)
 		s->in[i] = rf_header_find_channel(in, in_names[i]);
+	s->emission = s->in[IN_ER] >= 0 && s->in[IN_EG] >= 0 && s->in[IN_EB] >= 0;
 	if (s->unprojected && !s->mode_radiance) {
 		static const char *const r[3] = { "R.X", "R.Y", "R.Z" };
 
@@ -447,7 +454,7 @@ plan_reads(const rf_shade *s, const float *in, size_t in_ncomp, size_t y, struct
 			a = add_read(r, &n, in[cdx], in[cdy], in[cdz],
 			             s->force_lod ? s->lod
 			                          : rf_roughness_to_lod(s->mapping, s->steps, in[cr]));
-		if (m < 1.0f)
+		if (m < 1.0f && !s->emission)
 			b = add_read(r, &n, in[cpx] - ox, in[cpy] - oy, in[cpz] - oz, 0.0f);
 		r->mask[x] = m;
 		r->mirror[x] = a;
@@ -552,13 +559,20 @@ shade_pixel(const rf_shade *s, const float *p, float *o, const struct reads *r, 
 		for (k = 0; k < 3; k++)
 			rgb[k] = r->rgb[r->mirror[x]][k];
 	}
-	if (r->wall[x] >= 0)
+	if (s->emission)
+		for (k = 0; k < 3; k++)
+			wall[k] = p[s->in[IN_ER + k]];
+	else if (r->wall[x] >= 0)
 		for (k = 0; k < 3; k++)
 			wall[k] = r->rgb[r->wall[x]][k];
 	for (k = 0; k < 3; k++)
 		spec[k] = rgb[k];
-	if (s->final && m > 0.0f)
+	if (s->final && m > 0.0f) {
 		final_colour(s, p, rgb, diffuse);
+		if (s->emission)
+			for (k = 0; k < 3; k++)
+				rgb[k] += wall[k];
+	}
 	/* Every input is read: now the outputs, which may overwrite them. */
 	for (k = 0; k < 3; k++)
 		o[s->out[OUT_SR + k]] = m * spec[k] + (1.0f - m) * wall[k];

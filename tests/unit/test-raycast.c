@@ -461,17 +461,23 @@ gbuffer_matches_trace(const rf_scene *s, const struct rf_camera *cam, size_t w,
 {
 	rf_gbuffer *g;
 	char err[256];
-	float *buf = malloc(w * h * 20 * sizeof(float));
-	size_t x, y, bad = 0;
+	float *buf;
+	size_t x, y, bad = 0, nch;
 
-	if (!buf || rf_gbuffer_create(&g, s, w, h, NULL, threads, err, sizeof(err)) < 0 ||
+	if (rf_gbuffer_create(&g, s, w, h, NULL, threads, err, sizeof(err)) < 0 ||
 	    rf_gbuffer_set_camera(g, cam, err, sizeof(err)) < 0)
 		return -1;
+	/* 20 channels, and the emission of a scene that emits */
+	nch = rf_gbuffer_nchannels(g);
+	if (nch != 20 && nch != 23)
+		return -1;
+	if (!(buf = malloc(w * h * nch * sizeof(float))))
+		return -1;
 	rf_gbuffer_render(g, buf, 0, h / 2);
-	rf_gbuffer_render(g, buf + w * (h / 2) * 20, h / 2, h - h / 2);
+	rf_gbuffer_render(g, buf + w * (h / 2) * nch, h / 2, h - h / 2);
 	for (y = 0; y < h; y++)
 		for (x = 0; x < w; x++) {
-			const float *p = buf + (y * w + x) * 20;
+			const float *p = buf + (y * w + x) * nch;
 			struct rf_hit hit;
 			double d[3];
 			int k;
@@ -523,16 +529,18 @@ TEST(gbuffer_same_bytes_any_threads)
 	rf_scene *s = NULL;
 	rf_gbuffer *g1, *g3;
 	char err[256];
-	size_t n = 97 * 31 * 20;
+	/* the default scene emits: 20 channels and emission.R G B */
+	size_t n = 97 * 31 * 23;
 	float *a = malloc(n * sizeof(float)), *b = malloc(n * sizeof(float));
 
 	ASSERT(a && b);
 	ASSERT_EQ(rf_scene_default(&s, err, sizeof(err)), 0);
 	ASSERT_EQ(rf_gbuffer_create(&g1, s, 97, 31, NULL, 1, err, sizeof(err)), 0);
 	ASSERT_EQ(rf_gbuffer_create(&g3, s, 97, 31, NULL, 3, err, sizeof(err)), 0);
+	ASSERT_EQ(rf_gbuffer_nchannels(g1), 23);
 	ASSERT_EQ(rf_gbuffer_render(g1, a, 0, 31), 0);
 	ASSERT_EQ(rf_gbuffer_render(g3, b, 0, 7), 0);
-	ASSERT_EQ(rf_gbuffer_render(g3, b + 7 * 97 * 20, 7, 24), 0);
+	ASSERT_EQ(rf_gbuffer_render(g3, b + 7 * 97 * 23, 7, 24), 0);
 	ASSERT(!memcmp(a, b, n * sizeof(float)));
 	ASSERT_EQ(rf_gbuffer_render(g3, b, 30, 2), RF_EINVAL);
 	rf_gbuffer_destroy(g1);

@@ -1,0 +1,172 @@
+/*
+ * What the scene's surfaces emit: a colour, an image on a wall, or the
+ * walls' procedural pattern (the path-traced references' checker with
+ * grid lines), with windows over any of them.  The pattern is defined in
+ * world units on each wall's plane, so a wall's radiance at a point does
+ * not depend on how the wall is seen: the G-buffer, reflect-capture and
+ * a path tracer agree on it.
+ */
+#include <math.h>
+
+#include "scene/scene-internal.h"
+
+void
+rf__pattern_default(struct pattern *pt)
+{
+	pt->cell = 1.0;
+	pt->line_width = 0.08;
+	pt->base = 0.3;
+	pt->checker = 0.25;
+	pt->line = 1.0;
+	pt->line_white = 0.5;
+}
+
+int
+rf__wall_face(int objid)
+{
+	return objid <= RF_WALL_XMAX && objid >= RF_WALL_ZMIN ? -1 - objid : -1;
+}
+
+void
+rf__wall_uv(int face, const double p[3], double uv[2])
+{
+	switch (face / 2) {
+	case 0: uv[0] = p[2]; uv[1] = p[1]; break;
+	case 1: uv[0] = p[0]; uv[1] = p[2]; break;
+	default: uv[0] = p[0]; uv[1] = p[1]; break;
+	}
+}
+
+const struct emission *
+rf__wall_emission_of(const rf_scene *s, int face)
+{
+	return s->wall_em[face].kind != EMIT_NONE ? &s->wall_em[face] : &s->room_mat.em;
+}
+
+static void
+set_rgb(float rgb[3], const float v[3], float k)
+{
+	rgb[0] = k * v[0];
+	rgb[1] = k * v[1];
+	rgb[2] = k * v[2];
+}
+
+/* The pattern at (u, v) with face colour c: lines over cells. */
+static void
+pattern_at(const struct pattern *pt, const float c[3], const double uv[2], float rgb[3])
+{
+	const double su = uv[0] / pt->cell, sv = uv[1] / pt->cell;
+	const double du = fabs(su + 0.5 - floor(su + 0.5) - 0.5) * pt->cell;
+	const double dv = fabs(sv + 0.5 - floor(sv + 0.5) - 0.5) * pt->cell;
+	int k;
+
+	if (du < 0.5 * pt->line_width || dv < 0.5 * pt->line_width) {
+		for (k = 0; k < 3; k++)
+			rgb[k] = (float)(pt->line * ((1.0 - pt->line_white) * c[k] + pt->line_white));
+	} else {
+		/* (floor(su) + floor(sv)) mod 2, for negative cells too */
+		const long parity = ((long)floor(su) + (long)floor(sv)) & 1;
+		const double level = pt->base + (parity ? pt->checker : 0.0);
+
+		for (k = 0; k < 3; k++)
+			rgb[k] = (float)(c[k] * level);
+	}
+}
+
+static float
+srgb_to_linear(float v)
+{
+	return v <= 0.04045f ? v / 12.92f : powf((v + 0.055f) / 1.055f, 2.4f);
+}
+
+/* Texel (x, y) of a repeating image, colour channels 0..2 (grey: 0). */
+static void
+image_texel(const struct emission *e, long x, long y, float rgb[3])
+{
+	const long w = (long)e->width, h = (long)e->height;
+	const float *t;
+	int k;
+
+	x %= w;
+	y %= h;
+	if (x < 0)
+		x += w;
+	if (y < 0)
+		y += h;
+	t = e->pixels + ((size_t)y * e->width + (size_t)x) * e->nchannels;
+	for (k = 0; k < 3; k++) {
+		float v = t[e->nchannels >= 3 ? k : 0];
+
+		rgb[k] = e->srgb ? srgb_to_linear(v) : v;
+	}
+}
+
+/* The image at (u, v), bilinear between texel centres; its top row is at
+ * the top of the wall's v. */
+static void
+image_at(const struct emission *e, const double uv[2], float rgb[3])
+{
+	const double fx = (uv[0] - e->origin[0]) / e->size[0] * (double)e->width - 0.5;
+	const double fy = (1.0 - (uv[1] - e->origin[1]) / e->size[1]) * (double)e->height - 0.5;
+	const double x0 = floor(fx), y0 = floor(fy);
+	const float ax = (float)(fx - x0), ay = (float)(fy - y0);
+	float a[3], b[3], c[3], d[3];
+	int k;
+
+	image_texel(e, (long)x0, (long)y0, a);
+	image_texel(e, (long)x0 + 1, (long)y0, b);
+	image_texel(e, (long)x0, (long)y0 + 1, c);
+	image_texel(e, (long)x0 + 1, (long)y0 + 1, d);
+	for (k = 0; k < 3; k++) {
+		float top = a[k] + ax * (b[k] - a[k]), bottom = c[k] + ax * (d[k] - c[k]);
+
+		rgb[k] = e->rgb[k] * (top + ay * (bottom - top));
+	}
+}
+
+void
+rf__wall_emission(const rf_scene *s, int face, const double uv[2], float rgb[3])
+{
+	const struct emission *e = rf__wall_emission_of(s, face);
+	size_t i;
+
+	/* Windows win over what the wall emits. */
+	for (i = 0; i < s->nwindows; i++) {
+		const struct window *w = &s->windows[i];
+
+		if (w->face != face || !(uv[0] > w->min[0] && uv[0] < w->max[0] &&
+		                         uv[1] > w->min[1] && uv[1] < w->max[1]))
+			continue;
+		if (w->mullion > 0.0 &&
+		    (fabs(uv[0] - 0.5 * (w->min[0] + w->max[0])) < 0.5 * w->mullion ||
+		     fabs(uv[1] - 0.5 * (w->min[1] + w->max[1])) < 0.5 * w->mullion))
+			set_rgb(rgb, w->mullion_rgb, 1.0f);
+		else
+			set_rgb(rgb, w->rgb, 1.0f);
+		return;
+	}
+	switch (e->kind) {
+	case EMIT_COLOUR: set_rgb(rgb, e->rgb, 1.0f); break;
+	case EMIT_PATTERN: pattern_at(&s->pattern, e->rgb, uv, rgb); break;
+	case EMIT_IMAGE: image_at(e, uv, rgb); break;
+	default: rgb[0] = rgb[1] = rgb[2] = 0.0f; break;
+	}
+}
+
+void
+rf__emission(const rf_scene *s, const struct rf_hit *hit, float rgb[3])
+{
+	int face = rf__wall_face(hit->objid);
+
+	if (face >= 0) {
+		double uv[2];
+
+		rf__wall_uv(face, hit->P, uv);
+		rf__wall_emission(s, face, uv, rgb);
+	} else if (hit->objid >= 1 && (size_t)hit->objid <= s->nobjects &&
+	           s->objects[hit->objid - 1].mat.em.kind == EMIT_COLOUR) {
+		set_rgb(rgb, s->objects[hit->objid - 1].mat.em.rgb, 1.0f);
+	} else {
+		rgb[0] = rgb[1] = rgb[2] = 0.0f;
+	}
+}
