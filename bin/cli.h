@@ -125,6 +125,11 @@ void cli_stage_rows(struct cli_io *io, rf_stage *stage, const rf_header *in,
 /* Threads over row blocks: -j N, else REFLECT_THREADS, else every core. */
 int cli_threads(const char *arg);
 
+/* A scene file (reflect-scene(5)), "-" for standard input, NULL for the
+ * embedded default; death with the parser's message. */
+struct rf_scene;
+struct rf_scene *cli_load_scene(const char *path);
+
 /* --box, --center, --box-projection as given (NULL: not given), for
  * rf_probe_resolve. */
 struct cli_probe {

@@ -2,9 +2,11 @@
  * behind them. */
 #include <errno.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli_envmap.h"
+#include "reflect/scene.h"
 
 void
 envmap_opts_init(struct envmap_opts *o)
@@ -72,6 +74,40 @@ envmap_opts_parse(struct envmap_opts *o, const char *name, const char *arg)
 	return 1;
 }
 
+/* capture:SCENE[#K] (a probe's "env capture"): probe K (from 1) of the
+ * scene file, or of the embedded scene for "default", baked as
+ * reflect-capture bakes it by default: a raw environment to prefilter. */
+static rf_cubemap *
+capture_load(const char *spec, const struct envmap_opts *o, struct rf_chain_info *info)
+{
+	struct rf_capture_options co;
+	const char *hash = strrchr(spec, '#');
+	char file[4096], err[1024], *end;
+	unsigned long k = 1;
+	rf_cubemap *c;
+	rf_scene *s;
+	int rc;
+
+	snprintf(file, sizeof(file), "%.*s", (int)(hash ? (size_t)(hash - spec) : strlen(spec)),
+	         spec);
+	if (hash && (!(k = strtoul(hash + 1, &end, 10)) || *end))
+		die("'capture:%s': '%s' is not a probe number (capture:SCENE#K, K from 1)",
+		    spec, hash + 1);
+	if (!strcmp(file, "<stdin>") || !strcmp(file, "-"))
+		die("'capture:%s': the scene came from standard input and cannot be read "
+		    "again; bake the probe with reflect-capture and give it with --env", spec);
+	s = cli_load_scene(strcmp(file, "default") ? file : NULL);
+	rf_capture_options_init(&co);
+	co.nthreads = o->load.nthreads > 0 ? o->load.nthreads : 1;
+	if ((rc = rf_scene_capture(s, (size_t)k - 1, &co, &c, err, sizeof(err))) < 0)
+		die("'capture:%s': %s", spec, err);
+	rf_scene_destroy(s);
+	memset(info, 0, sizeof(*info));
+	info->mapping = RF_MAPPING_DEFAULT;
+	info->base_copied = 1;
+	return c;
+}
+
 rf_cubemap *
 envmap_load(const struct envmap_opts *o, struct rf_chain_info *info)
 {
@@ -80,6 +116,8 @@ envmap_load(const struct envmap_opts *o, struct rf_chain_info *info)
 	rf_cubemap *c;
 	int rc;
 
+	if (o->path && !strncmp(o->path, "capture:", 8))
+		return capture_load(o->path + 8, o, info);
 	if (o->path && strcmp(o->path, "default"))
 		cli_guard_mapped(strcmp(o->path, "-") ? o->path : "<stdin>");
 	if ((rc = rf_envmap_load(&c, info, o->path, &o->load, &bad, err, sizeof(err))) < 0)

@@ -78,31 +78,6 @@ parse_path(const char *arg, struct rf_camera_path *path)
 	}
 }
 
-static rf_scene *
-load_scene(const char *path)
-{
-	char err[1024];
-	rf_scene *s;
-	FILE *fp;
-	int rc;
-
-	if (!path) {
-		if ((rc = rf_scene_default(&s, err, sizeof(err))) < 0)
-			die_status(rc, err);
-		return s;
-	}
-	if (!strcmp(path, "-"))
-		fp = stdin;
-	else if (!(fp = fopen(path, "r")))
-		die("cannot open '%s':", path);
-	rc = rf_scene_read(&s, fp, fp == stdin ? "<stdin>" : path, err, sizeof(err));
-	if (fp != stdin)
-		fclose(fp);
-	if (rc < 0)
-		die_status(rc, err);
-	return s;
-}
-
 static rf_header *
 frame_header(const rf_scene *s, const rf_gbuffer *g, const struct rf_camera *cam,
              size_t frame, size_t width, size_t height, size_t supersample)
@@ -209,7 +184,7 @@ main(int argc, char **argv)
 		    "lower N or the size", supersample, width, height, 1 << 20);
 	width *= supersample;
 	height *= supersample;
-	s = load_scene(file);
+	s = cli_load_scene(file);
 	if ((rc = rf_gbuffer_create(&g, s, width, height, channels, cli_threads(threads),
 	                            err, sizeof(err))) < 0)
 		die_status(rc, err);

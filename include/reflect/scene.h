@@ -160,6 +160,34 @@ RF_EXTERN int rf_gbuffer_set_camera(rf_gbuffer *g, const struct rf_camera *cam,
 /* Renders rows y .. y + nrows - 1 into out (width * nchannels floats a row). */
 RF_EXTERN int rf_gbuffer_render(rf_gbuffer *g, float *out, size_t y, size_t nrows);
 
+/*
+ * Baking a probe (reflect-capture(1)): the scene from probe `probe`'s
+ * capture point as a cube of size x size texels a face, each texel the
+ * mean over its footprint: one ray where what it sees is constant,
+ * edge_samples^2 where it crosses an edge of the emission,
+ * object_samples^2 where it may see an object.  Objects are lit by the
+ * probe from the bounce before (bounces 0: black but for their own
+ * emission; earlier bounces at bounce_size texels a face); with
+ * hide_reflective, objects whose mask is set are left out.  The same
+ * bytes at any thread count.
+ */
+struct rf_capture_options {
+	size_t size;             /* texels a face (256) */
+	int bounces;             /* 1 */
+	int hide_reflective;     /* 0 */
+	unsigned edge_samples;   /* 16 */
+	unsigned object_samples; /* 4 */
+	size_t bounce_size;      /* 128 */
+	int nthreads;            /* 1 */
+};
+struct rf_cubemap;
+RF_EXTERN void rf_capture_options_init(struct rf_capture_options *o);
+/* A one-level cube in *cube; RF_EINVAL for a probe the scene lacks or
+ * options out of range (err says which). */
+RF_EXTERN int rf_scene_capture(const rf_scene *s, size_t probe,
+                               const struct rf_capture_options *o,
+                               struct rf_cubemap **cube, char *err, size_t errlen);
+
 #ifdef __cplusplus
 }
 #endif

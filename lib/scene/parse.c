@@ -456,6 +456,22 @@ box_check(struct parser *p, const struct rf__token *at, const double *mn,
 	return 0;
 }
 
+/* "env capture": the environment is this probe of this scene file,
+ * baked by whoever reads it (reflect-shade), as capture:FILE#K. */
+static int
+capture_env(struct parser *p, const char **env)
+{
+	const char *file = !strcmp(p->name, "<default>") ? "default" : p->name;
+	size_t n = strlen(file) + 40;
+	char *s = malloc(n);
+
+	if (!s)
+		return RF_ENOMEM;
+	snprintf(s, n, "capture:%s#%zu", file, p->s->nprobes + 1);
+	*env = s;
+	return 0;
+}
+
 static int
 parse_probe(struct parser *p, const struct rf__token *kw)
 {
@@ -477,11 +493,13 @@ parse_probe(struct parser *p, const struct rf__token *kw)
 		} else if (tok_is(key, "projection"))
 			rc = on_off(p, "projection", &pr.box_projection);
 		else if (tok_is(key, "env")) {
-			if ((rc = word(p, "an environment file or 'default'", &t)) < 0)
+			if ((rc = word(p, "an environment file, 'default' or 'capture'", &t)) < 0)
 				break;
 			free((char *)pr.env);
 			pr.env = NULL;
-			if (!tok_is(t, "default"))
+			if (tok_is(t, "capture"))
+				rc = capture_env(p, &pr.env);
+			else if (!tok_is(t, "default"))
 				rc = resolve_path(p, t, (char **)&pr.env);
 		} else {
 			rc = unknown_attribute(p, key, "probe",
