@@ -134,6 +134,7 @@ RF_EXTERN const char *rf_header_line(const rf_header *h, size_t i);
 #define RF_KEY_PROBE_BOX_PROJECTION "PROBE_BOX_PROJECTION" /* 1 or 0 */
 #define RF_KEY_PROBE_ENV "PROBE_ENV"   /* the probe's environment file */
 #define RF_KEY_PROBE_BLEND "PROBE_BLEND" /* blend distance in metres */
+#define RF_KEY_PROBE_IMPORTANCE "PROBE_IMPORTANCE" /* blending order, highest first */
 #define RF_KEY_PROBE_BEVEL "PROBE_BEVEL" /* RADIUS [grown]: the rounded box */
 #define RF_KEY_PROJECTION "PROJECTION" /* reflect-project's mode */
 #define RF_KEY_SHADE "SHADE"           /* reflect-shade's mode */

@@ -33,7 +33,10 @@ struct rf_camera {
 struct rf_scene_probe {
 	double center[3];           /* capture point, inside the box */
 	double box_min[3], box_max[3];
-	double blend;               /* blend distance in metres */
+	double blend;               /* blend distance in metres (the widest face's) */
+	double face_blend[6];       /* per face, +X -X +Y -Y +Z -Z */
+	int per_face;               /* the scene gave six */
+	double importance;          /* blending order: higher first (0) */
 	int box_projection;         /* 1 on, 0 off */
 	const char *env;            /* environment file (relative paths resolved
 	                               against the scene file's directory), or

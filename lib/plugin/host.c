@@ -45,9 +45,7 @@ struct rf_plugin_host {
 	int failed;
 	char failure[256];
 	/* The frame's probes (probe_weights): the first is probe. */
-	struct rf_probe probe_list[RF_PROBES_MAX];
-	float probe_blend[RF_PROBES_MAX];
-	uint32_t probe_order[RF_PROBES_MAX]; /* smallest box first */
+	struct rf_blend blend;
 	/* The frame's camera (CAMERA), for pixel_footprint. */
 	int has_camera;
 	struct rf_camera camera;
@@ -433,61 +431,11 @@ random_pairs(void *ctx, int pattern, uint32_t x, uint32_t y, uint32_t frame, uin
 }
 
 static float
-box_volume(const struct rf_probe *p)
-{
-	return (p->box_max[0] - p->box_min[0]) * (p->box_max[1] - p->box_min[1]) *
-	       (p->box_max[2] - p->box_min[2]);
-}
-
-/* The probes by box volume, smallest first (ties in list order). */
-static void
-order_probes(rf_plugin_host *h)
-{
-	uint32_t i, j;
-
-	for (i = 0; i < h->table.nprobes; i++)
-		h->probe_order[i] = i;
-	for (i = 1; i < h->table.nprobes; i++)
-		for (j = i; j > 0 && box_volume(&h->probe_list[h->probe_order[j]]) <
-		                     box_volume(&h->probe_list[h->probe_order[j - 1]]); j--) {
-			uint32_t t = h->probe_order[j];
-
-			h->probe_order[j] = h->probe_order[j - 1];
-			h->probe_order[j - 1] = t;
-		}
-}
-
-static float
 probe_weights(void *ctx, const float p[3], float *weights)
 {
 	const rf_plugin_host *h = ctx;
-	float sum = 0.0f;
-	uint32_t i, k;
 
-	for (i = 0; i < h->table.nprobes; i++)
-		weights[i] = 0.0f;
-	for (k = 0; k < h->table.nprobes && sum < 1.0f; k++) {
-		const uint32_t i0 = h->probe_order[k];
-		const struct rf_probe *b = &h->probe_list[i0];
-		float inside = INFINITY, w;
-		int a;
-
-		for (a = 0; a < 3; a++) {
-			float lo = p[a] - b->box_min[a], hi = b->box_max[a] - p[a];
-
-			inside = lo < inside ? lo : inside;
-			inside = hi < inside ? hi : inside;
-		}
-		if (!(inside >= 0.0f))
-			continue; /* outside its box (or p not finite) */
-		w = h->probe_blend[i0] > 0.0f ? inside / h->probe_blend[i0] : 1.0f;
-		w = w < 1.0f ? w * w * (3.0f - 2.0f * w) : 1.0f;
-		if (w > 1.0f - sum)
-			w = 1.0f - sum;
-		weights[i0] = w;
-		sum += w;
-	}
-	return 1.0f - sum;
+	return rf_blend_weights(&h->blend, p, NULL, weights);
 }
 
 static int
@@ -570,8 +518,8 @@ rf_plugin_host_create(rf_plugin_host **hp)
 	h->table.param_string = param_string;
 	h->table.pixel_footprint = pixel_footprint;
 	h->table.random_pairs = random_pairs;
-	h->table.probes = h->probe_list;
-	h->table.probe_blend = h->probe_blend;
+	h->table.probes = h->blend.probes;
+	h->table.probe_blend = h->blend.blend;
 	h->table.probe_weights = probe_weights;
 	h->mapping = RF_MAPPING_DEFAULT;
 	return 0;
@@ -609,12 +557,12 @@ rf_plugin_host_set_frame(rf_plugin_host *h, const rf_header *frame)
 	h->has_camera = 0;
 	/* the probe list, its first replaced by set_probe's */
 	if (frame) {
-		int n = rf_probe_list_read(h->probe_list, h->probe_blend, RF_PROBES_MAX, frame);
+		int n = rf_blend_read(&h->blend, frame, NULL, 0);
 
-		h->table.nprobes = n > 0 ? (uint32_t)n : 0;
+		h->table.nprobes = h->blend.nprobes = n > 0 ? (uint32_t)n : 0;
 		if (h->table.nprobes && h->table.probe)
-			h->probe_list[0] = h->probe;
-		order_probes(h);
+			h->blend.probes[0] = h->probe;
+		rf_blend_order(&h->blend);
 	}
 	if (!v || rf__scan_doubles(v, c, 10) < 0)
 		return;
@@ -641,12 +589,14 @@ rf_plugin_host_set_probe(rf_plugin_host *h, const struct rf_probe *probe)
 	}
 	h->table.probe = probe ? &h->probe : NULL;
 	if (probe) {
-		h->probe_list[0] = *probe;
+		h->blend.probes[0] = *probe;
 		if (!h->table.nprobes) {
-			h->table.nprobes = 1;
-			h->probe_blend[0] = 0.0f;
+			h->table.nprobes = h->blend.nprobes = 1;
+			h->blend.blend[0] = 0.0f;
+			memset(h->blend.face_blend[0], 0, sizeof(h->blend.face_blend[0]));
+			h->blend.importance[0] = 0.0f;
 		}
-		order_probes(h);
+		rf_blend_order(&h->blend);
 	}
 	h->table.project_rays = probe ? project_rays : NULL;
 }

@@ -166,6 +166,17 @@ rf__emission(const rf_scene *s, const struct rf_hit *hit, float rgb[3])
 	} else if (hit->objid >= 1 && (size_t)hit->objid <= s->nobjects &&
 	           s->objects[hit->objid - 1].mat.em.kind == EMIT_COLOUR) {
 		set_rgb(rgb, s->objects[hit->objid - 1].mat.em.rgb, 1.0f);
+	} else if (hit->objid >= 1 && (size_t)hit->objid <= s->nobjects &&
+	           s->objects[hit->objid - 1].mat.em.kind == EMIT_PATTERN) {
+		/* on the plane the surface faces along, as on a wall: for the
+		 * walls of rooms built of boxes and rectangles */
+		const double *n = hit->Ng;
+		const int axis = fabs(n[0]) >= fabs(n[1]) && fabs(n[0]) >= fabs(n[2]) ? 0
+		                 : fabs(n[1]) >= fabs(n[2]) ? 1 : 2;
+		double uv[2];
+
+		rf__wall_uv(2 * axis, hit->P, uv);
+		pattern_at(&s->pattern, s->objects[hit->objid - 1].mat.em.rgb, uv, rgb);
 	} else {
 		rgb[0] = rgb[1] = rgb[2] = 0.0f;
 	}

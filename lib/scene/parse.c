@@ -227,7 +227,7 @@ seen(const struct parser *p, const char *name)
 /* ---- materials ------------------------------------------------------------ */
 
 #define MATERIAL_WORDS "roughness, smoothness, metallic, albedo, reflective, " \
-	"emission, normalmap, strength, scale, tiling, offset"
+	"emission, pattern, normalmap, strength, scale, tiling, offset"
 
 /* 1 when key was a material attribute (and its value is read), 0 when it
  * is not one, < 0 on error. */
@@ -258,10 +258,17 @@ material_attribute(struct parser *p, const struct rf__token *key, struct materia
 				return rc;
 			m->albedo[i] = (float)vv[i];
 		}
-	} else if (tok_is(key, "emission")) {
-		if ((rc = radiance(p, "emission", m->em.rgb)) < 0)
+	} else if (tok_is(key, "emission") || tok_is(key, "pattern")) {
+		const struct rf__token *other = seen(p, tok_is(key, "emission") ? "pattern"
+		                                                              : "emission");
+
+		if (other)
+			return FAIL_TOK(p, key, "expected 'emission' or 'pattern', not both "
+			                "(the other is at column %zu)", other->col);
+		if ((rc = radiance(p, tok_is(key, "emission") ? "emission" : "pattern",
+		                   m->em.rgb)) < 0)
 			return rc;
-		m->em.kind = EMIT_COLOUR;
+		m->em.kind = tok_is(key, "emission") ? EMIT_COLOUR : EMIT_PATTERN;
 		p->s->has_emission = 1;
 	} else if (tok_is(key, "reflective")) {
 		if ((rc = on_off(p, "reflective", &on)) < 0)
@@ -489,7 +496,21 @@ parse_probe(struct parser *p, const struct rf__token *kw)
 		else if (tok_is(key, "box"))
 			rc = numbers(p, "box", box, 6);
 		else if (tok_is(key, "blend")) {
-			rc = number_in(p, "blend", 0, 1e9, &pr.blend);
+			/* one distance, or six: +x -x +y -y +z -z */
+			if ((rc = number_in(p, "blend", 0, 1e9, &pr.blend)) >= 0 &&
+			    p->pos < p->lx.ntok && !p->lx.tok[p->pos].owned &&
+			    strchr("0123456789.+-", p->lx.tok[p->pos].text[0])) {
+				pr.face_blend[0] = pr.blend;
+				for (i = 1; i < 6 && rc >= 0; i++)
+					rc = number_in(p, "blend (six: +x -x +y -y +z -z)", 0, 1e9,
+					               &pr.face_blend[i]);
+				pr.per_face = 1;
+				for (i = 0; i < 6; i++)
+					pr.blend = pr.face_blend[i] > pr.blend ? pr.face_blend[i]
+					                                       : pr.blend;
+			}
+		} else if (tok_is(key, "importance")) {
+			rc = number_in(p, "importance", -1e9, 1e9, &pr.importance);
 		} else if (tok_is(key, "projection"))
 			rc = on_off(p, "projection", &pr.box_projection);
 		else if (tok_is(key, "env")) {
@@ -503,7 +524,7 @@ parse_probe(struct parser *p, const struct rf__token *kw)
 				rc = resolve_path(p, t, (char **)&pr.env);
 		} else {
 			rc = unknown_attribute(p, key, "probe",
-			                       "center, box, env, blend or projection");
+			                       "center, box, env, blend, importance or projection");
 		}
 		if (rc < 0)
 			break;

@@ -360,7 +360,12 @@ rf_scene_frame_keys(const rf_scene *s, const struct rf_camera *cam, size_t frame
 		if ((rc = rf_header_set(h, key, p->env ? p->env : "default")) < 0)
 			return rc;
 		rf__header_probe_key(key, sizeof(key), i, RF_KEY_PROBE_BLEND);
-		if ((rc = rf__header_set_numbers(h, key, &p->blend, 1)) < 0)
+		if ((rc = rf__header_set_numbers(h, key, p->per_face ? p->face_blend : &p->blend,
+		                                 p->per_face ? 6 : 1)) < 0)
+			return rc;
+		rf__header_probe_key(key, sizeof(key), i, RF_KEY_PROBE_IMPORTANCE);
+		if (p->importance != 0.0 &&
+		    (rc = rf__header_set_numbers(h, key, &p->importance, 1)) < 0)
 			return rc;
 	}
 	snprintf(buf, sizeof(buf), "%zu", frame);

@@ -180,6 +180,23 @@ rf_probe_resolve(struct rf_probe *probe, const rf_header *h, const char *box_arg
 	return 0;
 }
 
+int
+rf__probe_blend_parse(const char *v, float face[6])
+{
+	int k;
+
+	if (rf__scan_floats(v, face, 6) < 0) {
+		if (rf__scan_floats(v, face, 1) < 0)
+			return RF_EINVAL;
+		for (k = 1; k < 6; k++)
+			face[k] = face[0];
+	}
+	for (k = 0; k < 6; k++)
+		if (!(face[k] >= 0.0f))
+			return RF_EINVAL;
+	return 0;
+}
+
 /* Probe index's keys (PROBE_BOX for 0, PROBE2_BOX for 1...) into *probe
  * and its blend distance; 1 when it has a box, 0 when not, RF_EINVAL for
  * a value that does not parse. */
@@ -213,8 +230,15 @@ probe_at(const rf_header *h, size_t index, struct rf_probe *probe, float *blend)
 	if ((v = rf_header_get(h, key)))
 		probe->box_projection = !(!strcmp(v, "0") || !strcmp(v, "off"));
 	rf__header_probe_key(key, sizeof(key), index, RF_KEY_PROBE_BLEND);
-	if ((v = rf_header_get(h, key)) && (rf__scan_floats(v, blend, 1) < 0 || *blend < 0.0f))
-		return RF_EINVAL;
+	if ((v = rf_header_get(h, key))) {
+		float face[6];
+
+		if (rf__probe_blend_parse(v, face) < 0)
+			return RF_EINVAL;
+		/* one number for the plugins: the widest face's */
+		for (i = 0; i < 6; i++)
+			*blend = face[i] > *blend ? face[i] : *blend;
+	}
 	return 1;
 }
 
