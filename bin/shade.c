@@ -18,7 +18,9 @@ usage(void)
 	        "[--final[=split-sum|unity|hdrp]] [--diffuse=on|off] "
 	        "[--diffuse-projection=off|box] "
 	        "[--box=XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX] [--center=X,Y,Z] "
-	        "[--box-projection=on|off] [--lod=L] [--seed=N] " CLI_INVALID_USAGE " "
+	        "[--box-projection=on|off] [--lod=L] [--seed=N] [--blend=on|off] "
+	        "[--max-probes=N] [--normal-fade] [--fallback=infinite|none] "
+	        CLI_INVALID_USAGE " "
 	        CLI_IO_USAGE
 	        " [file]\n", argv0);
 	exit(EXIT_BAD_INPUT);
@@ -28,7 +30,7 @@ enum {
 	OPT_ENVMAP = 256, /* handed to envmap_opts_parse by name */
 	OPT_MAPPING, OPT_STEPS, OPT_SAMPLES, OPT_FINAL, OPT_BOX, OPT_CENTER,
 	OPT_PROJECTION, OPT_LOD, OPT_SEED, OPT_INVALID, OPT_DIFFUSE, OPT_DIFFUSE_PROJECTION,
-	OPT_HELP
+	OPT_BLEND, OPT_MAX_PROBES, OPT_NORMAL_FADE, OPT_FALLBACK, OPT_HELP
 };
 
 static const struct option long_options[] = {
@@ -51,6 +53,10 @@ static const struct option long_options[] = {
 	{ "diffuse-projection", required_argument, NULL, OPT_DIFFUSE_PROJECTION },
 	{ "seed", required_argument, NULL, OPT_SEED },
 	{ "invalid", required_argument, NULL, OPT_INVALID },
+	{ "blend", required_argument, NULL, OPT_BLEND },
+	{ "max-probes", required_argument, NULL, OPT_MAX_PROBES },
+	{ "normal-fade", no_argument, NULL, OPT_NORMAL_FADE },
+	{ "fallback", required_argument, NULL, OPT_FALLBACK },
 	{ "help", no_argument, NULL, OPT_HELP },
 	{ NULL, 0, NULL, 0 },
 };
@@ -66,6 +72,11 @@ struct shade_opts {
 	float steps;       /* 0: the environment's */
 	unsigned samples;  /* 0: the prefilter's default */
 	uint32_t seed;
+	/* Blending the frame's probes: on (1) unless --blend=off (0). */
+	int blend;
+	unsigned max_probes;
+	int normal_fade;
+	enum rf_blend_fallback fallback;
 };
 
 /* The environment in use, kept across frames while they name the same. */
@@ -100,7 +111,8 @@ progress(void *arg, double done, double total)
 }
 
 static void
-load_environment(const struct shade_opts *o, const char *name, struct environment *e)
+load_environment(const struct shade_opts *o, const char *name, int from_header,
+                 struct environment *e)
 {
 	struct envmap_opts eo = o->env;
 	struct rf_shade_env_options so = { 0 };
@@ -114,7 +126,7 @@ load_environment(const struct shade_opts *o, const char *name, struct environmen
 	free(e->name);
 	e->name = estrdup(name);
 	eo.path = name;
-	eo.load.from_header = !o->env.path;
+	eo.load.from_header = from_header;
 	c = envmap_load(&eo, &info);
 	/* A mode tracing its own rays reads level 0: nothing to prefilter. */
 	so.raw_ok = rf_plugin_writes_radiance(o->mode.plugin);
@@ -210,6 +222,61 @@ shade_block(void *arg, const float *in, float *out, size_t y, size_t n)
 	return rc;
 }
 
+/* The frame's other probes, each with its environment (PROBEk_ENV), for
+ * the pass to blend; none when the frame has one probe, the mode traces
+ * its own rays, or --blend=off. */
+static void
+set_blend(const struct shade_opts *o, rf_shade *shade, const rf_header *in,
+          const struct rf_probe *first, struct environment *env)
+{
+	const rf_cubemap *envs[RF_PROBES_MAX] = { NULL };
+	enum rf_mapping mappings[RF_PROBES_MAX];
+	float steps[RF_PROBES_MAX];
+	struct rf_blend b;
+	char err[512], key[32];
+	uint32_t k;
+	int n, rc;
+
+	n = o->blend ? rf_blend_read(&b, in, err, sizeof(err)) : 0;
+	if (n < 0)
+		die("%s", err);
+	if (n < 2 || !first) {
+		rf_shade_set_blend(shade, NULL, NULL, NULL, NULL, o->fallback);
+		return;
+	}
+	if (rf_plugin_writes_radiance(o->mode.plugin)) {
+		static int said;
+
+		if (!said++)
+			warn("mode '%s' traces its own rays through the first probe only: the "
+			     "frame's %d probes are not blended", o->spec, n);
+		rf_shade_set_blend(shade, NULL, NULL, NULL, NULL, o->fallback);
+		return;
+	}
+	/* the first probe as the options made it */
+	b.probes[0] = *first;
+	b.max_probes = o->max_probes;
+	b.normal_fade = o->normal_fade;
+	rf_blend_order(&b);
+	for (k = 0; k < b.nprobes; k++) {
+		const char *name = NULL;
+
+		if (k) {
+			snprintf(key, sizeof(key), "PROBE%u_ENV", (unsigned)k + 1);
+			name = rf_header_get(in, key);
+			if (!name || !*name)
+				name = "default";
+			if (!env[k].name || strcmp(env[k].name, name))
+				load_environment(o, name, 1, &env[k]);
+		}
+		envs[k] = env[k].cube;
+		mappings[k] = env[k].mapping;
+		steps[k] = env[k].steps;
+	}
+	if ((rc = rf_shade_set_blend(shade, &b, envs, mappings, steps, o->fallback)) < 0)
+		die_status(rc, NULL);
+}
+
 static void
 shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *env,
             rf_shade *shade, rf_plugin_host *host, const rf_header *in)
@@ -245,7 +312,8 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	if (!name || !*name)
 		name = "default";
 	if (!env->name || strcmp(env->name, name))
-		load_environment(o, name, env);
+		load_environment(o, name, !o->env.path, env);
+	set_blend(o, shade, in, prc == 0 ? &probe : NULL, env);
 
 	rf_plugin_host_set_frame(host, in);
 	rf_plugin_host_set_probe(host, prc == 0 ? &probe : NULL);
@@ -322,7 +390,7 @@ main(int argc, char **argv)
 {
 	struct cli_io io = { 0 };
 	struct shade_opts o;
-	struct environment env = { 0 };
+	struct environment env[RF_PROBES_MAX];
 	struct rf_shade_options so = { 0 };
 	float centre[3];
 	const char *threads = NULL;
@@ -333,7 +401,10 @@ main(int argc, char **argv)
 
 	cli_init(argc, argv);
 	memset(&o, 0, sizeof(o));
+	memset(env, 0, sizeof(env));
 	o.spec = "approx";
+	o.blend = 1;
+	o.max_probes = 2;
 	envmap_opts_init(&o.env);
 	while ((c = getopt_long(argc, argv, "lvVm:j:" CLI_IO_OPTSTRING, long_options,
 	                        &idx)) != -1) {
@@ -398,6 +469,23 @@ main(int argc, char **argv)
 			o.seed = (uint32_t)parse_whole("seed", optarg, 4294967295.0);
 			break;
 		case OPT_INVALID: cli_io_invalid_option(&io, optarg); break;
+		case OPT_BLEND:
+			if (strcmp(optarg, "on") && strcmp(optarg, "off"))
+				die("--blend: '%s' is not on or off", optarg);
+			o.blend = !strcmp(optarg, "on");
+			break;
+		case OPT_MAX_PROBES:
+			o.max_probes = (unsigned)parse_whole("max-probes", optarg, RF_PROBES_MAX);
+			break;
+		case OPT_NORMAL_FADE: o.normal_fade = 1; break;
+		case OPT_FALLBACK:
+			if (!strcmp(optarg, "infinite"))
+				o.fallback = RF_BLEND_INFINITE;
+			else if (!strcmp(optarg, "none"))
+				o.fallback = RF_BLEND_NONE;
+			else
+				die("--fallback: '%s' is not infinite or none", optarg);
+			break;
 		case OPT_HELP:
 			printf("usage: %s [options] [file]\n"
 			       "Samples the environment through each pixel's lobe: a mode gives\n"
@@ -417,6 +505,8 @@ main(int argc, char **argv)
 			       "  --diffuse=on|off  with --final, albedo (1 - metallic) E(N) / pi too (on)\n"
 			       "  --diffuse-projection=off|box  E at N, or box-projected from P\n"
 			       "  --seed=N  for modes that draw samples\n"
+			       "  --blend=on|off  blend the frame's probes (on), --max-probes=N (2)\n"
+			       "      a pixel, --normal-fade, --fallback=infinite|none\n"
 			       "  --invalid=error|clamp|zero  NaN, Inf, roughness out of [0, 1]\n"
 			       "  -j N  threads   -v  say which plugin and environment   -V  versions\n"
 			       "  -f a|f  output format   -h  no output header\n"
@@ -442,11 +532,13 @@ main(int argc, char **argv)
 		die_status(rc, NULL);
 	cli_io_open(&io, optind < argc ? argv[optind] : NULL);
 	while (cli_io_next(&io, &in))
-		shade_frame(&io, &o, &env, shade, host, in);
+		shade_frame(&io, &o, env, shade, host, in);
 	rf_plugin_host_destroy(host);
 	rf_shade_destroy(shade);
-	rf_cubemap_destroy(env.cube);
-	free(env.name);
+	for (idx = 0; idx < RF_PROBES_MAX; idx++) {
+		rf_cubemap_destroy(env[idx].cube);
+		free(env[idx].name);
+	}
 	mode_unload(&o.mode);
 	cli_io_close(&io);
 	return 0;

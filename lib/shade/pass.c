@@ -9,6 +9,7 @@
 #include "envmap/envmap-internal.h"
 #include "envmap/rgba_levels.h"
 #include "envmap/rgba_levels_simd.h"
+#include "shade/blend-pass.h"
 #include "plugin/plugin-internal.h"
 #include "util/invalid.h"
 #include "util/pixels.h"
@@ -63,6 +64,19 @@ struct rf_shade {
 	int emission;
 	int out[OUT_COUNT];
 	size_t nout;
+	/* Probe blending (rf_shade_set_blend): its probes and environments,
+	 * the pass made from them at the first block, the channels it reads
+	 * and the weight channels it writes after the nout others. */
+	int blending;
+	struct rf_blend blend;
+	const rf_cubemap *blend_env[RF_PROBES_MAX];
+	enum rf_mapping blend_mapping[RF_PROBES_MAX];
+	float blend_steps[RF_PROBES_MAX];
+	enum rf_blend_fallback blend_fallback;
+	struct rf__blend_pass *bp;
+	int blend_ch[RF__BLEND_CHANNELS];
+	char weight_names[RF_PROBES_MAX + 1][24];
+	int out_weight[RF_PROBES_MAX + 1];
 	float center[3];
 	rf_header *out_h;
 	size_t ncols, in_ncomp, out_ncomp;
@@ -98,6 +112,7 @@ struct rf_shade {
  * results, and for each pixel which reads are its own (-1: none). */
 struct reads {
 	float *mask; /* each pixel's mask, clamped (1 without a mask channel) */
+	rf__v4 *blended; /* each pixel's mirror read, blended over the probes */
 	float *x, *y, *z, *lod;
 	rf__v4 *rgb;
 	int32_t *mirror, *wall;
@@ -148,6 +163,7 @@ free_reads(rf_shade *s)
 		free(r->rgb);
 		free(r->mirror);
 		free(r->wall);
+		free(r->blended);
 	}
 	free(s->reads);
 	s->reads = NULL;
@@ -178,8 +194,9 @@ alloc_reads(rf_shade *s, size_t ncols)
 		r->rgb = aligned_alloc(16, n * sizeof(rf__v4));
 		r->mirror = malloc(ncols * sizeof(int32_t));
 		r->wall = malloc(ncols * sizeof(int32_t));
+		r->blended = aligned_alloc(16, ncols * sizeof(rf__v4));
 		if (!r->mask || !r->x || !r->y || !r->z || !r->lod || !r->rgb || !r->mirror ||
-		    !r->wall) {
+		    !r->wall || !r->blended) {
 			free_reads(s);
 			return RF_ENOMEM;
 		}
@@ -196,8 +213,36 @@ rf_shade_destroy(rf_shade *s)
 	rf__pool_destroy(s->pool);
 	free_reads(s);
 	rf_header_destroy(s->out_h);
+	rf__blend_pass_destroy(s->bp);
 	rf__rgba_levels_destroy(&s->levels);
 	free(s);
+}
+
+int
+rf_shade_set_blend(rf_shade *s, const struct rf_blend *b, const rf_cubemap *const *envs,
+                   const enum rf_mapping *mappings, const float *steps,
+                   enum rf_blend_fallback fallback)
+{
+	uint32_t k;
+
+	rf__blend_pass_destroy(s->bp);
+	s->bp = NULL;
+	s->blending = b && b->nprobes > 1 && !s->mode_radiance;
+	if (!s->blending)
+		return b && b->nprobes > 1 ? RF_EINVAL : 0;
+	s->blend = *b;
+	s->blend_fallback = fallback;
+	for (k = 0; k < b->nprobes; k++) {
+		if (k && !envs[k])
+			return RF_EINVAL;
+		s->blend_env[k] = envs[k];
+		s->blend_mapping[k] = mappings[k];
+		s->blend_steps[k] = steps[k];
+		snprintf(s->weight_names[k], sizeof(s->weight_names[k]), "weight.probe%u",
+		         (unsigned)k + 1);
+	}
+	snprintf(s->weight_names[k], sizeof(s->weight_names[k]), "weight.fallback");
+	return 0;
 }
 
 int
@@ -239,7 +284,11 @@ rf_shade_set_unprojected(rf_shade *s, int unprojected)
 const char *
 rf_shade_channel(const rf_shade *s, size_t i)
 {
-	return i < s->nout ? out_names[i] : NULL;
+	if (i < s->nout)
+		return out_names[i];
+	if (s->blending && i - s->nout <= s->blend.nprobes)
+		return s->weight_names[i - s->nout];
+	return NULL;
 }
 
 int
@@ -350,6 +399,25 @@ rf_shade_begin_frame(rf_shade *s, const rf_header *in, const float center[3],
 	    (rc = require(s, in, IN_ROUGH, IN_VZ, "the final colour's environment "
 	                  "BRDF reads roughness, N and V", err, errlen)) < 0)
 		return rc;
+	if (s->blending) {
+		static const char *const names[RF__BLEND_CHANNELS] = {
+			"P.X", "P.Y", "P.Z", "N.X", "N.Y", "N.Z", "R.X", "R.Y", "R.Z",
+			RF_SHADE_ROUGHNESS
+		};
+
+		for (i = 0; i < RF__BLEND_CHANNELS; i++) {
+			s->blend_ch[i] = rf_header_find_channel(in, names[i]);
+			if (s->blend_ch[i] < 0 && !(i >= RF__BLEND_NX && i < RF__BLEND_RX)) {
+				rf__format(err, errlen, "input has no channel '%s' (blending probes "
+				           "reads P, the reflection R that reflect-project "
+				           "writes, and %s)", names[i], RF_SHADE_ROUGHNESS);
+				return RF_ECHANNEL;
+			}
+		}
+		if (!s->blend.normal_fade || s->blend_ch[RF__BLEND_NX] < 0 ||
+		    s->blend_ch[RF__BLEND_NX + 1] < 0 || s->blend_ch[RF__BLEND_NX + 2] < 0)
+			s->blend_ch[RF__BLEND_NX] = -1;
+	}
 	rf_header_destroy(s->out_h);
 	if (rf_header_dup(&s->out_h, in) < 0)
 		return RF_ENOMEM;
@@ -362,6 +430,20 @@ rf_shade_begin_frame(rf_shade *s, const rf_header *in, const float center[3],
 		}
 		s->out[i] = c;
 	}
+	for (i = 0; s->blending && i <= s->blend.nprobes; i++) {
+		const char *name = s->weight_names[i];
+
+		if ((c = rf_header_find_channel(s->out_h, name)) < 0 &&
+		    (c = rf_header_add_channel(s->out_h, name)) < 0) {
+			rf__format(err, errlen, "cannot add channel '%s': %s", name,
+			           rf_strerror(c));
+			return c;
+		}
+		s->out_weight[i] = c;
+	}
+	/* the blend pass is made at the first block, for the frame's size */
+	rf__blend_pass_destroy(s->bp);
+	s->bp = NULL;
 	s->ncols = rf_header_ncols(in);
 	s->in_ncomp = rf_header_nchannels(in);
 	s->out_ncomp = rf_header_nchannels(s->out_h);
@@ -592,10 +674,30 @@ shade_pixels(const rf_shade *s, const float *in, size_t in_ncomp, float *out, si
              struct reads *r)
 {
 	size_t x, n = plan_reads(s, in, in_ncomp, y, r);
+	const float *w = NULL;
+	uint32_t k, nw = 0;
 
 	rf__rgba_levels_fetch_many(&s->levels, s->vector, n, r->x, r->y, r->z, r->lod, r->rgb);
-	for (x = 0; x < s->ncols; x++)
-		shade_pixel(s, in + x * in_ncomp, out + x * s->out_ncomp, r, x);
+	if (s->bp) {
+		const rf__v4 zero = { 0, 0, 0, 0 };
+
+		/* every input is read before the first output is written */
+		for (x = 0; x < s->ncols; x++)
+			r->blended[x] = r->mirror[x] >= 0 ? r->rgb[r->mirror[x]] : zero;
+		w = rf__blend_pass_row(s->bp, (int)(r - s->reads), in, in_ncomp, s->blend_ch,
+		                       r->mask, r->blended);
+		nw = s->blend.nprobes + 1;
+		for (x = 0; x < s->ncols; x++)
+			if (r->mirror[x] >= 0)
+				r->rgb[r->mirror[x]] = r->blended[x];
+	}
+	for (x = 0; x < s->ncols; x++) {
+		float *o = out + x * s->out_ncomp;
+
+		shade_pixel(s, in + x * in_ncomp, o, r, x);
+		for (k = 0; k < nw; k++)
+			o[s->out_weight[k]] = w[x * nw + k];
+	}
 }
 
 /* Row r of the block, on thread `thread` (whose reads it uses). */
@@ -624,11 +726,20 @@ stage_and_shade_row(void *arg, size_t r, int thread)
 	shade_pixels(s, out, s->out_ncomp, out, s->block_y + r, &s->reads[thread]);
 }
 
-static void
+static int
 block_begin(rf_shade *s)
 {
-	int t;
+	int t, rc;
 
+	if (s->blending && !s->bp && s->env) {
+		s->blend_mapping[0] = s->mapping;
+		s->blend_steps[0] = s->steps;
+		if ((rc = rf__blend_pass_create(&s->bp, &s->blend, s->blend_env,
+		                                s->blend_mapping, s->blend_steps,
+		                                s->blend_fallback, &s->levels, s->vector,
+		                                s->nthreads, s->ncols)) < 0)
+			return rc;
+	}
 	if (s->diffuse && !s->sh_known) {
 		float sh[27];
 
@@ -637,6 +748,7 @@ block_begin(rf_shade *s)
 	}
 	for (t = 0; t < s->nthreads; t++)
 		rf__first_invalid_clear(&s->reads[t].first);
+	return 0;
 }
 
 /* RF_EINVAL with s->error for the block's first invalid pixel. */
@@ -680,8 +792,9 @@ rf_shade_run_stage(rf_shade *s, rf_stage *stage, const float *in, float *out, si
 	s->block_y = y;
 	s->stage = stage;
 	s->stage_in_ncomp = sin;
+	if ((rc = block_begin(s)) < 0)
+		return rc;
 	rf__stage_block_begin(stage);
-	block_begin(s);
 	rf__pool_run(s->pool, nrows, stage_and_shade_row, s);
 	if ((rc = rf__stage_block_end(stage)) < 0)
 		return rc;
@@ -691,13 +804,16 @@ rf_shade_run_stage(rf_shade *s, rf_stage *stage, const float *in, float *out, si
 int
 rf_shade_run(rf_shade *s, const float *in, float *out, size_t nrows)
 {
+	int rc;
+
 	if (!s->out_h || !s->env || (in == out && s->in_ncomp != s->out_ncomp))
 		return RF_EINVAL;
 	s->block_in = in;
 	s->block_out = out;
 	s->block_y = s->rows_done;
 	s->rows_done += nrows;
-	block_begin(s);
+	if ((rc = block_begin(s)) < 0)
+		return rc;
 	rf__pool_run(s->pool, nrows, shade_row, s);
 	return block_end(s);
 }
