@@ -19,7 +19,7 @@ usage(void)
 	        "[--diffuse-projection=off|box] "
 	        "[--box=XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX] [--center=X,Y,Z] "
 	        "[--box-projection=on|off] [--lod=L] [--seed=N] [--blend=on|off] "
-	        "[--max-probes=N] [--normal-fade] [--fallback=infinite|none] "
+	        "[--max-probes=N] [--normal-fade] [--fallback=infinite|none|sky:FILE] "
 	        CLI_INVALID_USAGE " "
 	        CLI_IO_USAGE
 	        " [file]\n", argv0);
@@ -77,6 +77,7 @@ struct shade_opts {
 	unsigned max_probes;
 	int normal_fade;
 	enum rf_blend_fallback fallback;
+	const char *sky; /* --fallback=sky:FILE */
 };
 
 /* The environment in use, kept across frames while they name the same. */
@@ -229,9 +230,9 @@ static void
 set_blend(const struct shade_opts *o, rf_shade *shade, const rf_header *in,
           const struct rf_probe *first, struct environment *env)
 {
-	const rf_cubemap *envs[RF_PROBES_MAX] = { NULL };
-	enum rf_mapping mappings[RF_PROBES_MAX];
-	float steps[RF_PROBES_MAX];
+	const rf_cubemap *envs[RF_PROBES_MAX + 1] = { NULL };
+	enum rf_mapping mappings[RF_PROBES_MAX + 1];
+	float steps[RF_PROBES_MAX + 1];
 	struct rf_blend b;
 	char err[512], key[32];
 	uint32_t k;
@@ -272,6 +273,15 @@ set_blend(const struct shade_opts *o, rf_shade *shade, const rf_header *in,
 		envs[k] = env[k].cube;
 		mappings[k] = env[k].mapping;
 		steps[k] = env[k].steps;
+	}
+	if (o->fallback == RF_BLEND_SKY) {
+		struct environment *sky = &env[RF_PROBES_MAX];
+
+		if (!sky->name)
+			load_environment(o, o->sky, 0, sky);
+		envs[k] = sky->cube;
+		mappings[k] = sky->mapping;
+		steps[k] = sky->steps;
 	}
 	if ((rc = rf_shade_set_blend(shade, &b, envs, mappings, steps, o->fallback)) < 0)
 		die_status(rc, NULL);
@@ -390,7 +400,7 @@ main(int argc, char **argv)
 {
 	struct cli_io io = { 0 };
 	struct shade_opts o;
-	struct environment env[RF_PROBES_MAX];
+	struct environment env[RF_PROBES_MAX + 1]; /* the probes', the sky's */
 	struct rf_shade_options so = { 0 };
 	float centre[3];
 	const char *threads = NULL;
@@ -483,8 +493,11 @@ main(int argc, char **argv)
 				o.fallback = RF_BLEND_INFINITE;
 			else if (!strcmp(optarg, "none"))
 				o.fallback = RF_BLEND_NONE;
-			else
-				die("--fallback: '%s' is not infinite or none", optarg);
+			else if (!strncmp(optarg, "sky:", 4) && optarg[4]) {
+				o.fallback = RF_BLEND_SKY;
+				o.sky = optarg + 4;
+			} else
+				die("--fallback: '%s' is not infinite, none or sky:FILE", optarg);
 			break;
 		case OPT_HELP:
 			printf("usage: %s [options] [file]\n"
@@ -506,7 +519,7 @@ main(int argc, char **argv)
 			       "  --diffuse-projection=off|box  E at N, or box-projected from P\n"
 			       "  --seed=N  for modes that draw samples\n"
 			       "  --blend=on|off  blend the frame's probes (on), --max-probes=N (2)\n"
-			       "      a pixel, --normal-fade, --fallback=infinite|none\n"
+			       "      a pixel, --normal-fade, --fallback=infinite|none|sky:FILE\n"
 			       "  --invalid=error|clamp|zero  NaN, Inf, roughness out of [0, 1]\n"
 			       "  -j N  threads   -v  say which plugin and environment   -V  versions\n"
 			       "  -f a|f  output format   -h  no output header\n"
@@ -535,7 +548,7 @@ main(int argc, char **argv)
 		shade_frame(&io, &o, env, shade, host, in);
 	rf_plugin_host_destroy(host);
 	rf_shade_destroy(shade);
-	for (idx = 0; idx < RF_PROBES_MAX; idx++) {
+	for (idx = 0; idx <= RF_PROBES_MAX; idx++) {
 		rf_cubemap_destroy(env[idx].cube);
 		free(env[idx].name);
 	}

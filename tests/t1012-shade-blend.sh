@@ -85,6 +85,17 @@ test_expect_success '--fallback=none, --max-probes=1, --blend=off' '
 	! test_grep weight off.txt
 '
 
+test_expect_success '--fallback=sky:FILE: what no probe covers comes from the sky' '
+	uniform_chain sky.rfl 7 &&
+	reflect-shade -fa -m none --fallback=sky:sky.rfl row.txt >sky.txt &&
+	column sky.txt spec.R >got &&
+	printf "1\n1\n1.3125\n2\n2.6875\n3\n3\n7\n" >expect &&
+	test_cmp_numbers expect got 1e-6 &&
+	test_expect_code 1 reflect-shade -m none --fallback=sky:nothere.rfl row.txt \
+		>/dev/null 2>err &&
+	test_grep "nothere.rfl" err
+'
+
 # B's own box: from P = (1.9, 1, 0.3) the reflection R = +Z leaves B's
 # box at z = 1, at (1.9, 1, 1); from B's capture point (0.75, 1, 0) that
 # is (1.15, 0, 1), on the +X face at a = 1/1.15 = 0.87, texel 15 of 16
@@ -139,7 +150,7 @@ test_expect_success 'bad blending options and keys are refused' '
 	test_expect_code 1 reflect-shade --max-probes=0 row.txt >/dev/null 2>err &&
 	test_grep "max-probes" err &&
 	test_expect_code 1 reflect-shade --fallback=sky row.txt >/dev/null 2>err &&
-	test_grep "fallback: .sky. is not infinite or none" err &&
+	test_grep "fallback: .sky. is not infinite, none or sky:FILE" err &&
 	sed "s/^PROBE2_BLEND=.*/PROBE2_BLEND=1 2/" row.txt >bad.txt &&
 	test_expect_code 1 reflect-shade -m none bad.txt >/dev/null 2>err &&
 	test_grep "PROBE2_BLEND" err

@@ -83,11 +83,12 @@ RF_EXTERN float rf_blend_weights(const struct rf_blend *b, const float p[3],
                                  const float n[3], float *weights);
 
 /* Where what no probe covers comes from: the first probe's environment
- * along R, without parallax; or nothing, the probes' weights scaled to 1
- * where any covers a pixel. */
+ * along R, without parallax; nothing, the probes' weights scaled to 1
+ * where any covers a pixel; or a sky, an environment of its own along R. */
 enum rf_blend_fallback {
 	RF_BLEND_INFINITE = 0,
-	RF_BLEND_NONE = 1
+	RF_BLEND_NONE = 1,
+	RF_BLEND_SKY = 2
 };
 
 /* ---- the sampling pass of reflect-shade -------------------------------- */
@@ -178,7 +179,8 @@ RF_EXTERN int rf_shade_create(rf_shade **s, const struct rf_shade_options *o);
  * reflective pixel: probe 0 along D through the pass's own environment,
  * probe k >= 1 along R box-projected with its own box from P through
  * envs[k] (mappings and steps per probe; [0] is the pass's), the rest
- * from the fallback; every pixel also gets weight.probe1 ...
+ * from the fallback (RF_BLEND_SKY: envs[nprobes], with its mapping and
+ * steps); every pixel also gets weight.probe1 ...
  * weight.probeN and weight.fallback.  Before the frame's channels are
  * listed; NULL or one probe turns it off.  RF_EINVAL for a mode that
  * writes its own radiance, or a probe without an environment. */

@@ -29,11 +29,12 @@ struct batch {
 struct rf__blend_pass {
 	struct rf_blend blend;
 	enum rf_blend_fallback fallback;
-	struct rf__rgba_levels levels[RF_PROBES_MAX];
-	const struct rf__rgba_levels *first; /* the pass's own, probe 0's */
-	int vector[RF_PROBES_MAX], first_vector;
-	enum rf_mapping mapping[RF_PROBES_MAX];
-	float steps[RF_PROBES_MAX];
+	/* the probes', [0] unused (the pass's own, first), and the sky's */
+	struct rf__rgba_levels levels[RF_PROBES_MAX + 1];
+	const struct rf__rgba_levels *first;
+	int vector[RF_PROBES_MAX + 1], first_vector;
+	enum rf_mapping mapping[RF_PROBES_MAX + 1];
+	float steps[RF_PROBES_MAX + 1];
 	struct box box[RF_PROBES_MAX];
 	size_t ncols;
 	int nthreads;
@@ -72,7 +73,7 @@ rf__blend_pass_destroy(struct rf__blend_pass *bp)
 
 	if (!bp)
 		return;
-	for (i = 1; i < bp->blend.nprobes; i++)
+	for (i = 1; i <= bp->blend.nprobes && i < RF_PROBES_MAX + 1; i++)
 		rf__rgba_levels_destroy(&bp->levels[i]);
 	if (bp->batches)
 		for (i = 0; i < (size_t)bp->nthreads * (RF_PROBES_MAX + 1); i++)
@@ -102,14 +103,17 @@ rf__blend_pass_create(struct rf__blend_pass **out, const struct rf_blend *b,
 	bp->first_vector = first_vector;
 	bp->ncols = ncols;
 	bp->nthreads = nthreads;
-	for (i = 0; i < b->nprobes; i++) {
-		bp->box[i] = box_of_probe(&b->probes[i]);
+	for (i = 0; i <= b->nprobes; i++) {
+		if (i < b->nprobes)
+			bp->box[i] = box_of_probe(&b->probes[i]);
+		if (i == b->nprobes && fallback != RF_BLEND_SKY)
+			break;
 		bp->mapping[i] = mappings[i];
 		bp->steps[i] = steps[i];
 		if (i == 0)
 			continue;
 		if ((rc = rf__rgba_levels_from_cube(&bp->levels[i], envs[i])) < 0) {
-			bp->blend.nprobes = (uint32_t)i;
+			bp->blend.nprobes = (uint32_t)i - 1;
 			rf__blend_pass_destroy(bp);
 			return rc;
 		}
@@ -199,17 +203,20 @@ rf__blend_pass_row(const struct rf__blend_pass *bp, int thread, const float *in,
 			add(&batches[k], (uint32_t)x, d,
 			    rf_roughness_to_lod(bp->mapping[k], bp->steps[k], reff));
 		}
-		/* the fallback: probe 0 with no parallax */
-		if (rest > 0.0f)
+		/* the fallback: the sky, or probe 0 with no parallax */
+		if (rest > 0.0f) {
+			const uint32_t f = bp->fallback == RF_BLEND_SKY ? np : 0;
+
 			add(&batches[np], (uint32_t)x, r,
-			    rf_roughness_to_lod(bp->mapping[0], bp->steps[0], reff));
+			    rf_roughness_to_lod(bp->mapping[f], bp->steps[f], reff));
+		}
 	}
 	for (k = 1; k <= np; k++) {
 		struct batch *b = &batches[k];
 
 		if (!b->n)
 			continue;
-		if (k < np)
+		if (k < np || bp->fallback == RF_BLEND_SKY)
 			rf__rgba_levels_fetch_many(&bp->levels[k], bp->vector[k], b->n, b->x, b->y,
 			                           b->z, b->lod, b->rgb);
 		else

@@ -69,9 +69,9 @@ struct rf_shade {
 	 * and the weight channels it writes after the nout others. */
 	int blending;
 	struct rf_blend blend;
-	const rf_cubemap *blend_env[RF_PROBES_MAX];
-	enum rf_mapping blend_mapping[RF_PROBES_MAX];
-	float blend_steps[RF_PROBES_MAX];
+	const rf_cubemap *blend_env[RF_PROBES_MAX + 1]; /* and the sky's */
+	enum rf_mapping blend_mapping[RF_PROBES_MAX + 1];
+	float blend_steps[RF_PROBES_MAX + 1];
 	enum rf_blend_fallback blend_fallback;
 	struct rf__blend_pass *bp;
 	int blend_ch[RF__BLEND_CHANNELS];
@@ -232,15 +232,18 @@ rf_shade_set_blend(rf_shade *s, const struct rf_blend *b, const rf_cubemap *cons
 		return b && b->nprobes > 1 ? RF_EINVAL : 0;
 	s->blend = *b;
 	s->blend_fallback = fallback;
-	for (k = 0; k < b->nprobes; k++) {
+	for (k = 0; k <= b->nprobes; k++) {
+		if (k == b->nprobes && fallback != RF_BLEND_SKY)
+			break;
 		if (k && !envs[k])
 			return RF_EINVAL;
 		s->blend_env[k] = envs[k];
 		s->blend_mapping[k] = mappings[k];
 		s->blend_steps[k] = steps[k];
+	}
+	for (k = 0; k < b->nprobes; k++)
 		snprintf(s->weight_names[k], sizeof(s->weight_names[k]), "weight.probe%u",
 		         (unsigned)k + 1);
-	}
 	snprintf(s->weight_names[k], sizeof(s->weight_names[k]), "weight.fallback");
 	return 0;
 }
