@@ -191,6 +191,36 @@ RF_EXTERN int rf_scene_capture(const rf_scene *s, size_t probe,
                                const struct rf_capture_options *o,
                                struct rf_cubemap **cube, char *err, size_t errlen);
 
+/*
+ * The ground truth (reflect-trace(1)): the camera's pixel-centre rays,
+ * and on reflective surfaces the one-bounce integral of a white (F = 1)
+ * GGX lobe against the scene's emission, over `samples` samples of the
+ * visible normals a pixel; channels R G B mask objid, and with halves
+ * half1.R G B and half2.R G B, the even and the odd samples' estimates.
+ * Reflected rays pass through reflective objects unless objects_visible.
+ * The same bytes at any thread count.
+ */
+struct rf_trace_options {
+	unsigned samples;       /* 1024 */
+	int masking_correlated; /* 0: separable Smith G1(V) G1(L), as Cycles 3.4 */
+	int objects_visible;    /* 0: reflected rays see the room alone */
+	int halves;
+	uint32_t seed;
+	int nthreads;
+};
+typedef struct rf_tracer rf_tracer;
+
+RF_EXTERN void rf_trace_options_init(struct rf_trace_options *o);
+RF_EXTERN int rf_tracer_create(rf_tracer **t, const rf_scene *s, size_t width,
+                               size_t height, const struct rf_trace_options *o,
+                               char *err, size_t errlen);
+RF_EXTERN void rf_tracer_destroy(rf_tracer *t);
+RF_EXTERN size_t rf_tracer_nchannels(const rf_tracer *t);
+RF_EXTERN const char *rf_tracer_channel(const rf_tracer *t, size_t i);
+RF_EXTERN int rf_tracer_set_camera(rf_tracer *t, const struct rf_camera *cam);
+/* Rows y .. y + nrows - 1 into out (width * nchannels floats a row). */
+RF_EXTERN int rf_tracer_render(rf_tracer *t, float *out, size_t y, size_t nrows);
+
 #ifdef __cplusplus
 }
 #endif

@@ -51,13 +51,23 @@ set_rgb(float rgb[3], const float v[3], float k)
 	rgb[2] = k * v[2];
 }
 
+/* floor of a number well inside long's range, without a libm call (the
+ * tracer asks millions of times a second) */
+static inline double
+fast_floor(double x)
+{
+	double t = (double)(long)x;
+
+	return t > x ? t - 1.0 : t;
+}
+
 /* The pattern at (u, v) with face colour c: lines over cells. */
 static void
 pattern_at(const struct pattern *pt, const float c[3], const double uv[2], float rgb[3])
 {
 	const double su = uv[0] / pt->cell, sv = uv[1] / pt->cell;
-	const double du = fabs(su + 0.5 - floor(su + 0.5) - 0.5) * pt->cell;
-	const double dv = fabs(sv + 0.5 - floor(sv + 0.5) - 0.5) * pt->cell;
+	const double du = fabs(su + 0.5 - fast_floor(su + 0.5) - 0.5) * pt->cell;
+	const double dv = fabs(sv + 0.5 - fast_floor(sv + 0.5) - 0.5) * pt->cell;
 	int k;
 
 	if (du < 0.5 * pt->line_width || dv < 0.5 * pt->line_width) {
@@ -65,7 +75,7 @@ pattern_at(const struct pattern *pt, const float c[3], const double uv[2], float
 			rgb[k] = (float)(pt->line * ((1.0 - pt->line_white) * c[k] + pt->line_white));
 	} else {
 		/* (floor(su) + floor(sv)) mod 2, for negative cells too */
-		const long parity = ((long)floor(su) + (long)floor(sv)) & 1;
+		const long parity = ((long)fast_floor(su) + (long)fast_floor(sv)) & 1;
 		const double level = pt->base + (parity ? pt->checker : 0.0);
 
 		for (k = 0; k < 3; k++)

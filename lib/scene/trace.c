@@ -1,0 +1,392 @@
+/*
+ * The ground truth of a scene (reflect-trace(1)): each pixel-centre ray
+ * of the camera, and on a reflective surface the one-bounce integral
+ *
+ *	I = integral of f(V, L) (N.L) Le(P, L) dL
+ *
+ * of a white (F = 1) GGX lobe against what the scene emits, by Monte
+ * Carlo over the distribution of visible normals (Heitz 2018).  With L
+ * drawn from that distribution the weight of a sample is G2/G1(V): G1(L)
+ * for separable masking (Cycles 3.4's, the references'), (1 + Lambda(V))
+ * / (1 + Lambda(V) + Lambda(L)) height-correlated.  A sample below the
+ * surface or its geometric normal counts 0, as does a pixel seen from
+ * behind.  Reflected rays pass through the reflective objects (what a
+ * probe approximates, and the references' convention) unless they are
+ * asked to be visible, and then see their emission.
+ *
+ * A pixel's samples are two Hammersley sets of half its count each, each
+ * turned by a rotation hashed from the pixel's position, the seed and
+ * the half: two independent estimates (--halves) whose mean is the
+ * pixel, and bytes that never depend on threads.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "util/pool.h"
+#include "scene/scene-internal.h"
+
+struct rf_tracer {
+	const rf_scene *s;
+	struct rf_trace_options o;
+	size_t width, height;
+	struct camera_basis cb;
+	struct rf_camera cam;
+	double *kcam;       /* rf__trace_prepare for the camera */
+	uint32_t *seen;     /* objects reflected rays can meet */
+	size_t nseen;
+	double *k;          /* per thread: rf__trace_prepare for a pixel */
+	struct rf__pool *pool;
+};
+
+struct block {
+	const struct rf_tracer *t;
+	float *out;
+	size_t y;
+};
+
+void
+rf_trace_options_init(struct rf_trace_options *o)
+{
+	memset(o, 0, sizeof(*o));
+	o->samples = 1024;
+	o->nthreads = 1;
+}
+
+int
+rf_tracer_create(struct rf_tracer **tp, const rf_scene *s, size_t width, size_t height,
+                 const struct rf_trace_options *o, char *err, size_t errlen)
+{
+	struct rf_tracer *t;
+	size_t i;
+
+	*tp = NULL;
+	if (!width || !height || width > ((size_t)1 << 20) || height > ((size_t)1 << 20)) {
+		rf__format(err, errlen, "image size %zux%zu is out of range", width, height);
+		return RF_ETOOBIG;
+	}
+	if (o->samples < 1 || o->samples > (1u << 24) || (o->halves && o->samples < 2)) {
+		rf__format(err, errlen, "%u samples: expected 1 to 16777216 (2 or more "
+		           "for halves)", o->samples);
+		return RF_EINVAL;
+	}
+	if (!(t = calloc(1, sizeof(*t))))
+		return RF_ENOMEM;
+	t->s = s;
+	t->o = *o;
+	if (t->o.nthreads < 1)
+		t->o.nthreads = 1;
+	if (t->o.nthreads > RF__THREADS_MAX)
+		t->o.nthreads = RF__THREADS_MAX;
+	t->width = width;
+	t->height = height;
+	t->kcam = calloc(s->nobjects + 1, RF__ORIGIN_STRIDE * sizeof(double));
+	t->seen = calloc(s->nobjects + 1, sizeof(*t->seen));
+	t->k = calloc((size_t)t->o.nthreads * (s->nobjects + 1), RF__ORIGIN_STRIDE *
+	              sizeof(double));
+	if (!t->kcam || !t->seen || !t->k) {
+		rf_tracer_destroy(t);
+		return RF_ENOMEM;
+	}
+	for (i = 0; i < s->nobjects; i++)
+		if (o->objects_visible || !(s->objects[i].mat.mask > 0.0f))
+			t->seen[t->nseen++] = (uint32_t)i;
+	if (t->o.nthreads > 1)
+		rf__pool_create(&t->pool, t->o.nthreads);
+	rf_tracer_set_camera(t, &s->camera);
+	*tp = t;
+	return 0;
+}
+
+void
+rf_tracer_destroy(struct rf_tracer *t)
+{
+	if (!t)
+		return;
+	rf__pool_destroy(t->pool);
+	free(t->kcam);
+	free(t->seen);
+	free(t->k);
+	free(t);
+}
+
+size_t
+rf_tracer_nchannels(const struct rf_tracer *t)
+{
+	return t->o.halves ? 11 : 5;
+}
+
+const char *
+rf_tracer_channel(const struct rf_tracer *t, size_t i)
+{
+	static const char *const names[] = {
+		"R", "G", "B", "mask", "objid",
+		"half1.R", "half1.G", "half1.B", "half2.R", "half2.G", "half2.B"
+	};
+
+	return i < rf_tracer_nchannels(t) ? names[i] : NULL;
+}
+
+int
+rf_tracer_set_camera(struct rf_tracer *t, const struct rf_camera *cam)
+{
+	int rc;
+
+	if ((rc = rf_camera_check(cam, NULL, 0)) < 0)
+		return rc;
+	t->cam = *cam;
+	rf__camera_basis(cam, t->width, t->height, &t->cb);
+	rf__trace_prepare(t->s, cam->position, t->kcam);
+	return 0;
+}
+
+static uint32_t
+hash(uint32_t x)
+{
+	/* lowbias32 (Wellons): every bit of the input moves every bit */
+	x ^= x >> 16;
+	x *= 0x7feb352du;
+	x ^= x >> 15;
+	x *= 0x846ca68bu;
+	x ^= x >> 16;
+	return x;
+}
+
+static double
+radical_inverse(uint32_t i)
+{
+	i = (i << 16) | (i >> 16);
+	i = ((i & 0x00ff00ffu) << 8) | ((i & 0xff00ff00u) >> 8);
+	i = ((i & 0x0f0f0f0fu) << 4) | ((i & 0xf0f0f0f0u) >> 4);
+	i = ((i & 0x33333333u) << 2) | ((i & 0xccccccccu) >> 2);
+	i = ((i & 0x55555555u) << 1) | ((i & 0xaaaaaaaau) >> 1);
+	return (double)i * (1.0 / 4294967296.0);
+}
+
+static double
+lambda(double alpha2, double mu)
+{
+	double m2 = mu * mu;
+
+	return m2 > 0.0 ? 0.5 * (sqrt(1.0 + alpha2 * (1.0 - m2) / m2) - 1.0) : INFINITY;
+}
+
+/* What a reflected ray from p along d meets emits. */
+static void
+reflected(const struct rf_tracer *t, const double p[3], const double *k, const double d[3],
+          float rgb[3])
+{
+	const rf_scene *s = t->s;
+	struct rf_hit h;
+
+	if (!t->nseen && s->room && s->nprobes) {
+		/* the room alone: the wall the ray leaves by */
+		const struct rf_scene_probe *room = &s->probes[0];
+		double tt = INFINITY, q[3], uv[2];
+		int face = -1, a;
+
+		for (a = 0; a < 3; a++) {
+			double ta;
+
+			if (d[a] > 0)
+				ta = (room->box_max[a] - p[a]) / d[a];
+			else if (d[a] < 0)
+				ta = (room->box_min[a] - p[a]) / d[a];
+			else
+				continue;
+			if (ta < tt) {
+				tt = ta;
+				face = 2 * a + (d[a] < 0);
+			}
+		}
+		if (face < 0 || !(tt >= 0.0)) {
+			rgb[0] = rgb[1] = rgb[2] = 0.0f;
+			return;
+		}
+		for (a = 0; a < 3; a++)
+			q[a] = p[a] + tt * d[a];
+		rf__wall_uv(face, q, uv);
+		rf__wall_emission(s, face, uv, rgb);
+		return;
+	}
+	rf__trace(s, p, k, d, NULL, t->seen, t->nseen, &h);
+	rf__emission(s, &h, rgb);
+}
+
+/* The lobe's integral at a hit seen along -v over a Hammersley set of K
+ * samples turned by rot: their sum (of weight x radiance) into acc. */
+static void
+integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
+          const double *k, uint32_t rot, uint32_t K, double acc[3])
+{
+	const double alpha = (double)h->roughness * h->roughness;
+	const double a = alpha > 1e-4 ? alpha : 1e-4, alpha2 = a * a;
+	const double *n = h->N, *ng = h->Ng;
+	const double u0r = (double)(rot & 0xffff) / 65536.0, u1r = (double)(rot >> 16) / 65536.0;
+	double x[3], y[3], vl[3], vh[3], t1[3], t2[3], len, lv;
+	uint32_t i;
+	int c;
+
+	/* a frame about n: x, y, n */
+	if (fabs(n[0]) > 0.9) {
+		x[0] = -n[1]; x[1] = n[0]; x[2] = 0;
+	} else {
+		x[0] = 0; x[1] = -n[2]; x[2] = n[1];
+	}
+	len = sqrt(rf__dot(x, x));
+	for (c = 0; c < 3; c++)
+		x[c] /= len;
+	rf__cross(n, x, y);
+	vl[0] = rf__dot(v, x);
+	vl[1] = rf__dot(v, y);
+	vl[2] = rf__dot(v, n);
+	lv = lambda(alpha2, vl[2]);
+	/* Heitz's view-stretched frame */
+	vh[0] = a * vl[0];
+	vh[1] = a * vl[1];
+	vh[2] = vl[2];
+	len = sqrt(rf__dot(vh, vh));
+	for (c = 0; c < 3; c++)
+		vh[c] /= len;
+	len = vh[0] * vh[0] + vh[1] * vh[1];
+	if (len > 0.0) {
+		t1[0] = -vh[1] / sqrt(len);
+		t1[1] = vh[0] / sqrt(len);
+		t1[2] = 0.0;
+	} else {
+		t1[0] = 1.0;
+		t1[1] = t1[2] = 0.0;
+	}
+	rf__cross(vh, t1, t2);
+	{
+		/* the loop in float scalars, every vector in registers: the
+		 * sample's direction needs no more than float's precision */
+		const float fa = (float)a, s = 0.5f * (1.0f + (float)vh[2]);
+		const float t1x = (float)t1[0], t1y = (float)t1[1], t1z = (float)t1[2];
+		const float t2x = (float)t2[0], t2y = (float)t2[1], t2z = (float)t2[2];
+		const float vhx = (float)vh[0], vhy = (float)vh[1], vhz = (float)vh[2];
+		const float vx = (float)vl[0], vy = (float)vl[1], vz = (float)vl[2];
+		const float inv_k = 1.0f / (float)K;
+		for (i = 0; i < K; i++) {
+			float u0 = ((float)i + 0.5f) * inv_k + (float)u0r;
+			float u1 = (float)radical_inverse(i) + (float)u1r;
+			float r, sn, cs, p1, p2, w, nhx, nhy, nhz, nex, ney, nez, len2, inv, vn;
+			float lx, ly, lz;
+			double l[3], wt;
+			float rgb[3];
+
+			u0 -= u0 >= 1.0f ? 1.0f : 0.0f;
+			u1 -= u1 >= 1.0f ? 1.0f : 0.0f;
+			r = sqrtf(u0);
+			sincosf(6.28318530718f * u1, &sn, &cs);
+			p1 = r * cs;
+			p2 = r * sn;
+			p2 = (1.0f - s) * sqrtf(1.0f - p1 * p1) + s * p2;
+			w = 1.0f - p1 * p1 - p2 * p2;
+			w = w > 0.0f ? sqrtf(w) : 0.0f;
+			nhx = p1 * t1x + p2 * t2x + w * vhx;
+			nhy = p1 * t1y + p2 * t2y + w * vhy;
+			nhz = p1 * t1z + p2 * t2z + w * vhz;
+			nex = fa * nhx;
+			ney = fa * nhy;
+			nez = nhz > 0.0f ? nhz : 0.0f;
+			len2 = nex * nex + ney * ney + nez * nez;
+			if (!(len2 > 0.0f))
+				continue;
+			inv = 1.0f / sqrtf(len2);
+			nex *= inv;
+			ney *= inv;
+			nez *= inv;
+			vn = vx * nex + vy * ney + vz * nez;
+			lx = 2.0f * vn * nex - vx;
+			ly = 2.0f * vn * ney - vy;
+			lz = 2.0f * vn * nez - vz;
+			if (!(lz > 0.0f))
+				continue; /* below the shading surface */
+			for (c = 0; c < 3; c++)
+				l[c] = lx * x[c] + ly * y[c] + lz * n[c];
+			if (!(rf__dot(l, ng) > 0.0))
+				continue; /* below the geometric surface: 0, as in Cycles */
+			if (t->o.masking_correlated) {
+				wt = (1.0 + lv) / (1.0 + lv + lambda(alpha2, lz));
+			} else {
+				/* 1 / (1 + Lambda(mu)) = 2 mu / (mu + sqrt(mu^2 + a^2 (1 - mu^2))) */
+				const float m2 = lz * lz;
+
+				wt = 2.0f * lz / (lz + sqrtf(m2 + fa * fa * (1.0f - m2)));
+			}
+			reflected(t, h->P, k, l, rgb);
+			for (c = 0; c < 3; c++)
+				acc[c] += wt * rgb[c];
+		}
+	}
+}
+
+static void
+trace_row(void *arg, size_t task, int thread)
+{
+	const struct block *bk = arg;
+	const struct rf_tracer *t = bk->t;
+	const size_t y = bk->y + task, nch = rf_tracer_nchannels(t);
+	double *k = t->k + (size_t)thread * (t->s->nobjects + 1) * RF__ORIGIN_STRIDE;
+	float *out = bk->out + task * t->width * nch;
+	const double sy = 1.0 - (2.0 * (double)y + 1.0) / (double)t->height;
+	size_t x;
+	int c;
+
+	for (x = 0; x < t->width; x++, out += nch) {
+		double d[3], v[3], half[2][3] = { { 0 } };
+		struct rf_hit h;
+		float e[3];
+		int j;
+
+		rf__camera_dir(&t->cb, (2.0 * (double)x + 1.0) / (double)t->width - 1.0, sy, d);
+		rf__trace(t->s, t->cam.position, t->kcam, d, NULL, NULL, 0, &h);
+		for (c = 0; c < 3; c++)
+			v[c] = -d[c];
+		rf__emission(t->s, &h, e);
+		out[3] = h.mask;
+		out[4] = (float)h.objid;
+		if (h.mask > 0.0f && rf__dot(h.N, v) > 0.0) {
+			if (t->nseen)
+				rf__trace_prepare(t->s, h.P, k);
+			for (j = 0; j < 2; j++) {
+				uint32_t rot = hash((uint32_t)x * 0x9e3779b9u ^ hash((uint32_t)y +
+				                    hash(t->o.seed * 2u + (uint32_t)j)));
+
+				integrate(t, &h, v, k, rot, j ? t->o.samples / 2
+				                                  : (t->o.samples + 1) / 2, half[j]);
+			}
+		}
+		for (c = 0; c < 3; c++) {
+			const uint32_t K = t->o.samples, n0 = (K + 1) / 2, n1 = K / 2;
+			/* reflection through the mask, the surface's own light over it */
+			const double refl = (half[0][c] + half[1][c]) / K;
+
+			out[c] = (float)(h.mask * refl + e[c]);
+			if (t->o.halves) {
+				out[5 + c] = (float)(h.mask * half[0][c] / n0 + e[c]);
+				out[8 + c] = (float)(h.mask * half[1][c] / (n1 ? n1 : 1) + e[c]);
+			}
+		}
+	}
+}
+
+int
+rf_tracer_render(struct rf_tracer *t, float *out, size_t y, size_t nrows)
+{
+	struct block bk;
+	size_t r;
+
+	if (y > t->height || nrows > t->height - y)
+		return RF_EINVAL;
+	bk.t = t;
+	bk.out = out;
+	bk.y = y;
+	if (t->pool)
+		rf__pool_run(t->pool, nrows, trace_row, &bk);
+	else
+		for (r = 0; r < nrows; r++)
+			trace_row(&bk, r, 0);
+	return 0;
+}
