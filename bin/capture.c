@@ -51,16 +51,6 @@ help(void)
 	exit(0);
 }
 
-static unsigned
-parse_whole(const char *name, const char *arg, double lo, double hi)
-{
-	double v = parse_number(name, arg, lo, hi);
-
-	if (v != floor(v))
-		die("--%s: '%s' is not a whole number in [%g, %g]", name, arg, lo, hi);
-	return (unsigned)v;
-}
-
 /* The cube as an N x 6N OpenEXR image of floats (faces +X -X +Y -Y +Z -Z
  * from the top), the layout every environment reader takes. */
 static void
@@ -153,12 +143,12 @@ main(int argc, char **argv)
 		case 'f': case 'h': cli_io_option(&io, c, optarg); break;
 		case OPT_BOUNCES: o.bounces = (int)parse_whole("bounces", optarg, 0, 16); break;
 		case OPT_HIDE: o.hide_reflective = 1; break;
-		case OPT_EDGE: o.edge_samples = parse_whole("edge-samples", optarg, 1, 64); break;
+		case OPT_EDGE: o.edge_samples = (unsigned)parse_whole("edge-samples", optarg, 1, 64); break;
 		case OPT_OBJECT:
-			o.object_samples = parse_whole("object-samples", optarg, 1, 64);
+			o.object_samples = (unsigned)parse_whole("object-samples", optarg, 1, 64);
 			break;
 		case OPT_BOUNCE_SIZE:
-			o.bounce_size = parse_whole("bounce-size", optarg, 1, 8192);
+			o.bounce_size = (size_t)parse_whole("bounce-size", optarg, 1, 8192);
 			break;
 		case OPT_HELP: help(); break;
 		default: usage();
@@ -176,7 +166,7 @@ main(int argc, char **argv)
 			die("-p all: the scene has %zu probes; name the files with a %%d in -o",
 			    rf_scene_nprobes(s));
 	} else {
-		first = last = parse_whole("p", which, 1, 1e6) - 1;
+		first = last = (size_t)parse_whole("p", which, 1, 1e6) - 1;
 		if (first >= rf_scene_nprobes(s))
 			die("-p %s: %s has %zu probe%s", which, file ? file : "the default scene",
 			    rf_scene_nprobes(s), rf_scene_nprobes(s) == 1 ? "" : "s");

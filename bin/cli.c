@@ -274,6 +274,16 @@ parse_number(const char *name, const char *arg, double lo, double hi)
 	return v;
 }
 
+double
+parse_whole(const char *name, const char *arg, double lo, double hi)
+{
+	double v = parse_number(name, arg, lo, hi);
+
+	if (v != floor(v))
+		die("--%s: '%s' is not a whole number in [%.0f, %.0f]", name, arg, lo, hi);
+	return v;
+}
+
 enum rf_format
 parse_format(const char *arg)
 {

@@ -51,6 +51,8 @@ void print_version(void);
 size_t parse_count(const char *arg, int opt, size_t min, size_t max);
 /* Parses a finite number in [lo, hi] for long option --name. */
 double parse_number(const char *name, const char *arg, double lo, double hi);
+/* A whole number in [lo, hi] for --name, or death saying so. */
+double parse_whole(const char *name, const char *arg, double lo, double hi);
 /* -f a|f: the stream's data format. */
 enum rf_format parse_format(const char *arg);
 /* Parses n comma-separated finite numbers for option `what`. */

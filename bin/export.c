@@ -411,10 +411,7 @@ main(int argc, char **argv)
 			break;
 		case 'F': o.depth = RF_PIXEL_HALF; break;
 		case 'W':
-			stops = parse_number("downsample", optarg, 1, 16);
-			if (stops != floor(stops))
-				die("--downsample: '%s' is not a whole number in [1, 16]", optarg);
-			o.downsample = (long)stops;
+			o.downsample = (long)parse_whole("downsample", optarg, 1, 16);
 			break;
 		case 'L':
 			if (!strcmp(optarg, "box")) {

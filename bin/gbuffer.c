@@ -158,14 +158,9 @@ main(int argc, char **argv)
 		case 'f': case 'h': cli_io_option(&io, c, optarg); break;
 		case OPT_ORBIT: parse_orbit(optarg, "--orbit", &path); break;
 		case OPT_PATH: parse_path(optarg, &path); break;
-		case OPT_SUPERSAMPLE: {
-			double n = parse_number("supersample", optarg, 1, 16);
-
-			if (n != floor(n))
-				die("--supersample: '%s' is not a whole number in [1, 16]", optarg);
-			supersample = (size_t)n;
+		case OPT_SUPERSAMPLE:
+			supersample = (size_t)parse_whole("supersample", optarg, 1, 16);
 			break;
-		}
 		case OPT_PRINT_DEFAULT:
 			fputs(rf_scene_default_text(), stdout);
 			fshut(stdout, "<stdout>");

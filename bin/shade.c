@@ -91,17 +91,6 @@ struct environment {
 	float sh9[27];
 };
 
-static double
-parse_whole(const char *name, const char *arg, double hi)
-{
-	double v = parse_number(name, arg, 0, hi);
-
-	if (v != floor(v) || (v == 0 && strcmp(name, "seed")))
-		die("--%s: '%s' is not a whole number in [%d, %.0f]", name, arg,
-		    strcmp(name, "seed") ? 1 : 0, hi);
-	return v;
-}
-
 static void
 progress(void *arg, double done, double total)
 {
@@ -438,7 +427,7 @@ main(int argc, char **argv)
 			o.steps = (float)parse_number("steps", optarg, 0.5, 64);
 			break;
 		case OPT_SAMPLES:
-			o.samples = (unsigned)parse_whole("samples", optarg, 65536);
+			o.samples = (unsigned)parse_whole("samples", optarg, 1, 65536);
 			break;
 		case OPT_FINAL: {
 			enum rf_final f = RF_FINAL_SPLIT_SUM;
@@ -476,7 +465,7 @@ main(int argc, char **argv)
 			so.force_lod = 1;
 			break;
 		case OPT_SEED:
-			o.seed = (uint32_t)parse_whole("seed", optarg, 4294967295.0);
+			o.seed = (uint32_t)parse_whole("seed", optarg, 0, 4294967295.0);
 			break;
 		case OPT_INVALID: cli_io_invalid_option(&io, optarg); break;
 		case OPT_BLEND:
@@ -485,7 +474,7 @@ main(int argc, char **argv)
 			o.blend = !strcmp(optarg, "on");
 			break;
 		case OPT_MAX_PROBES:
-			o.max_probes = (unsigned)parse_whole("max-probes", optarg, RF_PROBES_MAX);
+			o.max_probes = (unsigned)parse_whole("max-probes", optarg, 1, RF_PROBES_MAX);
 			break;
 		case OPT_NORMAL_FADE: o.normal_fade = 1; break;
 		case OPT_FALLBACK:

@@ -48,16 +48,6 @@ help(void)
 	exit(0);
 }
 
-static unsigned
-parse_whole(const char *name, const char *arg, double lo, double hi)
-{
-	double v = parse_number(name, arg, lo, hi);
-
-	if (v != floor(v))
-		die("--%s: '%s' is not a whole number in [%g, %g]", name, arg, lo, hi);
-	return (unsigned)v;
-}
-
 static int
 trace_block(void *t, const float *in, float *out, size_t y, size_t n)
 {
@@ -93,7 +83,7 @@ main(int argc, char **argv)
 		case 'y': height = parse_count(optarg, 'y', 1, (size_t)1 << 20); break;
 		case 'j': threads = optarg; break;
 		case 'f': case 'h': cli_io_option(&io, c, optarg); break;
-		case OPT_SAMPLES: o.samples = parse_whole("samples", optarg, 1, 16777216); break;
+		case OPT_SAMPLES: o.samples = (unsigned)parse_whole("samples", optarg, 1, 16777216); break;
 		case OPT_MASKING:
 			if (strcmp(optarg, "separable") && strcmp(optarg, "correlated"))
 				die("--masking: '%s' is not separable or correlated", optarg);
@@ -104,7 +94,7 @@ main(int argc, char **argv)
 				die("--objects: '%s' is not hidden or visible", optarg);
 			o.objects_visible = !strcmp(optarg, "visible");
 			break;
-		case OPT_SEED: o.seed = parse_whole("seed", optarg, 0, 4294967295.0); break;
+		case OPT_SEED: o.seed = (uint32_t)parse_whole("seed", optarg, 0, 4294967295.0); break;
 		case OPT_HALVES: o.halves = 1; break;
 		case OPT_HELP: help(); break;
 		default: usage();
