@@ -213,42 +213,32 @@ shade_block(void *arg, const float *in, float *out, size_t y, size_t n)
 }
 
 /* The frame's other probes, each with its environment (PROBEk_ENV), for
- * the pass to blend; none when the frame has one probe, the mode traces
- * its own rays, or --blend=off. */
-static void
+ * the pass to blend into b; 0 when the frame has one probe or
+ * --blend=off, else how many. */
+static uint32_t
 set_blend(const struct shade_opts *o, rf_shade *shade, const rf_header *in,
-          const struct rf_probe *first, struct environment *env)
+          const struct rf_probe *first, struct environment *env, struct rf_blend *b)
 {
 	const rf_cubemap *envs[RF_PROBES_MAX + 1] = { NULL };
 	enum rf_mapping mappings[RF_PROBES_MAX + 1];
 	float steps[RF_PROBES_MAX + 1];
-	struct rf_blend b;
 	char err[512], key[32];
 	uint32_t k;
 	int n, rc;
 
-	n = o->blend ? rf_blend_read(&b, in, err, sizeof(err)) : 0;
+	n = o->blend ? rf_blend_read(b, in, err, sizeof(err)) : 0;
 	if (n < 0)
 		die("%s", err);
 	if (n < 2 || !first) {
 		rf_shade_set_blend(shade, NULL, NULL, NULL, NULL, o->fallback);
-		return;
-	}
-	if (rf_plugin_writes_radiance(o->mode.plugin)) {
-		static int said;
-
-		if (!said++)
-			warn("mode '%s' traces its own rays through the first probe only: the "
-			     "frame's %d probes are not blended", o->spec, n);
-		rf_shade_set_blend(shade, NULL, NULL, NULL, NULL, o->fallback);
-		return;
+		return 0;
 	}
 	/* the first probe as the options made it */
-	b.probes[0] = *first;
-	b.max_probes = o->max_probes;
-	b.normal_fade = o->normal_fade;
-	rf_blend_order(&b);
-	for (k = 0; k < b.nprobes; k++) {
+	b->probes[0] = *first;
+	b->max_probes = o->max_probes;
+	b->normal_fade = o->normal_fade;
+	rf_blend_order(b);
+	for (k = 0; k < b->nprobes; k++) {
 		const char *name = NULL;
 
 		if (k) {
@@ -272,7 +262,46 @@ set_blend(const struct shade_opts *o, rf_shade *shade, const rf_header *in,
 		mappings[k] = sky->mapping;
 		steps[k] = sky->steps;
 	}
-	if ((rc = rf_shade_set_blend(shade, &b, envs, mappings, steps, o->fallback)) < 0)
+	if ((rc = rf_shade_set_blend(shade, b, envs, mappings, steps, o->fallback)) < 0)
+		die_status(rc, NULL);
+	return b->nprobes;
+}
+
+/* For a mode that traces its own rays, a stage for each probe after the
+ * first, its host holding that probe and its environment, begun as the
+ * first stage was so that their rows line up. */
+static void
+blend_stages(const struct shade_opts *o, rf_shade *shade, const rf_header *in,
+             const struct rf_blend *b, struct environment *env, rf_plugin_host **hosts,
+             rf_stage **stages)
+{
+	const char *channel;
+	char err[1024];
+	rf_header *mid;
+	uint32_t k;
+	size_t c;
+	int rc;
+
+	for (k = 1; k < b->nprobes; k++) {
+		if ((rc = rf_plugin_host_create(&hosts[k])) < 0)
+			die_status(rc, NULL);
+		rf_plugin_host_set_frame(hosts[k], in);
+		rf_plugin_host_set_probe(hosts[k], &b->probes[k]);
+		rf_plugin_host_set_environment(hosts[k], env[k].cube, env[k].mapping,
+		                               env[k].steps);
+		if ((rc = rf_plugin_host_set_radiance(hosts[k], env[k].cube)) < 0)
+			die_status(rc, NULL);
+		rf_plugin_host_set_seed(hosts[k], o->seed);
+		if ((rc = rf_stage_create(&stages[k], o->mode.plugin, o->mode.values,
+		                          rf_plugin_host_table(hosts[k]), o->nthreads, err,
+		                          sizeof(err))) < 0 ||
+		    (rc = rf_stage_begin_frame(stages[k], in, &mid, err, sizeof(err))) < 0)
+			die_status(rc, err);
+		for (c = 0; (channel = rf_shade_channel(shade, c)); c++)
+			if ((rc = rf_stage_reserve_channel(stages[k], channel)) < 0)
+				die_status(rc, NULL);
+	}
+	if ((rc = rf_shade_set_blend_stages(shade, stages)) < 0)
 		die_status(rc, NULL);
 }
 
@@ -289,6 +318,10 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	rf_header *mid, *out;
 	const char *channel;
 	size_t rows, k, ncols = rf_header_ncols(in), nrows = rf_header_nrows(in);
+	rf_plugin_host *hosts[RF_PROBES_MAX] = { NULL };
+	rf_stage *stages[RF_PROBES_MAX] = { NULL };
+	struct rf_blend blend;
+	uint32_t nblend, kb;
 	int rc, prc;
 
 	prc = rf_probe_resolve(&probe, in, o->probe.box, o->probe.center,
@@ -312,7 +345,7 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 		name = "default";
 	if (!env->name || strcmp(env->name, name))
 		load_environment(o, name, !o->env.path, env);
-	set_blend(o, shade, in, prc == 0 ? &probe : NULL, env);
+	nblend = set_blend(o, shade, in, prc == 0 ? &probe : NULL, env, &blend);
 
 	rf_plugin_host_set_frame(host, in);
 	rf_plugin_host_set_probe(host, prc == 0 ? &probe : NULL);
@@ -340,6 +373,8 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 			die_status(rc, NULL);
 	if ((rc = rf_shade_begin_frame(shade, mid, center, &out, err, sizeof(err))) < 0)
 		die_status(rc, err);
+	if (nblend && rf_plugin_writes_radiance(o->mode.plugin))
+		blend_stages(o, shade, in, &blend, env, hosts, stages);
 	/* The pass keeps a copy of the levels: made once per environment. */
 	if (env->fresh &&
 	    (rc = rf_shade_set_environment(shade, env->cube, env->mapping,
@@ -372,6 +407,10 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 		                                                       : rf_shade_error(shade));
 	cli_io_invalid_note(io, rf_stage_invalid_count(stage));
 	rf_stage_destroy(stage);
+	for (kb = 1; kb < RF_PROBES_MAX; kb++) {
+		rf_stage_destroy(stages[kb]);
+		rf_plugin_host_destroy(hosts[kb]);
+	}
 	if (rc < 0) {
 		/* Its threads are joined before we die, as the stage's are. */
 		rf_shade_destroy(shade);

@@ -96,6 +96,25 @@ test_expect_success '--fallback=sky:FILE: what no probe covers comes from the sk
 	test_grep "nothere.rfl" err
 '
 
+# The raytraced mode traces each probe's rays through that probe's box
+# and environment, a stage a probe: in these uniform rooms every ray
+# reads its probe's radiance, so spec is the same blend, to the noise of
+# 256 rays (spec divides by the lobe's albedo: about 1 %); the fallback's
+# share goes to the first probe.
+test_expect_success 'the raytraced mode blends the probes too' '
+	awk "/^CHANNELS=/ { print; next } body { \$10 = 0.5 } /^$/ { body = 1 } { print }" \
+		row.txt >rough.txt &&
+	reflect-shade -fa -m raytraced:samples=256 rough.txt >rt.txt &&
+	column rt.txt spec.R weight.probe1 weight.probe2 >got &&
+	printf "1\n1\n1.3125\n2\n2.6875\n3\n3\n1\n" >expect &&
+	cut -d " " -f 1 got >spec &&
+	paste expect spec | awk "{ d = (\$2 - \$1) / \$1; if (d < 0) d = -d; if (d > 0.03) bad = 1 }
+		END { exit bad }" &&
+	reflect-shade -h -j 1 -m raytraced:samples=8 rough.txt >one &&
+	reflect-shade -h -j 2 -m raytraced:samples=8 rough.txt >two &&
+	cmp one two
+'
+
 # B's own box: from P = (1.9, 1, 0.3) the reflection R = +Z leaves B's
 # box at z = 1, at (1.9, 1, 1); from B's capture point (0.75, 1, 0) that
 # is (1.15, 0, 1), on the +X face at a = 1/1.15 = 0.87, texel 15 of 16

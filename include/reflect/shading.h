@@ -182,12 +182,22 @@ RF_EXTERN int rf_shade_create(rf_shade **s, const struct rf_shade_options *o);
  * from the fallback (RF_BLEND_SKY: envs[nprobes], with its mapping and
  * steps); every pixel also gets weight.probe1 ...
  * weight.probeN and weight.fallback.  Before the frame's channels are
- * listed; NULL or one probe turns it off.  RF_EINVAL for a mode that
- * writes its own radiance, or a probe without an environment. */
+ * listed; NULL or one probe turns it off.  A mode that writes its own
+ * radiance needs no envs (NULL) but rf_shade_set_blend_stages.
+ * RF_EINVAL for a probe without an environment. */
 RF_EXTERN int rf_shade_set_blend(rf_shade *s, const struct rf_blend *b,
                                  const rf_cubemap *const *envs,
                                  const enum rf_mapping *mappings, const float *steps,
                                  enum rf_blend_fallback fallback);
+/* For a mode that traces its own rays (mode_radiance), the frame's other
+ * probes as stages of the same mode (stages[k], k = 1 .. nprobes - 1,
+ * each created with a host whose probe and environment are probe k's,
+ * begun on the same frame with the pass's channels reserved, so that
+ * their rows have the first stage's layout): where probe k has weight
+ * its stage traces the row, and spec becomes the weighted sum (the
+ * fallback's share goes to the first probe).  After rf_shade_set_blend
+ * and rf_shade_begin_frame; the stages must outlive the frame. */
+RF_EXTERN int rf_shade_set_blend_stages(rf_shade *s, rf_stage *const *stages);
 RF_EXTERN void rf_shade_set_irradiance(rf_shade *s, const float sh9[27]);
 /* The probe box the diffuse light's box projection uses, for the frames
  * that follow (NULL: none, the irradiance at N itself). */

@@ -77,6 +77,13 @@ struct rf_shade {
 	int blend_ch[RF__BLEND_CHANNELS];
 	char weight_names[RF_PROBES_MAX + 1][24];
 	int out_weight[RF_PROBES_MAX + 1];
+	/* A mode that traces its own rays: a stage per probe after the
+	 * first, each with that probe for its host, run on the rows where
+	 * the probe has weight; per thread a row of its output, a row of
+	 * weights. */
+	rf_stage *blend_stage[RF_PROBES_MAX];
+	float *blend_rows;
+	size_t blend_rows_cols;
 	float center[3];
 	rf_header *out_h;
 	size_t ncols, in_ncomp, out_ncomp;
@@ -215,6 +222,7 @@ rf_shade_destroy(rf_shade *s)
 	rf_header_destroy(s->out_h);
 	rf__blend_pass_destroy(s->bp);
 	rf__rgba_levels_destroy(&s->levels);
+	free(s->blend_rows);
 	free(s);
 }
 
@@ -227,19 +235,20 @@ rf_shade_set_blend(rf_shade *s, const struct rf_blend *b, const rf_cubemap *cons
 
 	rf__blend_pass_destroy(s->bp);
 	s->bp = NULL;
-	s->blending = b && b->nprobes > 1 && !s->mode_radiance;
+	memset(s->blend_stage, 0, sizeof(s->blend_stage));
+	s->blending = b && b->nprobes > 1;
 	if (!s->blending)
-		return b && b->nprobes > 1 ? RF_EINVAL : 0;
+		return 0;
 	s->blend = *b;
 	s->blend_fallback = fallback;
 	for (k = 0; k <= b->nprobes; k++) {
 		if (k == b->nprobes && fallback != RF_BLEND_SKY)
 			break;
-		if (k && !envs[k])
+		if (k && !s->mode_radiance && !envs[k])
 			return RF_EINVAL;
-		s->blend_env[k] = envs[k];
-		s->blend_mapping[k] = mappings[k];
-		s->blend_steps[k] = steps[k];
+		s->blend_env[k] = envs ? envs[k] : NULL;
+		s->blend_mapping[k] = mappings ? mappings[k] : RF_MAPPING_DEFAULT;
+		s->blend_steps[k] = steps ? steps[k] : 0.0f;
 	}
 	for (k = 0; k < b->nprobes; k++)
 		snprintf(s->weight_names[k], sizeof(s->weight_names[k]), "weight.probe%u",
@@ -282,6 +291,21 @@ void
 rf_shade_set_unprojected(rf_shade *s, int unprojected)
 {
 	s->unprojected = unprojected;
+}
+
+int
+rf_shade_set_blend_stages(rf_shade *s, rf_stage *const *stages)
+{
+	uint32_t k;
+
+	if (!s->blending || !s->mode_radiance)
+		return RF_EINVAL;
+	for (k = 1; k < s->blend.nprobes; k++) {
+		if (!stages[k] || rf__stage_threads(stages[k]) < s->nthreads)
+			return RF_EINVAL;
+		s->blend_stage[k] = stages[k];
+	}
+	return 0;
 }
 
 const char *
@@ -410,7 +434,9 @@ rf_shade_begin_frame(rf_shade *s, const rf_header *in, const float center[3],
 
 		for (i = 0; i < RF__BLEND_CHANNELS; i++) {
 			s->blend_ch[i] = rf_header_find_channel(in, names[i]);
-			if (s->blend_ch[i] < 0 && !(i >= RF__BLEND_NX && i < RF__BLEND_RX)) {
+			/* N for the normal fade only; a traced mode reads no R */
+			if (s->blend_ch[i] < 0 && !(i >= RF__BLEND_NX && i < RF__BLEND_RX) &&
+			    !(s->mode_radiance && i >= RF__BLEND_RX)) {
 				rf__format(err, errlen, "input has no channel '%s' (blending probes "
 				           "reads P, the reflection R that reflect-project "
 				           "writes, and %s)", names[i], RF_SHADE_ROUGHNESS);
@@ -448,6 +474,14 @@ rf_shade_begin_frame(rf_shade *s, const rf_header *in, const float center[3],
 	rf__blend_pass_destroy(s->bp);
 	s->bp = NULL;
 	s->ncols = rf_header_ncols(in);
+	if (s->blending && s->mode_radiance) {
+		size_t need = (size_t)s->nthreads * (rf_header_nchannels(s->out_h) +
+		                                     s->blend.nprobes + 1) * s->ncols;
+
+		free(s->blend_rows);
+		if (!(s->blend_rows = malloc(need * sizeof(float))))
+			return RF_ENOMEM;
+	}
 	s->in_ncomp = rf_header_nchannels(in);
 	s->out_ncomp = rf_header_nchannels(s->out_h);
 	if (s->ncols * s->out_ncomp * sizeof(float) > RF_ROW_BYTES_MAX) {
@@ -718,6 +752,67 @@ shade_row(void *arg, size_t r, int thread)
 
 /* Row r: the stage into out, then the pass over it in place, while the
  * row is still in this core's cache. */
+/* A traced row blended over the probes: each probe's stage traces the row
+ * (the first's is the pass's own, in out already) where the probe has
+ * weight, and spec becomes the weighted sum, the fallback's share the
+ * first probe's (a traced ray has no probe-less lookup) or, with
+ * RF_BLEND_NONE, the weights scaled to 1; then the row is shaded. */
+static void
+blend_traced_row(const rf_shade *s, const float *in, float *out, size_t y, int thread)
+{
+	const uint32_t np = s->blend.nprobes, stride = np + 1;
+	const size_t n = s->ncols, nc = s->out_ncomp;
+	float *row = s->blend_rows + (size_t)thread * (nc + stride) * n;
+	float *w = row + nc * n;
+	const int cs[3] = { s->in[IN_SR], s->in[IN_SG], s->in[IN_SB] };
+	size_t x;
+	uint32_t k;
+	int c;
+
+	for (x = 0; x < n; x++) {
+		const float *p = out + x * nc;
+		const float pos[3] = { p[s->blend_ch[RF__BLEND_PX]], p[s->blend_ch[RF__BLEND_PX + 1]],
+			               p[s->blend_ch[RF__BLEND_PX + 2]] };
+		float nrm[3], *wx = w + x * stride, sum = 0.0f, rest;
+		const float *np3 = NULL;
+
+		if (s->blend_ch[RF__BLEND_NX] >= 0) {
+			for (c = 0; c < 3; c++)
+				nrm[c] = p[s->blend_ch[RF__BLEND_NX + c]];
+			np3 = nrm;
+		}
+		rest = rf_blend_weights(&s->blend, pos, np3, wx);
+		if (s->blend_fallback == RF_BLEND_NONE) {
+			for (k = 0; k < np; k++)
+				sum += wx[k];
+			for (k = 0; k < np && sum > 0.0f; k++)
+				wx[k] /= sum;
+			rest = 0.0f;
+		}
+		wx[np] = rest;
+		/* the first probe's share, the fallback's with it */
+		for (c = 0; c < 3; c++)
+			out[x * nc + (size_t)cs[c]] *= wx[0] + rest;
+	}
+	for (k = 1; k < np; k++) {
+		int any = 0;
+
+		for (x = 0; x < n && !any; x++)
+			any = w[x * stride + k] > 0.0f;
+		if (!any)
+			continue;
+		rf__stage_row(s->blend_stage[k], in, row, y, thread);
+		for (x = 0; x < n; x++)
+			for (c = 0; c < 3; c++)
+				out[x * nc + (size_t)cs[c]] += w[x * stride + k] *
+				                               row[x * nc + (size_t)cs[c]];
+	}
+	shade_pixels(s, out, nc, out, y, &s->reads[thread]);
+	for (x = 0; x < n; x++)
+		for (k = 0; k <= np; k++)
+			out[x * nc + (size_t)s->out_weight[k]] = w[x * stride + k];
+}
+
 static void
 stage_and_shade_row(void *arg, size_t r, int thread)
 {
@@ -726,7 +821,10 @@ stage_and_shade_row(void *arg, size_t r, int thread)
 	float *out = s->block_out + r * s->ncols * s->out_ncomp;
 
 	rf__stage_row(s->stage, in, out, s->block_y + r, thread);
-	shade_pixels(s, out, s->out_ncomp, out, s->block_y + r, &s->reads[thread]);
+	if (s->blending && s->mode_radiance && s->blend_stage[1])
+		blend_traced_row(s, in, out, s->block_y + r, thread);
+	else
+		shade_pixels(s, out, s->out_ncomp, out, s->block_y + r, &s->reads[thread]);
 }
 
 static int
@@ -734,7 +832,7 @@ block_begin(rf_shade *s)
 {
 	int t, rc;
 
-	if (s->blending && !s->bp && s->env) {
+	if (s->blending && !s->mode_radiance && !s->bp && s->env) {
 		s->blend_mapping[0] = s->mapping;
 		s->blend_steps[0] = s->steps;
 		if ((rc = rf__blend_pass_create(&s->bp, &s->blend, s->blend_env,
@@ -780,6 +878,7 @@ rf_shade_run_stage(rf_shade *s, rf_stage *stage, const float *in, float *out, si
                    size_t nrows)
 {
 	size_t sin, sout;
+	uint32_t k;
 	int rc;
 
 	if (!s->out_h || !s->env)
@@ -798,9 +897,23 @@ rf_shade_run_stage(rf_shade *s, rf_stage *stage, const float *in, float *out, si
 	if ((rc = block_begin(s)) < 0)
 		return rc;
 	rf__stage_block_begin(stage);
+	for (k = 1; s->blending && s->mode_radiance && k < s->blend.nprobes; k++) {
+		size_t ki, ko;
+
+		if (!s->blend_stage[k])
+			break;
+		if ((rc = rf__stage_ready(s->blend_stage[k], y, nrows, &ki, &ko)) < 0)
+			return rc;
+		if (ko != s->out_ncomp)
+			return RF_EINVAL;
+		rf__stage_block_begin(s->blend_stage[k]);
+	}
 	rf__pool_run(s->pool, nrows, stage_and_shade_row, s);
 	if ((rc = rf__stage_block_end(stage)) < 0)
 		return rc;
+	for (k = 1; s->blending && s->mode_radiance && k < s->blend.nprobes; k++)
+		if (s->blend_stage[k] && (rc = rf__stage_block_end(s->blend_stage[k])) < 0)
+			return rc;
 	return block_end(s);
 }
 
