@@ -14,6 +14,7 @@ void
 rf__pattern_default(struct pattern *pt)
 {
 	pt->cell = 1.0;
+	pt->inv_cell = 1.0;
 	pt->line_width = 0.08;
 	pt->base = 0.3;
 	pt->checker = 0.25;
@@ -65,7 +66,7 @@ fast_floor(double x)
 static void
 pattern_at(const struct pattern *pt, const float c[3], const double uv[2], float rgb[3])
 {
-	const double su = uv[0] / pt->cell, sv = uv[1] / pt->cell;
+	const double su = uv[0] * pt->inv_cell, sv = uv[1] * pt->inv_cell;
 	const double du = fabs(su + 0.5 - fast_floor(su + 0.5) - 0.5) * pt->cell;
 	const double dv = fabs(sv + 0.5 - fast_floor(sv + 0.5) - 0.5) * pt->cell;
 	int k;

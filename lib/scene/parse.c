@@ -885,6 +885,7 @@ parse_pattern(struct parser *p, const struct rf__token *kw)
 	}
 	if (rc < 0)
 		return rc;
+	pt->inv_cell = 1.0 / pt->cell;
 	if (pt->base + (pt->checker < 0 ? pt->checker : 0) < 0)
 		return FAIL_TOK(p, kw, "expected base + checker >= 0 (no negative radiance), "
 		                "found %g + %g", pt->base, pt->checker);

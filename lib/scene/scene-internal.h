@@ -38,6 +38,7 @@ struct emission {
 /* The walls' procedural pattern: a checker of cells with grid lines. */
 struct pattern {
 	double cell, line_width, base, checker, line, line_white;
+	double inv_cell; /* 1 / cell, for the tracer's millions of lookups */
 };
 
 /* A window: radiance inside min < (u, v) < max of a wall, over whatever

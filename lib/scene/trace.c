@@ -36,6 +36,10 @@ struct rf_tracer {
 	uint32_t *seen;     /* objects reflected rays can meet */
 	size_t nseen;
 	double *k;          /* per thread: rf__trace_prepare for a pixel */
+	/* cos and sin of 2 pi radical_inverse(i) for a half's samples: a
+	 * pixel's rotation turns them by angle addition instead of a sincos
+	 * a sample (a tenth of the time) */
+	float *turn;
 	struct rf__pool *pool;
 };
 
@@ -44,6 +48,8 @@ struct block {
 	float *out;
 	size_t y;
 };
+
+static double radical_inverse(uint32_t i);
 
 void
 rf_trace_options_init(struct rf_trace_options *o)
@@ -84,9 +90,16 @@ rf_tracer_create(struct rf_tracer **tp, const rf_scene *s, size_t width, size_t 
 	t->seen = calloc(s->nobjects + 1, sizeof(*t->seen));
 	t->k = calloc((size_t)t->o.nthreads * (s->nobjects + 1), RF__ORIGIN_STRIDE *
 	              sizeof(double));
-	if (!t->kcam || !t->seen || !t->k) {
+	t->turn = malloc(((size_t)o->samples + 1) / 2 * 2 * sizeof(float));
+	if (!t->kcam || !t->seen || !t->k || !t->turn) {
 		rf_tracer_destroy(t);
 		return RF_ENOMEM;
+	}
+	for (i = 0; i < ((size_t)o->samples + 1) / 2; i++) {
+		double a = 2.0 * M_PI * radical_inverse((uint32_t)i);
+
+		t->turn[2 * i] = (float)cos(a);
+		t->turn[2 * i + 1] = (float)sin(a);
 	}
 	for (i = 0; i < s->nobjects; i++)
 		if (o->objects_visible || !(s->objects[i].mat.mask > 0.0f))
@@ -107,6 +120,7 @@ rf_tracer_destroy(struct rf_tracer *t)
 	free(t->kcam);
 	free(t->seen);
 	free(t->k);
+	free(t->turn);
 	free(t);
 }
 
@@ -267,18 +281,23 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 		const float vhx = (float)vh[0], vhy = (float)vh[1], vhz = (float)vh[2];
 		const float vx = (float)vl[0], vy = (float)vl[1], vz = (float)vl[2];
 		const float inv_k = 1.0f / (float)K;
+		const float fx[3] = { (float)x[0], (float)x[1], (float)x[2] };
+		const float fy[3] = { (float)y[0], (float)y[1], (float)y[2] };
+		const float fn[3] = { (float)n[0], (float)n[1], (float)n[2] };
+		const float fng[3] = { (float)ng[0], (float)ng[1], (float)ng[2] };
+		const float rc = cosf(6.28318530718f * (float)u1r), rs = sinf(6.28318530718f * (float)u1r);
 		for (i = 0; i < K; i++) {
 			float u0 = ((float)i + 0.5f) * inv_k + (float)u0r;
-			float u1 = (float)radical_inverse(i) + (float)u1r;
-			float r, sn, cs, p1, p2, w, nhx, nhy, nhz, nex, ney, nez, len2, inv, vn;
+			const float c0 = t->turn[2 * i], s0 = t->turn[2 * i + 1];
+			/* cos and sin of 2 pi (radical_inverse(i) + u1r) */
+			const float cs = c0 * rc - s0 * rs, sn = s0 * rc + c0 * rs;
+			float r, p1, p2, w, nhx, nhy, nhz, nex, ney, nez, len2, inv, vn;
 			float lx, ly, lz;
 			double l[3], wt;
 			float rgb[3];
 
 			u0 -= u0 >= 1.0f ? 1.0f : 0.0f;
-			u1 -= u1 >= 1.0f ? 1.0f : 0.0f;
 			r = sqrtf(u0);
-			sincosf(6.28318530718f * u1, &sn, &cs);
 			p1 = r * cs;
 			p2 = r * sn;
 			p2 = (1.0f - s) * sqrtf(1.0f - p1 * p1) + s * p2;
@@ -304,8 +323,8 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 			if (!(lz > 0.0f))
 				continue; /* below the shading surface */
 			for (c = 0; c < 3; c++)
-				l[c] = lx * x[c] + ly * y[c] + lz * n[c];
-			if (!(rf__dot(l, ng) > 0.0))
+				l[c] = lx * fx[c] + ly * fy[c] + lz * fn[c];
+			if (!(l[0] * fng[0] + l[1] * fng[1] + l[2] * fng[2] > 0.0))
 				continue; /* below the geometric surface: 0, as in Cycles */
 			if (t->o.masking_correlated) {
 				wt = (1.0 + lv) / (1.0 + lv + lambda(alpha2, lz));
