@@ -35,7 +35,7 @@ envmap_opts_parse(struct envmap_opts *o, const char *name, const char *arg)
 		o->path = arg;
 	} else if (!strcmp(name, "layout")) {
 		if (rf_layout_parse(arg, &o->load.layout) < 0)
-			die("--layout: '%s' is not auto, latlong, cube, vcross or hcross", arg);
+			die("--layout: '%s' is not auto, latlong, cube, vcross, hcross, mirrorball or angular", arg);
 	} else if (!strcmp(name, "prefiltered")) {
 		o->load.prefiltered = 1;
 	} else if (!strcmp(name, "srgb")) {

@@ -69,7 +69,8 @@ dump_levels(const rf_cubemap *c, const char *spec)
 	size_t k;
 	int rc;
 
-	if (rf_layout_parse(spec, &layout) < 0 || layout == RF_LAYOUT_AUTO)
+	if (rf_layout_parse(spec, &layout) < 0 || layout == RF_LAYOUT_AUTO ||
+	    layout == RF_LAYOUT_MIRRORBALL || layout == RF_LAYOUT_ANGULAR)
 		die("--dump: '%s' is not latlong, cube, vcross or hcross", spec);
 	for (k = 0; k < rf_cubemap_levels(c); k++) {
 		size_t n = rf_cubemap_level_size(c, k), w, h;

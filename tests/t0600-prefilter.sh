@@ -210,7 +210,7 @@ test_expect_success 'bad input: each a one-line message and exit 1' '
 	test_one_line_message reflect-prefilter err &&
 	test_grep "a cube image of faces N is N x 6N, not 64x32" err &&
 	test_expect_code 1 reflect-prefilter --layout=strip x.exr 2>err &&
-	test_grep "is not auto, latlong, cube, vcross or hcross" err &&
+	test_grep "is not auto, latlong, cube, vcross, hcross, mirrorball or angular" err &&
 	constant_image odd.exr 3 18 1 1 1 &&
 	test_expect_code 1 reflect-prefilter odd.exr 2>err &&
 	test_grep "odd size" err &&

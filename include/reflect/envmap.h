@@ -123,7 +123,9 @@ enum rf_layout {
 	RF_LAYOUT_LATLONG,   /* 2:1 equirectangular */
 	RF_LAYOUT_CUBE,      /* N x 6N, faces +X -X +Y -Y +Z -Z top to bottom */
 	RF_LAYOUT_VCROSS,    /* 3N x 4N vertical cross */
-	RF_LAYOUT_HCROSS     /* 4N x 3N horizontal cross */
+	RF_LAYOUT_HCROSS,    /* 4N x 3N horizontal cross */
+	RF_LAYOUT_MIRRORBALL, /* square: a photographed mirror ball (never guessed) */
+	RF_LAYOUT_ANGULAR    /* square: Debevec's angular map (never guessed) */
 };
 
 RF_EXTERN int rf_layout_parse(const char *name, enum rf_layout *out);

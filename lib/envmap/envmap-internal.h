@@ -20,6 +20,11 @@ const float *rf__cubemap_padded_face(const rf_cubemap *c, size_t level, int face
 void rf__cubemap_copy_level(rf_cubemap *dst, size_t to_level, const rf_cubemap *src,
                             size_t from_level);
 
+/* Level 0 of c from a square light-probe image (RGB floats) in the
+ * mirror-ball or angular layout (layout_sphere.c). */
+int rf__from_sphere(rf_cubemap *c, const float *img, size_t w, size_t h,
+                    enum rf_layout layout);
+
 /* The irradiance of 9 coefficients (rf_sh9_irradiance) as a quadratic
  * in the unit normal (x, y, z), per channel: E = q0 + q1 x + q2 y + q3 z
  * + q4 xy + q5 yz + q6 xz + q7 z^2 + q8 (x^2 - y^2), for shading a

@@ -41,7 +41,8 @@ rf_layout_parse(const char *name, enum rf_layout *out)
 	static const struct { const char *name; enum rf_layout layout; } names[] = {
 		{ "auto", RF_LAYOUT_AUTO }, { "latlong", RF_LAYOUT_LATLONG },
 		{ "cube", RF_LAYOUT_CUBE }, { "vcross", RF_LAYOUT_VCROSS },
-		{ "hcross", RF_LAYOUT_HCROSS },
+		{ "hcross", RF_LAYOUT_HCROSS }, { "mirrorball", RF_LAYOUT_MIRRORBALL },
+		{ "angular", RF_LAYOUT_ANGULAR },
 	};
 	size_t i;
 
@@ -62,6 +63,8 @@ rf_layout_name(enum rf_layout layout)
 	case RF_LAYOUT_CUBE: return "cube";
 	case RF_LAYOUT_VCROSS: return "vcross";
 	case RF_LAYOUT_HCROSS: return "hcross";
+	case RF_LAYOUT_MIRRORBALL: return "mirrorball";
+	case RF_LAYOUT_ANGULAR: return "angular";
 	}
 	return "?";
 }
@@ -93,7 +96,11 @@ rf_layout_detect(size_t w, size_t h, const char *envmap, enum rf_layout *out,
 		*out = RF_LAYOUT_VCROSS;
 	else if (4 * h == 3 * w)
 		*out = RF_LAYOUT_HCROSS;
-	else {
+	else if (w == h) {
+		rf__format(err, errlen, "a square %zux%zu image may be a mirror ball or an "
+		           "angular map: give --layout=mirrorball or --layout=angular", w, h);
+		return RF_EINVAL;
+	} else {
 		rf__format(err, errlen, "cannot tell the layout of a %zux%zu image "
 		           "(lat-long is 2:1, a cube N x 6N, crosses 3:4 or 4:3); "
 		           "give one", w, h);
@@ -115,6 +122,19 @@ rf_layout_check(enum rf_layout layout, size_t w, size_t h, size_t *face, char *e
 			           "high, not %zux%zu", w, h);
 			return RF_EINVAL;
 		}
+		for (n = 1; 2 * n <= w / 4; n *= 2)
+			;
+		*face = n;
+		return 0;
+	case RF_LAYOUT_MIRRORBALL:
+	case RF_LAYOUT_ANGULAR:
+		if (w < 2 || w != h) {
+			rf__format(err, errlen, "%s is square, not %zux%zu",
+			           layout == RF_LAYOUT_MIRRORBALL ? "a mirror-ball image"
+			                                          : "an angular map", w, h);
+			return RF_EINVAL;
+		}
+		/* a face of about the pixels a quarter turn spans */
 		for (n = 1; 2 * n <= w / 4; n *= 2)
 			;
 		*face = n;
@@ -346,8 +366,10 @@ rf_envmap_from_pixels(rf_cubemap *c, const float *px, size_t w, size_t h, size_t
 		return rc;
 	if (!(img = decode_pixels(px, w, h, nch, decode ? decode : &plain, nonfinite)))
 		return RF_ENOMEM;
-	if (layout == RF_LAYOUT_LATLONG) {
-		rc = from_latlong(c, img, w, h);
+	if (layout == RF_LAYOUT_LATLONG || layout == RF_LAYOUT_MIRRORBALL ||
+	    layout == RF_LAYOUT_ANGULAR) {
+		rc = layout == RF_LAYOUT_LATLONG ? from_latlong(c, img, w, h)
+		                                 : rf__from_sphere(c, img, w, h, layout);
 		free(img);
 		rf_cubemap_seal_level(c, 0);
 		return rc;
