@@ -8,7 +8,9 @@
  * PNG and scanline OpenEXR, the two types a pipeline writes, are written
  * by libreflect itself (image_png.c, image_exr.c) and never load the
  * module: loading it would cost the last stage of every pipeline those
- * 130 MB.  Everything else, and all reading, goes through the module.
+ * 130 MB.  OpenEXR files are read by libreflect too (exr_read.c), the
+ * environments and references a pipeline reads.  Everything else goes
+ * through the module.
  */
 #include <ctype.h>
 #include <dlfcn.h>
@@ -22,6 +24,7 @@
 #include <unistd.h>
 
 #include "image/module.h"
+#include "image/readers.h"
 #include "image/writers.h"
 #include "util/util.h"
 
@@ -116,6 +119,33 @@ rf_image_module_check(char *err, size_t errlen)
 	return module(err, errlen) ? 0 : RF_EIMAGE;
 }
 
+/* REFLECT_EXR=module reads OpenEXR through the module as before, to
+ * compare the two readers. */
+static int
+own_exr(void)
+{
+	const char *v = getenv("REFLECT_EXR");
+
+	return !v || strcmp(v, "module");
+}
+
+/* An image: read by libreflect itself, or by the module (mod). */
+struct rf_image {
+	void *mod;
+	struct rf__image_data own;
+};
+
+static int
+wrap_module(rf_image **img, void *mod)
+{
+	if (!(*img = calloc(1, sizeof(**img)))) {
+		api->free_image(mod);
+		return RF_ENOMEM;
+	}
+	(*img)->mod = mod;
+	return 0;
+}
+
 int
 rf_image_read(rf_image **img, const char *path, char *err, size_t errlen)
 {
@@ -126,13 +156,32 @@ int
 rf_image_read_level(rf_image **img, const char *path, size_t level, char *err,
                     size_t errlen)
 {
+	rf_image *mod = NULL;
 	int rc;
 
 	*img = NULL;
 	if ((rc = rf__regular_file(path, err, errlen)) < 0)
 		return rc;
-	return module(err, errlen) ? api->read_level(img, path, level, err, errlen)
-	                           : RF_EIMAGE;
+	if (own_exr() && rf__is_exr(path)) {
+		struct rf__image_data data;
+
+		rc = rf__exr_read_level(&data, path, level, err, errlen);
+		if (rc != RF_ENOTFOUND) {
+			if (rc < 0)
+				return rc;
+			if (!(*img = calloc(1, sizeof(**img)))) {
+				rf__image_data_free(&data);
+				return RF_ENOMEM;
+			}
+			(*img)->own = data;
+			return 0;
+		}
+	}
+	if (!module(err, errlen))
+		return RF_EIMAGE;
+	if ((rc = api->read_level(&mod, path, level, err, errlen)) < 0)
+		return rc;
+	return wrap_module(img, mod);
 }
 
 int
@@ -142,28 +191,67 @@ rf_image_count_levels(const char *path, size_t *nlevels, char *err, size_t errle
 
 	if ((rc = rf__regular_file(path, err, errlen)) < 0)
 		return rc;
+	if (own_exr() && rf__is_exr(path) &&
+	    (rc = rf__exr_count_levels(path, nlevels, err, errlen)) != RF_ENOTFOUND)
+		return rc;
 	return module(err, errlen) ? api->count_levels(path, nlevels, err, errlen)
 	                           : RF_EIMAGE;
 }
 
-/* An image exists only if the module made it, so it is loaded here. */
 void
 rf_image_destroy(rf_image *img)
 {
-	if (img)
-		api->free_image(img);
+	if (!img)
+		return;
+	if (img->mod)
+		api->free_image(img->mod);
+	rf__image_data_free(&img->own);
+	free(img);
 }
 
-size_t rf_image_width(const rf_image *img) { return api->width(img); }
-size_t rf_image_height(const rf_image *img) { return api->height(img); }
-size_t rf_image_nchannels(const rf_image *img) { return api->nchannels(img); }
-const char *rf_image_channel(const rf_image *img, size_t i) { return api->channel(img, i); }
-const float *rf_image_pixels(const rf_image *img) { return api->pixels(img); }
+size_t
+rf_image_width(const rf_image *img)
+{
+	return img->mod ? api->width(img->mod) : img->own.width;
+}
+
+size_t
+rf_image_height(const rf_image *img)
+{
+	return img->mod ? api->height(img->mod) : img->own.height;
+}
+
+size_t
+rf_image_nchannels(const rf_image *img)
+{
+	return img->mod ? api->nchannels(img->mod) : img->own.nchannels;
+}
+
+const char *
+rf_image_channel(const rf_image *img, size_t i)
+{
+	if (img->mod)
+		return api->channel(img->mod, i);
+	return i < img->own.nchannels ? img->own.names[i] : NULL;
+}
+
+const float *
+rf_image_pixels(const rf_image *img)
+{
+	return img->mod ? api->pixels(img->mod) : img->own.pixels;
+}
 
 const char *
 rf_image_attribute(const rf_image *img, const char *name)
 {
-	return api->attribute(img, name);
+	size_t i;
+
+	if (img->mod)
+		return api->attribute(img->mod, name);
+	for (i = 0; i < img->own.nattr; i++)
+		if (!strcmp(img->own.attr[2 * i], name))
+			return img->own.attr[2 * i + 1];
+	return NULL;
 }
 
 /* The extension of a file name in lowercase, "" when it has none (or one
