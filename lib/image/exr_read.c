@@ -254,8 +254,10 @@ rf__exr_read_level(struct rf__image_data *img, const char *path, size_t level,
 		w = dw.max.x - dw.min.x + 1;
 		h = dw.max.y - dw.min.y + 1;
 	}
-	if (w < 1 || h < 1 || (size_t)w > ((size_t)1 << 24) / (size_t)n ||
-	    (size_t)h > ((size_t)1 << 24)) {
+	/* a header's sizes are checked before they are believed: at most
+	 * 2^28 values (1 GB of floats), a 16k x 16k cube of RGBA */
+	if (w < 1 || h < 1 || (size_t)w > ((size_t)1 << 28) / (size_t)n ||
+	    (size_t)h > ((size_t)1 << 28) / ((size_t)w * (size_t)n)) {
 		rf__format(err, errlen, "'%s': a %dx%d image of %d channels is out of range",
 		           path, w, h, n);
 		rc = RF_ETOOBIG;
