@@ -57,25 +57,29 @@ test_expect_success 'the module found next to libreflect works' '
 	test -s level0-cube.exr
 '
 
-# OpenEXR files are read by libreflect itself: scanline images as
+# OpenEXR and PNG files are read by libreflect itself: scanline images as
 # reflect-export writes them (float and half), a tiled MIP-mapped cube
-# chain as reflect-prefilter writes it; the same names in the same
-# order and the same values as the module reads (REFLECT_EXR=module).
-test_expect_success 'OpenEXR is read without the module, as the module reads it' '
+# chain as reflect-prefilter writes it, 8- and 16-bit colour and grey
+# PNG; the same names in the same order and the same values as the
+# module reads (REFLECT_READERS=module).
+test_expect_success 'OpenEXR and PNG are read without the module, as the module reads them' '
 	reflect-prefilter --size=16 -o chain.exr 2>/dev/null &&
 	reflect-gbuffer -x 24 -y 12 | reflect-project >g.rfl &&
 	REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so \
 		reflect-shade -h -m hdrp --final --env=chain.exr g.rfl >own &&
-	REFLECT_EXR=module reflect-shade -h -m hdrp --final --env=chain.exr g.rfl >module &&
+	REFLECT_READERS=module reflect-shade -h -m hdrp --final --env=chain.exr g.rfl >module &&
 	cmp own module &&
 	reflect-shade -fa -m none --final --env=chain.exr g.rfl >shaded.txt &&
 	reflect-export -c all -o all.exr shaded.txt &&
 	reflect-export -c all --half -o half.exr shaded.txt &&
-	for f in all.exr half.exr chain.exr
+	reflect-export -o c8.png shaded.txt &&
+	reflect-export --depth=16 -c R,G,B,mask -o c16.png shaded.txt &&
+	reflect-export -c spec.G -o grey.png shaded.txt &&
+	for f in all.exr half.exr chain.exr c8.png c16.png grey.png
 	do
 		REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so \
 			"$builddir/tests/imgdump" $f >own.txt || return 1
-		REFLECT_EXR=module "$builddir/tests/imgdump" $f >module.txt || return 1
+		REFLECT_READERS=module "$builddir/tests/imgdump" $f >module.txt || return 1
 		cmp own.txt module.txt || return 1
 	done &&
 	REFLECT_IMAGE_MODULE=/nonexistent/reflect-oiio.so "$builddir/tests/imgdump" all.exr |

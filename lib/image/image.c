@@ -8,9 +8,9 @@
  * PNG and scanline OpenEXR, the two types a pipeline writes, are written
  * by libreflect itself (image_png.c, image_exr.c) and never load the
  * module: loading it would cost the last stage of every pipeline those
- * 130 MB.  OpenEXR files are read by libreflect too (exr_read.c), the
- * environments and references a pipeline reads.  Everything else goes
- * through the module.
+ * 130 MB.  OpenEXR and PNG files are read by libreflect too (exr_read.c,
+ * png_read.c), the environments, references and maps a pipeline reads.
+ * Everything else goes through the module.
  */
 #include <ctype.h>
 #include <dlfcn.h>
@@ -119,12 +119,12 @@ rf_image_module_check(char *err, size_t errlen)
 	return module(err, errlen) ? 0 : RF_EIMAGE;
 }
 
-/* REFLECT_EXR=module reads OpenEXR through the module as before, to
- * compare the two readers. */
+/* REFLECT_READERS=module reads OpenEXR and PNG through the module as
+ * before, to compare the two readers. */
 static int
-own_exr(void)
+own_readers(void)
 {
-	const char *v = getenv("REFLECT_EXR");
+	const char *v = getenv("REFLECT_READERS");
 
 	return !v || strcmp(v, "module");
 }
@@ -162,10 +162,16 @@ rf_image_read_level(rf_image **img, const char *path, size_t level, char *err,
 	*img = NULL;
 	if ((rc = rf__regular_file(path, err, errlen)) < 0)
 		return rc;
-	if (own_exr() && rf__is_exr(path)) {
+	if (own_readers() && (rf__is_exr(path) || rf__is_png(path))) {
 		struct rf__image_data data;
 
-		rc = rf__exr_read_level(&data, path, level, err, errlen);
+		if (rf__is_exr(path))
+			rc = rf__exr_read_level(&data, path, level, err, errlen);
+		else if (level) {
+			rf__format(err, errlen, "'%s' has 1 level, not %zu", path, level + 1);
+			return RF_EINVAL;
+		} else
+			rc = rf__png_read(&data, path, err, errlen);
 		if (rc != RF_ENOTFOUND) {
 			if (rc < 0)
 				return rc;
@@ -191,9 +197,13 @@ rf_image_count_levels(const char *path, size_t *nlevels, char *err, size_t errle
 
 	if ((rc = rf__regular_file(path, err, errlen)) < 0)
 		return rc;
-	if (own_exr() && rf__is_exr(path) &&
+	if (own_readers() && rf__is_exr(path) &&
 	    (rc = rf__exr_count_levels(path, nlevels, err, errlen)) != RF_ENOTFOUND)
 		return rc;
+	if (own_readers() && rf__is_png(path)) {
+		*nlevels = 1;
+		return 0;
+	}
 	return module(err, errlen) ? api->count_levels(path, nlevels, err, errlen)
 	                           : RF_EIMAGE;
 }

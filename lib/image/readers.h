@@ -25,4 +25,8 @@ int rf__exr_read_level(struct rf__image_data *img, const char *path, size_t leve
                        char *err, size_t errlen);
 int rf__exr_count_levels(const char *path, size_t *nlevels, char *err, size_t errlen);
 
+/* 1 when the file starts with PNG's signature; the one image of it. */
+int rf__is_png(const char *path);
+int rf__png_read(struct rf__image_data *img, const char *path, char *err, size_t errlen);
+
 #endif
