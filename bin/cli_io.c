@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "reflect/import.h"
 
 int
 cli_io_option(struct cli_io *io, int opt, const char *arg)
@@ -68,6 +69,74 @@ cli_widen_pipe(int fd)
 #endif
 }
 
+/* An image file where a stream was asked for: read as reflect-import
+ * reads it (its channels under their own names), into a stream in
+ * memory that the reader then takes like any other.  OpenEXR and PNG
+ * cost no image module. */
+static FILE *
+image_as_stream(const char *path)
+{
+	struct rf_writer_options wopt = { RF_FORMAT_FLOAT, 0 };
+	struct rf_import_options o;
+	const rf_image *images[1];
+	char err[1024], *buf = NULL;
+	size_t len = 0, y, w, rows;
+	rf_image *img;
+	rf_import *im;
+	rf_writer *wr;
+	FILE *mem;
+	float *px;
+	int rc;
+
+	if ((rc = rf_image_read(&img, path, err, sizeof(err))) < 0)
+		die_status(rc, err);
+	memset(&o, 0, sizeof(o));
+	images[0] = img;
+	if ((rc = rf_import_create(&im, images, &path, 1, &o, err, sizeof(err))) < 0)
+		die_status(rc, err);
+	if (!(mem = open_memstream(&buf, &len)))
+		die_sys("out of memory");
+	if ((rc = rf_writer_open(&wr, mem, path, &wopt)) < 0 ||
+	    (rc = rf_writer_begin_frame(wr, rf_import_header(im))) < 0)
+		die_status(rc, NULL);
+	w = rf_header_ncols(rf_import_header(im)) * rf_header_nchannels(rf_import_header(im));
+	px = emalloc(w * sizeof(float));
+	rows = rf_header_nrows(rf_import_header(im));
+	for (y = 0; y < rows; y++) {
+		rf_import_rows(im, y, 1, px);
+		if ((rc = rf_writer_write_rows(wr, px, 1)) < 0)
+			die_status(rc, NULL);
+	}
+	free(px);
+	rf_writer_close(wr);
+	rf_import_destroy(im);
+	rf_image_destroy(img);
+	if (fclose(mem) != 0)
+		die_sys("out of memory");
+	if (!(mem = fmemopen(buf, len, "rb")))
+		die_sys("out of memory");
+	/* buf lives as long as the process: the reader reads from it */
+	return mem;
+}
+
+/* A file that does not start like a stream, and that the image layer
+ * knows by its first bytes or its name. */
+static int
+is_image_file(FILE *fp, const char *path)
+{
+	char head[16];
+	size_t n = fread(head, 1, sizeof(head), fp);
+	const char *dot = strrchr(path, '.');
+
+	rewind(fp);
+	if (n >= 9 && !memcmp(head, "#?REFLECT", 9))
+		return 0;
+	if (n >= 4 && (!memcmp(head, "\x76\x2f\x31\x01", 4) || !memcmp(head, "\x89PNG", 4)))
+		return 1;
+	return dot && rf_image_type_for_path(path) >= 0 && strcmp(dot, ".rfl") &&
+	       strcmp(dot, ".stream");
+}
+
 void
 cli_io_open(struct cli_io *io, const char *path)
 {
@@ -84,6 +153,10 @@ cli_io_open(struct cli_io *io, const char *path)
 		if (!(io->input = fopen(path, "rb")))
 			die("cannot open '%s':", path);
 		io->input_name = path;
+		if (!io->headerless && is_image_file(io->input, path)) {
+			fclose(io->input);
+			io->input = image_as_stream(path);
+		}
 	}
 	cli_guard_mapped(io->input_name);
 	if (io->headerless) {

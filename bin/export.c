@@ -2,7 +2,9 @@
 #include <ctype.h>
 #include <getopt.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli.h"
 
@@ -60,6 +62,7 @@ struct export_opts {
 	/* Resolved once from the output name. */
 	const struct format *format;
 	int type;
+	int to_stdout; /* -o -, png:-, exr:-: through a file of our own */
 };
 
 static int
@@ -271,6 +274,25 @@ export_block(void *arg, const float *in, float *out, size_t y, size_t n)
 	return 0;
 }
 
+/* The made file to standard output, then gone. */
+static void
+copy_out(const char *path)
+{
+	char buf[1 << 16];
+	FILE *fp = fopen(path, "rb");
+	size_t n;
+
+	unlink(path);
+	if (!fp)
+		die("cannot open '%s':", path);
+	while ((n = fread(buf, 1, sizeof(buf), fp)) > 0)
+		if (fwrite(buf, 1, n, stdout) != n)
+			die("cannot write to standard output:");
+	fclose(fp);
+	if (fflush(stdout) != 0)
+		die("cannot write to standard output:");
+}
+
 static void
 export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
              size_t frame)
@@ -315,7 +337,20 @@ export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
 					die("-c: channel '%s' is chosen twice; an EXR file "
 					    "holds each name once", names[c]);
 	srgb = o->srgb >= 0 ? o->srgb : integer;
-	output_name(path, sizeof(path), o->output, frame);
+	if (o->to_stdout) {
+		/* OpenEXR seeks back to its offsets: the image is made in a
+		 * file, then copied out */
+		const char *dir = getenv("TMPDIR");
+		int fd;
+
+		snprintf(path, sizeof(path), "%s/reflect-export.XXXXXX.%s",
+		         dir && *dir ? dir : "/tmp", o->format->ext);
+		if ((fd = mkstemps(path, (int)strlen(o->format->ext) + 1)) < 0)
+			die("cannot make a temporary file in '%s':", dir && *dir ? dir : "/tmp");
+		close(fd);
+	} else {
+		output_name(path, sizeof(path), o->output, frame);
+	}
 	if ((rc = rf_image_writer_open(&w, path, ncols / factor, nrows / factor, nch, names,
 	                               (enum rf_pixel_type)o->type, err,
 	                               sizeof(err))) < 0)
@@ -353,8 +388,13 @@ export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
 	rf_downsampler_destroy(eb.down);
 	if (rc < 0)
 		cli_io_read_failed(io, rc);
-	if ((rc = rf_image_writer_close(w, err, sizeof(err))) < 0)
+	if ((rc = rf_image_writer_close(w, err, sizeof(err))) < 0) {
+		if (o->to_stdout)
+			unlink(path);
 		die_status(rc, err);
+	}
+	if (o->to_stdout)
+		copy_out(path);
 }
 
 int
@@ -371,7 +411,7 @@ main(int argc, char **argv)
 		{ NULL, 0, NULL, 0 },
 	};
 	struct export_opts o = { NULL, NULL, 1.0f, RF_TONE_NONE, -1, -1, -1, RF_RESOLVE_BOX,
-	                         RF_RESOLVE_SIGMA_DEFAULT, NULL, 0 };
+	                         RF_RESOLVE_SIGMA_DEFAULT, NULL, 0, 0 };
 	struct cli_io io = { 0 };
 	const rf_header *h;
 	const char *channels = NULL;
@@ -434,7 +474,8 @@ main(int argc, char **argv)
 			       "Writes the channels of each frame as an image: PNG with libpng, EXR\n"
 			       "with OpenEXR, and HDR, JPEG, TIFF, BMP, TGA, PPM through OpenImageIO\n"
 			       "(loaded for those only). See reflect-export(1).\n"
-			       "  -o FILE  the image; a %%d in FILE numbers the frames\n"
+			       "  -o FILE  the image; a %%d in FILE numbers the frames; - (or png:-,\n"
+			       "           exr:-) writes it to standard output\n"
 			       "  -c spec | R,G,B | all  the channels (default R,G,B, else spec)\n"
 			       "  -e STOPS  exposure   --tone=none|filmic   --srgb=on|off\n"
 			       "  --depth=8|16|half|float  pixel type   --half  same as --depth=half\n"
@@ -458,9 +499,17 @@ main(int argc, char **argv)
 	} else {
 		o.channels = channels;
 	}
+	/* standard output: PNG unless it says EXR */
+	if (!strcmp(o.output, "-") || !strcmp(o.output, "png:-") || !strcmp(o.output, "exr:-")) {
+		o.to_stdout = 1;
+		o.output = strcmp(o.output, "exr:-") ? "<stdout>.png" : "<stdout>.exr";
+	}
 	resolve_format(&o);
 	cli_io_open(&io, optind < argc ? argv[optind] : NULL);
 	while (cli_io_next(&io, &h)) {
+		if (frames && o.to_stdout)
+			die("the stream has more than one frame, and standard output takes "
+			    "one image");
 		if (frames && !strchr(o.output, '%'))
 			die("the stream has more than one frame: put %%d in the output "
 			    "name ('%s') to number them", o.output);

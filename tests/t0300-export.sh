@@ -604,4 +604,35 @@ test_expect_success 'tiff: the same pixels make the same bytes' '
 	grep -a "1970:01:01 00:00:00" t1.tif >/dev/null
 '
 
+test_expect_success '-o - writes the PNG to standard output, exr:- the EXR' '
+	reflect-export -e 1 -o file.png in.txt &&
+	reflect-export -e 1 -o - in.txt >piped.png &&
+	cmp file.png piped.png &&
+	reflect-export -o file.exr in.txt &&
+	reflect-export -o exr:- in.txt | cat >piped.exr &&
+	cmp file.exr piped.exr &&
+	cat in.txt in.txt >two.txt &&
+	test_expect_code 1 reflect-export -o - two.txt >/dev/null 2>err &&
+	test_grep "standard output takes one image" err
+'
+
+# An image file wherever a stream is read: read as reflect-import reads
+# it, its channels under their own names.
+test_expect_success 'image files are streams to the stream tools' '
+	reflect-info file.exr >info &&
+	test_grep "NCOLS=3$" info &&
+	test_grep "CHANNELS=R G B$" info &&
+	reflect-export -o again.exr file.exr &&
+	"$imgdump" file.exr >a &&
+	"$imgdump" again.exr >b &&
+	cmp a b &&
+	reflect-info -s file.png >info &&
+	test_grep "CHANNELS=R G B$" info &&
+	# its values are display values already: no second encoding
+	reflect-export -c R,G,B --srgb=off -o back.png file.png &&
+	"$imgdump" -8 file.png >a &&
+	"$imgdump" -8 back.png >b &&
+	cmp a b
+'
+
 test_done
