@@ -157,19 +157,27 @@ main(int argc, char **argv)
 	if (argc - optind > 1)
 		usage();
 	file = optind < argc ? argv[optind] : NULL;
+	/* every option checked before the scene is loaded */
+	first = strcmp(which, "all") ? (size_t)parse_whole("p", which, 1, 1e6) - 1 : 0;
 	s = cli_load_scene(file);
 	o.nthreads = cli_threads(threads);
 	if (!strcmp(which, "all")) {
-		first = 0;
 		last = rf_scene_nprobes(s) - 1;
-		if (last > first && (!output || !strstr(output, "%d")))
-			die("-p all: the scene has %zu probes; name the files with a %%d in -o",
-			    rf_scene_nprobes(s));
+		if (last > first && (!output || !strstr(output, "%d"))) {
+			size_t n = rf_scene_nprobes(s);
+
+			rf_scene_destroy(s);
+			die("-p all: the scene has %zu probes; name the files with a %%d in -o", n);
+		}
 	} else {
-		first = last = (size_t)parse_whole("p", which, 1, 1e6) - 1;
-		if (first >= rf_scene_nprobes(s))
+		last = first;
+		if (first >= rf_scene_nprobes(s)) {
+			size_t n = rf_scene_nprobes(s);
+
+			rf_scene_destroy(s);
 			die("-p %s: %s has %zu probe%s", which, file ? file : "the default scene",
-			    rf_scene_nprobes(s), rf_scene_nprobes(s) == 1 ? "" : "s");
+			    n, n == 1 ? "" : "s");
+		}
 	}
 	for (k = first; k <= last; k++) {
 		char err[1024], path[4096];
@@ -177,8 +185,10 @@ main(int argc, char **argv)
 		rf_cubemap *cube;
 		int rc;
 
-		if ((rc = rf_scene_capture(s, k, &o, &cube, err, sizeof(err))) < 0)
+		if ((rc = rf_scene_capture(s, k, &o, &cube, err, sizeof(err))) < 0) {
+			rf_scene_destroy(s);
 			die_status(rc, err);
+		}
 		if (output)
 			output_name(path, sizeof(path), output, k);
 		dot = output ? strrchr(path, '.') : NULL;

@@ -99,8 +99,10 @@ capture_load(const char *spec, const struct envmap_opts *o, struct rf_chain_info
 	s = cli_load_scene(strcmp(file, "default") ? file : NULL);
 	rf_capture_options_init(&co);
 	co.nthreads = o->load.nthreads > 0 ? o->load.nthreads : 1;
-	if ((rc = rf_scene_capture(s, (size_t)k - 1, &co, &c, err, sizeof(err))) < 0)
+	if ((rc = rf_scene_capture(s, (size_t)k - 1, &co, &c, err, sizeof(err))) < 0) {
+		rf_scene_destroy(s);
 		die("'capture:%s': %s", spec, err);
+	}
 	rf_scene_destroy(s);
 	memset(info, 0, sizeof(*info));
 	info->mapping = RF_MAPPING_DEFAULT;

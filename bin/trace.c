@@ -103,10 +103,15 @@ main(int argc, char **argv)
 	if (argc - optind > 1)
 		usage();
 	file = optind < argc ? argv[optind] : NULL;
+	if (o.halves && o.samples < 2)
+		die("--halves: %u sample%s cannot make two halves (2 or more for halves)",
+		    o.samples, o.samples == 1 ? "" : "s");
 	s = cli_load_scene(file);
 	o.nthreads = cli_threads(threads);
-	if ((rc = rf_tracer_create(&t, s, width, height, &o, err, sizeof(err))) < 0)
+	if ((rc = rf_tracer_create(&t, s, width, height, &o, err, sizeof(err))) < 0) {
+		rf_scene_destroy(s);
 		die_status(rc, err);
+	}
 	rf_scene_camera(s, &cam);
 	if (rf_header_create(&h) < 0 || rf_header_set_size(h, width, height) < 0)
 		die_sys("out of memory");
