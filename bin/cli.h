@@ -67,6 +67,7 @@ struct cli_io {
 	const char *channels;
 	const char *input_name; /* for messages */
 	FILE *input;
+	char *image_buf; /* an image file read as a stream: the stream's bytes */
 	rf_reader *reader;
 	rf_writer *writer;
 	size_t frames;          /* read so far: the current one's number */

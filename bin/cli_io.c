@@ -74,7 +74,7 @@ cli_widen_pipe(int fd)
  * memory that the reader then takes like any other.  OpenEXR and PNG
  * cost no image module. */
 static FILE *
-image_as_stream(const char *path)
+image_as_stream(const char *path, char **bufp)
 {
 	struct rf_writer_options wopt = { RF_FORMAT_FLOAT, 0 };
 	struct rf_import_options o;
@@ -115,7 +115,8 @@ image_as_stream(const char *path)
 		die_sys("out of memory");
 	if (!(mem = fmemopen(buf, len, "rb")))
 		die_sys("out of memory");
-	/* buf lives as long as the process: the reader reads from it */
+	/* the reader reads from buf until cli_io_close */
+	*bufp = buf;
 	return mem;
 }
 
@@ -155,7 +156,7 @@ cli_io_open(struct cli_io *io, const char *path)
 		io->input_name = path;
 		if (!io->headerless && is_image_file(io->input, path)) {
 			fclose(io->input);
-			io->input = image_as_stream(path);
+			io->input = image_as_stream(path, &io->image_buf);
 		}
 	}
 	cli_guard_mapped(io->input_name);
@@ -266,5 +267,6 @@ cli_io_close(struct cli_io *io)
 	rf_writer_close(io->writer);
 	if (io->input && io->input != stdin)
 		fclose(io->input);
+	free(io->image_buf);
 	fshut(stdout, "<stdout>");
 }
