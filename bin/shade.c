@@ -20,6 +20,7 @@ usage(void)
 	        "[--box=XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX] [--center=X,Y,Z] "
 	        "[--box-projection=on|off] [--lod=L] [--seed=N] [--blend=on|off] "
 	        "[--max-probes=N] [--normal-fade] [--fallback=infinite|none|sky:FILE] "
+	        "[--no-cache] "
 	        CLI_INVALID_USAGE " "
 	        CLI_IO_USAGE
 	        " [file]\n", argv0);
@@ -30,7 +31,7 @@ enum {
 	OPT_ENVMAP = 256, /* handed to envmap_opts_parse by name */
 	OPT_MAPPING, OPT_STEPS, OPT_SAMPLES, OPT_FINAL, OPT_BOX, OPT_CENTER,
 	OPT_PROJECTION, OPT_LOD, OPT_SEED, OPT_INVALID, OPT_DIFFUSE, OPT_DIFFUSE_PROJECTION,
-	OPT_BLEND, OPT_MAX_PROBES, OPT_NORMAL_FADE, OPT_FALLBACK, OPT_HELP
+	OPT_BLEND, OPT_MAX_PROBES, OPT_NORMAL_FADE, OPT_FALLBACK, OPT_NO_CACHE, OPT_HELP
 };
 
 static const struct option long_options[] = {
@@ -57,6 +58,7 @@ static const struct option long_options[] = {
 	{ "max-probes", required_argument, NULL, OPT_MAX_PROBES },
 	{ "normal-fade", no_argument, NULL, OPT_NORMAL_FADE },
 	{ "fallback", required_argument, NULL, OPT_FALLBACK },
+	{ "no-cache", no_argument, NULL, OPT_NO_CACHE },
 	{ "help", no_argument, NULL, OPT_HELP },
 	{ NULL, 0, NULL, 0 },
 };
@@ -72,6 +74,7 @@ struct shade_opts {
 	float steps;       /* 0: the environment's */
 	unsigned samples;  /* 0: the prefilter's default */
 	uint32_t seed;
+	int no_cache;      /* --no-cache */
 	/* Blending the frame's probes: on (1) unless --blend=off (0). */
 	int blend;
 	unsigned max_probes;
@@ -91,13 +94,40 @@ struct environment {
 	float sh9[27];
 };
 
+/* The prefilter's progress: its line when it starts (never for a chain
+ * the cache had), then on a terminal how far it is. */
 static void
 progress(void *arg, double done, double total)
 {
-	(void)arg;
+	if (done == 0.0) {
+		if (*(const char *)arg)
+			fprintf(stderr, "%s\n", (const char *)arg);
+		return;
+	}
+	if (!isatty(STDERR_FILENO))
+		return;
 	fprintf(stderr, "\r%s: prefiltering %3.0f%%", argv0, 100.0 * done / total);
 	if (done >= total)
 		fputc('\n', stderr);
+}
+
+/* $XDG_CACHE_HOME/reflect, else ~/.cache/reflect; NULL with --no-cache or
+ * no home. */
+static const char *
+cache_dir(const struct shade_opts *o)
+{
+	static char dir[4096];
+	const char *x = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
+
+	if (o->no_cache)
+		return NULL;
+	if (x && *x == '/')
+		snprintf(dir, sizeof(dir), "%s/reflect", x);
+	else if (home && *home == '/')
+		snprintf(dir, sizeof(dir), "%s/.cache/reflect", home);
+	else
+		return NULL;
+	return dir;
 }
 
 static void
@@ -107,10 +137,12 @@ load_environment(const struct shade_opts *o, const char *name, int from_header,
 	struct envmap_opts eo = o->env;
 	struct rf_shade_env_options so = { 0 };
 	struct rf_chain_info info;
+	static char line[4400];
 	char err[1024];
 	rf_cubemap *c;
 	int rc;
 
+	line[0] = '\0';
 	rf_cubemap_destroy(e->cube);
 	e->cube = NULL;
 	free(e->name);
@@ -129,10 +161,11 @@ load_environment(const struct shade_opts *o, const char *name, int from_header,
 		if (rf_cubemap_levels(c) > 1 && o->verbose)
 			warn("'%s' has box-filtered levels, not GGX ones: prefiltering its "
 			     "level 0 (--prefiltered takes them as they are)", name);
-		/* Worth a line: it is the slow part of a short pipeline. */
+		/* Worth a line: it is the slow part of a short pipeline.  Said
+		 * when the prefilter starts, which a cached chain skips. */
 		if (rf_chain_levels(size, 0, 1, &levels, err, sizeof(err)) == 0 && levels > 1)
-			fprintf(stderr, "%s: prefiltering the environment%s (%zux%zu per face, "
-			        "%zu levels)\n", argv0, what, size, size, levels);
+			snprintf(line, sizeof(line), "%s: prefiltering the environment%s "
+			         "(%zux%zu per face, %zu levels)", argv0, what, size, size, levels);
 	}
 	so.mapping_set = o->mapping_set;
 	so.mapping = o->mapping;
@@ -140,7 +173,12 @@ load_environment(const struct shade_opts *o, const char *name, int from_header,
 	so.samples = o->samples;
 	so.as_given = o->env.load.prefiltered;
 	so.nthreads = o->nthreads;
-	so.progress = isatty(STDERR_FILENO) ? progress : NULL;
+	so.progress = progress;
+	so.progress_arg = line;
+	so.cache_dir = cache_dir(o);
+	/* REFLECT_CACHE_MB=0 keeps nothing: a byte holds no entry */
+	if (getenv("REFLECT_CACHE_MB"))
+		so.cache_bytes = ((size_t)strtoul(getenv("REFLECT_CACHE_MB"), NULL, 10) << 20) + 1;
 	if ((rc = rf_shade_environment(&e->cube, &e->mapping, &e->steps, c, &info, name, &so,
 	                               err, sizeof(err))) < 0)
 		die_status(rc, err);
@@ -516,6 +554,7 @@ main(int argc, char **argv)
 			o.max_probes = (unsigned)parse_whole("max-probes", optarg, 1, RF_PROBES_MAX);
 			break;
 		case OPT_NORMAL_FADE: o.normal_fade = 1; break;
+		case OPT_NO_CACHE: o.no_cache = 1; break;
 		case OPT_FALLBACK:
 			if (!strcmp(optarg, "infinite"))
 				o.fallback = RF_BLEND_INFINITE;
@@ -535,7 +574,8 @@ main(int argc, char **argv)
 			       "spec.G spec.B. See reflect-shade(1).\n"
 			       "  -m MODE[:K=V...]  none, approx (default), hdrp, godot; -l lists them\n"
 			       "  --env=FILE  environment (else PROBE_ENV, else the embedded room);\n"
-			       "      raw ones are prefiltered on the fly: --samples=N\n"
+			       "      raw ones are prefiltered on the fly (--samples=N) and kept in\n"
+			       "      $XDG_CACHE_HOME/reflect for the next run (--no-cache: not)\n"
 			       "  --prefiltered --layout=L --srgb= --rgbm= --intensity= --size=N\n"
 			       "  --mapping=unity|linear|exact --steps=N  roughness to lod\n"
 			       "  --final[=split-sum|unity|hdrp]  also R G B: spec x the split sum's\n"

@@ -19,6 +19,10 @@ rm -rf "$TRASH" && mkdir -p "$TRASH" || {
 	exit 1
 }
 cd "$TRASH" || exit 1
+# reflect-shade's cache of prefiltered environments: the test's own,
+# never the user's, empty at the start of every test
+XDG_CACHE_HOME="$TRASH/.cache"
+export XDG_CACHE_HOME
 test_log="$TRASH/.log"
 
 # Seconds a step may take before it is killed and fails: a hang must

@@ -121,8 +121,15 @@ struct rf_shade_env_options {
 	int raw_ok;              /* a raw environment is sampled as it is (a
 	                            mode tracing its own rays reads level 0) */
 	int nthreads;
-	void (*progress)(void *arg, double done, double total); /* may be NULL */
+	/* Called with done 0 as the prefilter starts, then as levels are
+	 * done; may be NULL. */
+	void (*progress)(void *arg, double done, double total);
 	void *progress_arg;
+	/* Where prefiltered raw environments are kept between runs (NULL:
+	 * nowhere), under a hash of the texels and the prefilter's
+	 * parameters, at most cache_bytes (0: 256 MB), oldest out first. */
+	const char *cache_dir;
+	size_t cache_bytes;
 };
 /* Takes what rf_envmap_load gave (loaded, info; named `name` in
  * messages, NULL for the embedded room) and makes the chain a shading

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "shade/cache.h"
 #include "util/util.h"
 #include "reflect/shading.h"
 
@@ -29,6 +30,7 @@ prefilter(rf_cubemap **env, float *steps, const rf_cubemap *src, const char *nam
 {
 	struct rf_prefilter_options pf;
 	size_t size = rf_cubemap_size(src), levels;
+	uint64_t key = 0;
 	char what[4200];
 	int rc;
 
@@ -50,14 +52,44 @@ prefilter(rf_cubemap **env, float *steps, const rf_cubemap *src, const char *nam
 	pf.progress_arg = o->progress_arg;
 	if ((rc = rf_cubemap_check_size(size, levels, err, errlen)) < 0)
 		return rc;
+	if (o->cache_dir) {
+		struct rf_chain_info got;
+
+		key = rf__env_cache_key(src, mapping, pf.steps, pf.samples, levels);
+		if (rf__env_cache_get(o->cache_dir, key, env, &got) == 0) {
+			if (rf_cubemap_size(*env) == size && rf_cubemap_levels(*env) == levels &&
+			    got.mapping == mapping && got.steps == pf.steps) {
+				*steps = pf.steps;
+				return 0;
+			}
+			rf_cubemap_destroy(*env);
+			*env = NULL;
+		}
+	}
 	if ((rc = rf_cubemap_create(env, size, levels)) < 0)
 		return rc;
+	/* done 0 of 1: the prefilter starts (a cache hit never says so) */
+	if (o->progress)
+		o->progress(o->progress_arg, 0.0, 1.0);
 	if ((rc = rf_prefilter(src, *env, &pf, err, errlen)) < 0) {
 		rf_cubemap_destroy(*env);
 		*env = NULL;
 		return rc;
 	}
 	*steps = pf.steps;
+	if (o->cache_dir) {
+		struct rf_chain_info info;
+
+		memset(&info, 0, sizeof(info));
+		info.prefiltered = 1;
+		info.mapping = mapping;
+		info.steps = pf.steps;
+		info.samples = pf.samples;
+		info.base_copied = 1;
+		/* a cache that cannot be written is no reason to fail */
+		(void)rf__env_cache_put(o->cache_dir, key, *env, &info,
+		                        o->cache_bytes ? o->cache_bytes : (size_t)256 << 20);
+	}
 	return 0;
 }
 
