@@ -16,7 +16,7 @@ else
 	test_skip 'the pages render without warnings' 'no groff'
 fi
 
-for tool in reflect-info reflect-project reflect-export reflect-accumulate reflect-filter reflect-capture reflect-trace \
+for tool in reflect-info reflect-project reflect-export reflect-accumulate reflect-filter reflect-capture reflect-trace reflect-montage \
 	reflect-occlude reflect-compare
 do
 	test_expect_success "$tool(1) documents every option of its usage line" '

@@ -156,6 +156,40 @@ RF_EXTERN void rf_file_encode(float *px, size_t npix, size_t nch,
                               const unsigned char *alpha,
                               const struct rf_file_encoding *e);
 
+/*
+ * A labelled grid of pictures (reflect-montage(1)), display-encoded RGB
+ * floats in *out (free it), cells left to right and top to bottom in
+ * slots the size of the largest, `columns` a row (0: one row).
+ */
+enum rf_montage_map {
+	RF_MONTAGE_COLOUR = 0, /* R G B, display-encoded with the options */
+	RF_MONTAGE_GREY = 1,   /* one channel, display-encoded as grey */
+	RF_MONTAGE_FALSE = 2,  /* one channel in false colour over lo..hi, a bar */
+	RF_MONTAGE_VECTOR = 3  /* three components, (v - lo)/(hi - lo) each */
+};
+
+struct rf_montage_cell {
+	const char *label;
+	const float *pixels;  /* width x height x nchannels */
+	size_t width, height, nchannels;
+	enum rf_montage_map map;
+	int has_range;        /* lo, hi given; else: the finite range (false
+	                         colour), -1..1 (vectors) */
+	float lo, hi;
+};
+
+struct rf_montage_options {
+	size_t columns;
+	float scale;          /* exposure of colour cells: 2^stops */
+	enum rf_tone tone;
+	int srgb;
+	size_t label_scale;   /* 0: the cells' height / 90 */
+};
+
+RF_EXTERN int rf_montage(const struct rf_montage_cell *cells, size_t n,
+                         const struct rf_montage_options *o, float **out,
+                         size_t *width, size_t *height);
+
 #ifdef __cplusplus
 }
 #endif
