@@ -274,6 +274,16 @@ export_block(void *arg, const float *in, float *out, size_t y, size_t n)
 	return 0;
 }
 
+/* The temporary file of -o -, removed however the tool ends. */
+static char made[4096];
+
+static void
+remove_made(void)
+{
+	if (made[0])
+		unlink(made);
+}
+
 /* The made file to standard output, then gone. */
 static void
 copy_out(const char *path)
@@ -283,6 +293,7 @@ copy_out(const char *path)
 	size_t n;
 
 	unlink(path);
+	made[0] = '\0';
 	if (!fp)
 		die("cannot open '%s':", path);
 	while ((n = fread(buf, 1, sizeof(buf), fp)) > 0)
@@ -348,6 +359,8 @@ export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
 		if ((fd = mkstemps(path, (int)strlen(o->format->ext) + 1)) < 0)
 			die("cannot make a temporary file in '%s':", dir && *dir ? dir : "/tmp");
 		close(fd);
+		snprintf(made, sizeof(made), "%s", path);
+		atexit(remove_made);
 	} else {
 		output_name(path, sizeof(path), o->output, frame);
 	}

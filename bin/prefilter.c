@@ -199,8 +199,8 @@ main(int argc, char **argv)
 			o.format = parse_format(optarg);
 			break;
 		case 'h': o.no_header = 1; break;
-		case 'L': o.levels = parse_count(optarg, 'L', 2, 16); break;
-		case 'M': o.min_size = parse_count(optarg, 'M', 1, 1 << 14); break;
+		case 'L': o.levels = (size_t)parse_whole("levels", optarg, 2, 16); break;
+		case 'M': o.min_size = (size_t)parse_whole("min-size", optarg, 1, 1 << 14); break;
 		case 'P':
 			if (rf_mapping_parse(optarg, &o.pf.mapping) < 0)
 				die("--mapping: '%s' is not unity, linear or exact", optarg);
