@@ -80,8 +80,6 @@ struct cli_io {
 void cli_widen_pipe(int fd);
 /* Returns 1 when it took the option. */
 int cli_io_option(struct cli_io *io, int opt, const char *arg);
-/* The first frame of a stream or an image file, whole; dies on errors. */
-float *cli_read_frame(const char *path, rf_header **h);
 /* Opens the input (NULL or "-" is stdin) and the output on stdout. */
 void cli_io_open(struct cli_io *io, const char *path);
 /* Next frame: 1 and *h set, 0 at the end of input; dies on errors. */

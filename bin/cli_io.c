@@ -138,40 +138,6 @@ is_image_file(FILE *fp, const char *path)
 	       strcmp(dot, ".stream");
 }
 
-float *
-cli_read_frame(const char *path, rf_header **h)
-{
-	char *buf = NULL;
-	const rf_header *fh;
-	rf_reader *r;
-	FILE *fp;
-	float *px;
-	size_t n;
-	int rc;
-
-	if (!(fp = fopen(path, "rb")))
-		die("cannot open '%s':", path);
-	if (is_image_file(fp, path)) {
-		fclose(fp);
-		fp = image_as_stream(path, &buf);
-	}
-	if ((rc = rf_reader_open(&r, fp, path, NULL)) < 0 ||
-	    (rc = rf_reader_next_frame(r, &fh)) < 0)
-		die_status(rc, rf_reader_error(r));
-	if (rc == 0)
-		die("'%s': no frame", path);
-	n = rf_header_ncols(fh) * rf_header_nrows(fh) * rf_header_nchannels(fh);
-	px = emalloc(n * sizeof(float));
-	if ((rc = rf_reader_read_rows(r, px, rf_header_nrows(fh))) < 0)
-		die_status(rc, rf_reader_error(r));
-	if (rf_header_dup(h, fh) < 0)
-		die_sys("out of memory");
-	rf_reader_close(r);
-	fclose(fp);
-	free(buf);
-	return px;
-}
-
 void
 cli_io_open(struct cli_io *io, const char *path)
 {

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "reflect/compare.h"
 
 static void
 usage(void)
@@ -48,8 +49,10 @@ load_cell(char *arg, struct rf_montage_cell *cell)
 {
 	char *eq = strchr(arg, '='), *file, *opt, *chans = NULL, *save = NULL;
 	const char *map = NULL;
-	float *px, *sel;
-	rf_header *h;
+	char err[1024];
+	rf_picture *pic;
+	const float *px;
+	float *sel;
 	int idx[4];
 	size_t n = 0, i, c, npix;
 
@@ -80,12 +83,14 @@ load_cell(char *arg, struct rf_montage_cell *cell)
 			    "range=LO,HI", cell->label, opt);
 		}
 	}
-	px = cli_read_frame(file, &h);
+	if (rf_picture_read(&pic, file, err, sizeof(err)) < 0)
+		die("%s", err);
+	px = rf_picture_pixels(pic);
 	if (chans) {
 		char *name, *s2 = NULL;
 
 		for (name = strtok_r(chans, ",", &s2); name; name = strtok_r(NULL, ",", &s2)) {
-			int k = rf_header_find_channel(h, name);
+			int k = rf_picture_find_channel(pic, name);
 
 			if (k < 0)
 				die("'%s' has no channel '%s'", file, name);
@@ -93,29 +98,29 @@ load_cell(char *arg, struct rf_montage_cell *cell)
 				die("'%s': at most 4 channels a cell", cell->label);
 			idx[n++] = k;
 		}
-	} else if (rf_header_find_channel(h, "R") >= 0 && rf_header_find_channel(h, "G") >= 0 &&
-	           rf_header_find_channel(h, "B") >= 0) {
-		idx[0] = rf_header_find_channel(h, "R");
-		idx[1] = rf_header_find_channel(h, "G");
-		idx[2] = rf_header_find_channel(h, "B");
+	} else if (rf_picture_find_channel(pic, "R") >= 0 && rf_picture_find_channel(pic, "G") >= 0 &&
+	           rf_picture_find_channel(pic, "B") >= 0) {
+		idx[0] = rf_picture_find_channel(pic, "R");
+		idx[1] = rf_picture_find_channel(pic, "G");
+		idx[2] = rf_picture_find_channel(pic, "B");
 		n = 3;
-	} else if (rf_header_find_channel(h, "spec.R") >= 0) {
-		idx[0] = rf_header_find_channel(h, "spec.R");
-		idx[1] = rf_header_find_channel(h, "spec.G");
-		idx[2] = rf_header_find_channel(h, "spec.B");
+	} else if (rf_picture_find_channel(pic, "spec.R") >= 0) {
+		idx[0] = rf_picture_find_channel(pic, "spec.R");
+		idx[1] = rf_picture_find_channel(pic, "spec.G");
+		idx[2] = rf_picture_find_channel(pic, "spec.B");
 		n = idx[1] >= 0 && idx[2] >= 0 ? 3 : 1;
 	} else {
 		idx[0] = 0;
 		n = 1;
 	}
-	npix = rf_header_ncols(h) * rf_header_nrows(h);
+	npix = rf_picture_width(pic) * rf_picture_height(pic);
 	sel = emalloc(npix * n * sizeof(float));
 	for (i = 0; i < npix; i++)
 		for (c = 0; c < n; c++)
-			sel[i * n + c] = px[i * rf_header_nchannels(h) + (size_t)idx[c]];
+			sel[i * n + c] = px[i * rf_picture_nchannels(pic) + (size_t)idx[c]];
 	cell->pixels = sel;
-	cell->width = rf_header_ncols(h);
-	cell->height = rf_header_nrows(h);
+	cell->width = rf_picture_width(pic);
+	cell->height = rf_picture_height(pic);
 	cell->nchannels = n;
 	/* what a map is when none is said: colour for R G B (or a layer's),
 	 * a vector for X Y Z, grey for a grey image's Y, else false colour */
@@ -124,19 +129,18 @@ load_cell(char *arg, struct rf_montage_cell *cell)
 		            : !strcmp(map, "grey") ? RF_MONTAGE_GREY
 		            : !strcmp(map, "false") ? RF_MONTAGE_FALSE : RF_MONTAGE_VECTOR;
 	} else if (n >= 3) {
-		const char *last = rf_header_channel(h, (size_t)idx[0]);
+		const char *last = rf_picture_channel(pic, (size_t)idx[0]);
 		const char *dot = strrchr(last, '.');
 
 		cell->map = dot && !strcmp(dot, ".X") ? RF_MONTAGE_VECTOR : RF_MONTAGE_COLOUR;
 	} else {
-		cell->map = !strcmp(rf_header_channel(h, (size_t)idx[0]), "Y") ? RF_MONTAGE_GREY
+		cell->map = !strcmp(rf_picture_channel(pic, (size_t)idx[0]), "Y") ? RF_MONTAGE_GREY
 		                                                              : RF_MONTAGE_FALSE;
 	}
 	if ((cell->map == RF_MONTAGE_COLOUR || cell->map == RF_MONTAGE_VECTOR) && n < 3)
 		die("'%s': a %s cell takes 3 channels, not %zu", cell->label,
 		    cell->map == RF_MONTAGE_COLOUR ? "colour" : "vector", n);
-	free(px);
-	rf_header_destroy(h);
+	rf_picture_destroy(pic);
 }
 
 int
