@@ -164,39 +164,12 @@ object_face_bounds(const struct face_frame *fr, const struct object *ob, const d
 		}
 }
 
-/* The wall a ray from the eye leaves the room by (the eye is inside it),
- * and where; -1 without a room. */
+/* The wall a ray from the eye leaves the room by, and where; -1 without
+ * a room. */
 static int
 wall_hit(const struct capture *c, const double d[3], double uv[2])
 {
-	const struct rf_scene_probe *room = &c->s->probes[0];
-	double t = INFINITY, p[3];
-	int face = -1, i;
-
-	if (!c->s->room)
-		return -1;
-	for (i = 0; i < 3; i++) {
-		double ti;
-
-		if (d[i] > 0)
-			ti = (room->box_max[i] - c->origin[i]) / d[i];
-		else if (d[i] < 0)
-			ti = (room->box_min[i] - c->origin[i]) / d[i];
-		else
-			continue;
-		if (ti < t) {
-			t = ti;
-			face = 2 * i + (d[i] < 0);
-		}
-	}
-	if (face < 0)
-		return -1;
-	for (i = 0; i < 3; i++)
-		p[i] = c->origin[i] + t * d[i];
-	/* on the wall exactly, as the G-buffer puts its hits */
-	p[face / 2] = face & 1 ? room->box_min[face / 2] : room->box_max[face / 2];
-	rf__wall_uv(face, p, uv);
-	return face;
+	return rf__room_exit(c->s, c->origin, d, uv);
 }
 
 static void

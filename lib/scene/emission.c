@@ -38,6 +38,38 @@ rf__wall_uv(int face, const double p[3], double uv[2])
 	}
 }
 
+int
+rf__room_exit(const rf_scene *s, const double o[3], const double d[3], double uv[2])
+{
+	const struct rf_scene_probe *room = s->nprobes ? &s->probes[0] : NULL;
+	double t = INFINITY, p[3];
+	int face = -1, i;
+
+	if (!s->room || !room)
+		return -1;
+	for (i = 0; i < 3; i++) {
+		double ti;
+
+		if (d[i] > 0)
+			ti = (room->box_max[i] - o[i]) / d[i];
+		else if (d[i] < 0)
+			ti = (room->box_min[i] - o[i]) / d[i];
+		else
+			continue;
+		if (ti < t) {
+			t = ti;
+			face = 2 * i + (d[i] < 0);
+		}
+	}
+	if (face < 0 || !(t >= 0.0))
+		return -1;
+	/* the wall's own axis is not read: the point lies on it */
+	for (i = 0; i < 3; i++)
+		p[i] = o[i] + t * d[i];
+	rf__wall_uv(face, p, uv);
+	return face;
+}
+
 const struct emission *
 rf__wall_emission_of(const rf_scene *s, int face)
 {

@@ -126,6 +126,9 @@ void rf__wall_emission(const rf_scene *s, int face, const double uv[2], float rg
 /* The in-plane coordinates of a point on a wall: (z, y) on the x walls,
  * (x, z) on the floor and ceiling, (x, y) on the z walls. */
 void rf__wall_uv(int face, const double p[3], double uv[2]);
+/* The wall a ray from o (inside the room) along d leaves the room by,
+ * and where in its (u, v); -1 without a room or an exit. */
+int rf__room_exit(const rf_scene *s, const double o[3], const double d[3], double uv[2]);
 /* The face of a wall's objid (RF_WALL_*), or -1. */
 int rf__wall_face(int objid);
 /* The wall's emission: its own or the room's. */

@@ -193,34 +193,15 @@ reflected(const struct rf_tracer *t, const double p[3], const double *k, const d
 	const rf_scene *s = t->s;
 	struct rf_hit h;
 
-	if (!t->nseen && s->room && s->nprobes) {
+	if (!t->nseen) {
 		/* the room alone: the wall the ray leaves by */
-		const struct rf_scene_probe *room = &s->probes[0];
-		double tt = INFINITY, q[3], uv[2];
-		int face = -1, a;
+		double uv[2];
+		int face = rf__room_exit(s, p, d, uv);
 
-		for (a = 0; a < 3; a++) {
-			double ta;
-
-			if (d[a] > 0)
-				ta = (room->box_max[a] - p[a]) / d[a];
-			else if (d[a] < 0)
-				ta = (room->box_min[a] - p[a]) / d[a];
-			else
-				continue;
-			if (ta < tt) {
-				tt = ta;
-				face = 2 * a + (d[a] < 0);
-			}
-		}
-		if (face < 0 || !(tt >= 0.0)) {
+		if (face < 0)
 			rgb[0] = rgb[1] = rgb[2] = 0.0f;
-			return;
-		}
-		for (a = 0; a < 3; a++)
-			q[a] = p[a] + tt * d[a];
-		rf__wall_uv(face, q, uv);
-		rf__wall_emission(s, face, uv, rgb);
+		else
+			rf__wall_emission(s, face, uv, rgb);
 		return;
 	}
 	rf__trace(s, p, k, d, NULL, t->seen, t->nseen, &h);
