@@ -152,6 +152,35 @@ add(struct batch *b, uint32_t pixel, const float d[3], float lod)
 	b->pixel[b->n++] = pixel;
 }
 
+float
+rf__blend_pixel_weights(const struct rf_blend *b, enum rf_blend_fallback fallback,
+                        const float *p, const int *ch, float *w)
+{
+	const uint32_t np = b->nprobes;
+	const float pos[3] = { p[ch[RF__BLEND_PX]], p[ch[RF__BLEND_PX + 1]],
+		               p[ch[RF__BLEND_PX + 2]] };
+	float n[3], rest, sum = 0.0f;
+	const float *np3 = NULL;
+	uint32_t k;
+
+	if (ch[RF__BLEND_NX] >= 0) {
+		n[0] = p[ch[RF__BLEND_NX]];
+		n[1] = p[ch[RF__BLEND_NX + 1]];
+		n[2] = p[ch[RF__BLEND_NX + 2]];
+		np3 = n;
+	}
+	rest = rf_blend_weights(b, pos, np3, w);
+	if (fallback == RF_BLEND_NONE) {
+		for (k = 0; k < np; k++)
+			sum += w[k];
+		for (k = 0; k < np && sum > 0.0f; k++)
+			w[k] /= sum;
+		rest = 0.0f;
+	}
+	w[np] = rest;
+	return rest;
+}
+
 const float *
 rf__blend_pass_row(const struct rf__blend_pass *bp, int thread, const float *in,
                    size_t in_ncomp, const int *ch, const float *mask, rf__v4 *mirror)
@@ -170,25 +199,9 @@ rf__blend_pass_row(const struct rf__blend_pass *bp, int thread, const float *in,
 			               p[ch[RF__BLEND_PX + 2]] };
 		const float r[3] = { p[ch[RF__BLEND_RX]], p[ch[RF__BLEND_RX + 1]],
 			             p[ch[RF__BLEND_RX + 2]] };
-		float n[3], *w = weights + x * stride, rest, sum = 0.0f, reff;
-		const float *np3 = NULL;
+		float *w = weights + x * stride, reff;
+		const float rest = rf__blend_pixel_weights(&bp->blend, bp->fallback, p, ch, w);
 
-		if (ch[RF__BLEND_NX] >= 0) {
-			n[0] = p[ch[RF__BLEND_NX]];
-			n[1] = p[ch[RF__BLEND_NX + 1]];
-			n[2] = p[ch[RF__BLEND_NX + 2]];
-			np3 = n;
-		}
-		rest = rf_blend_weights(&bp->blend, pos, np3, w);
-		if (bp->fallback == RF_BLEND_NONE) {
-			/* the probes' own weights, to 1 where any covers */
-			for (k = 0; k < np; k++)
-				sum += w[k];
-			for (k = 0; k < np && sum > 0.0f; k++)
-				w[k] /= sum;
-			rest = 0.0f;
-		}
-		w[np] = rest;
 		if (!(mask[x] > 0.0f))
 			continue;
 		reff = p[ch[RF__BLEND_REFF]];

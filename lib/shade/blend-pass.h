@@ -12,6 +12,13 @@ struct rf__blend_pass;
 enum { RF__BLEND_PX, RF__BLEND_NX = 3, RF__BLEND_RX = 6, RF__BLEND_REFF = 9,
        RF__BLEND_CHANNELS };
 
+/* One pixel's weights into w, nprobes + 1 (the last the fallback's),
+ * read at the P and N channels ch gives; with RF_BLEND_NONE the probes'
+ * own, scaled to 1 where any covers, and the fallback's 0.  Returns the
+ * fallback's. */
+float rf__blend_pixel_weights(const struct rf_blend *b, enum rf_blend_fallback fallback,
+                              const float *pixel, const int *ch, float *w);
+
 /* The probes of b; envs, mappings and steps per probe (envs[0] unused:
  * probe 0 is the pass's own environment, `first`); rows of ncols pixels
  * on up to nthreads threads. */

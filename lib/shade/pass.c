@@ -770,26 +770,10 @@ blend_traced_row(const rf_shade *s, const float *in, float *out, size_t y, int t
 	int c;
 
 	for (x = 0; x < n; x++) {
-		const float *p = out + x * nc;
-		const float pos[3] = { p[s->blend_ch[RF__BLEND_PX]], p[s->blend_ch[RF__BLEND_PX + 1]],
-			               p[s->blend_ch[RF__BLEND_PX + 2]] };
-		float nrm[3], *wx = w + x * stride, sum = 0.0f, rest;
-		const float *np3 = NULL;
+		float *wx = w + x * stride;
+		const float rest = rf__blend_pixel_weights(&s->blend, s->blend_fallback,
+		                                           out + x * nc, s->blend_ch, wx);
 
-		if (s->blend_ch[RF__BLEND_NX] >= 0) {
-			for (c = 0; c < 3; c++)
-				nrm[c] = p[s->blend_ch[RF__BLEND_NX + c]];
-			np3 = nrm;
-		}
-		rest = rf_blend_weights(&s->blend, pos, np3, wx);
-		if (s->blend_fallback == RF_BLEND_NONE) {
-			for (k = 0; k < np; k++)
-				sum += wx[k];
-			for (k = 0; k < np && sum > 0.0f; k++)
-				wx[k] /= sum;
-			rest = 0.0f;
-		}
-		wx[np] = rest;
 		/* the first probe's share, the fallback's with it */
 		for (c = 0; c < 3; c++)
 			out[x * nc + (size_t)cs[c]] *= wx[0] + rest;
