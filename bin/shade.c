@@ -150,8 +150,10 @@ load_environment(const struct shade_opts *o, const char *name, int from_header,
 	eo.path = name;
 	eo.load.from_header = from_header;
 	c = envmap_load(&eo, &info);
-	/* A mode tracing its own rays reads level 0: nothing to prefilter. */
-	so.raw_ok = rf_plugin_writes_radiance(o->mode.plugin);
+	/* A mode tracing its own rays reads level 0: nothing to prefilter
+	 * (unless it says it reads the GGX chain). */
+	so.raw_ok = rf_plugin_writes_radiance(o->mode.plugin) &&
+	            !(o->mode.plugin->flags & RF_PLUGIN_PREFILTERED);
 	if (!info.prefiltered && !so.raw_ok) {
 		size_t size = rf_cubemap_size(c), levels;
 		char what[4200] = "";

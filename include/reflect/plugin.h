@@ -25,7 +25,8 @@
  *        the probe's bevel and bevel_grown, and declare_bevel;
  *        RF_PARAM_STRING parameters and param_string; face_size,
  *        texel_solid_angle, pixel_footprint and random_pairs; the
- *        probe list (nprobes, probes, probe_blend, probe_weights).
+ *        probe list (nprobes, probes, probe_blend, probe_weights);
+ *        the descriptor flag RF_PLUGIN_PREFILTERED.
  * A minor bump only appends fields at the end of a struct, or defines new
  * flag bits or kinds; a major bump is anything else.  The host accepts a
  * plugin when its major equals the host's and its minor is not newer, and
@@ -112,7 +113,13 @@ enum rf_plugin_kind {
 #define RF_PLUGIN_RADIANCE 0x1u /* shade: writes spec.R spec.G spec.B itself
                                    (through the host's sample service), not
                                    roughness.eff (ABI 1.1) */
-#define RF_PLUGIN_KNOWN_FLAGS RF_PLUGIN_RADIANCE
+#define RF_PLUGIN_PREFILTERED 0x2u /* with RF_PLUGIN_RADIANCE: reads the
+                                     GGX-prefiltered chain (sample,
+                                     sample_many), so a raw environment is
+                                     prefiltered for it as for a roughness
+                                     mode; without it, such a mode gets the
+                                     environment as it is (ABI 1.1) */
+#define RF_PLUGIN_KNOWN_FLAGS (RF_PLUGIN_RADIANCE | RF_PLUGIN_PREFILTERED)
 
 /* Parameter flags; a bit the host does not know makes it refuse the plugin. */
 #define RF_PARAM_INTEGER 0x1u /* only whole numbers are accepted */
