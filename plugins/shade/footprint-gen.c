@@ -1,0 +1,263 @@
+/*
+ * footprint-gen: writes the lobe table of the footprint mode as a C
+ * header, measured on the GGX lobe itself when reflect is built, so the
+ * model carries no constant that was fitted to anything.
+ *
+ *	footprint-gen >footprint-table.h
+ *
+ * An entry is the reflected lobe of white GGX (the exact estimator's
+ * weight G2 / G1(V), height-correlated, over the visible normals) for a
+ * view at angle theta_v from the normal and a perceptual roughness, in
+ * the frame where N is z and V lies in the xz plane toward +x, so the
+ * mirror direction R is at in-plane angle theta_v on the -x side.  Of the
+ * lobe's directions L it records, weighted:
+ *   - the in-plane angle phi = atan2(-L.x, L.z) at its quartiles: the
+ *     median gives the lobe's centre D (stored as phi50 - theta_v, the
+ *     bend away from R), phi50 - phi25 and phi75 - phi50 its widths
+ *     toward the normal and toward the horizon;
+ *   - the median of |psi|, psi = atan2(L.y, L.D), the width across.
+ * Quartiles and medians, not moments: GGX's tails leave the second
+ * moment to the hemisphere's edge, the quartiles stay where the lobe is.
+ * Widths are kept in the units of the prefilter's own kernel, L(l)
+ * weighted by D(h) (n.l) about N = V = R (lib/envmap/prefilter.c): the
+ * row theta_v = 0 is that kernel's width at each roughness (its
+ * quartile, in-plane and across alike), and every other row is the
+ * lobe's widths times kernel / lobe at theta_v = 0 for its roughness.
+ * The two differ only by G(L) against n.l, a few per cent at r = 1; so
+ * kept, the N = V lobe read through the box is exactly what the
+ * prefilter made, and a lobe twice as wide as that reads where the
+ * prefilter's kernel is twice as wide.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "footprint-shape.h"
+
+#define SAMPLES 4096
+
+
+struct sample {
+	double phi, w, l[3];
+};
+
+static int
+by_phi(const void *a, const void *b)
+{
+	double x = ((const struct sample *)a)->phi, y = ((const struct sample *)b)->phi;
+
+	return (x > y) - (x < y);
+}
+
+static int
+by_psi(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+
+	return (x > y) - (x < y);
+}
+
+static double
+radical_inverse(unsigned k)
+{
+	double r = 0.0, f = 0.5;
+
+	for (; k; k >>= 1, f *= 0.5)
+		if (k & 1)
+			r += f;
+	return r;
+}
+
+/* Smith's Lambda of GGX for a direction at cosine c from the normal. */
+static double
+lambda(double alpha, double c)
+{
+	double t2 = (1.0 - c * c) / (c * c);
+
+	return 0.5 * (sqrt(1.0 + alpha * alpha * t2) - 1.0);
+}
+
+/* The value where the cumulative weight of the sorted values (their
+ * weights alongside, pairs of doubles) reaches share of the total. */
+static double
+quantile(const double *vw, size_t n, double total, double share)
+{
+	double want = share * total, sum = 0.0;
+	size_t k;
+
+	for (k = 0; k < n; k++) {
+		double next = sum + vw[2 * k + 1];
+
+		if (next >= want) {
+			double t = vw[2 * k + 1] > 0.0 ? (want - sum) / vw[2 * k + 1] : 0.0;
+			double lo = k ? vw[2 * (k - 1)] : vw[0];
+
+			return lo + t * (vw[2 * k] - lo);
+		}
+		sum = next;
+	}
+	return n ? vw[2 * (n - 1)] : 0.0;
+}
+
+/* The prefilter's kernel at perceptual roughness pr: microfacet normals
+ * h of density D(h) (n.h), each l = 2 (n.h) h - n weighted by n.l; its
+ * in-plane quartile (by symmetry, the across one too). */
+static double
+measure_kernel(double pr, struct sample *s, double *vw)
+{
+	double alpha = pr * pr, total = 0.0;
+	size_t k, n = 0;
+
+	for (k = 0; k < SAMPLES; k++) {
+		double u0 = (k + 0.5) / SAMPLES, u1 = radical_inverse((unsigned)k);
+		double t2 = alpha * alpha * u0 / (1.0 - u0), ch = 1.0 / sqrt(1.0 + t2);
+		double sh = sqrt(1.0 - ch * ch), a = 2.0 * M_PI * u1, h[3], l[3];
+
+		h[0] = sh * cos(a);
+		h[1] = sh * sin(a);
+		h[2] = ch;
+		l[0] = 2.0 * ch * h[0];
+		l[1] = 2.0 * ch * h[1];
+		l[2] = 2.0 * ch * h[2] - 1.0;
+		if (!(l[2] > 0.0))
+			continue;
+		s[n].w = l[2];
+		s[n].phi = fabs(atan2(-l[0], l[2]));
+		total += s[n].w;
+		n++;
+	}
+	qsort(s, n, sizeof(*s), by_phi);
+	for (k = 0; k < n; k++) {
+		vw[2 * k] = s[k].phi;
+		vw[2 * k + 1] = s[k].w;
+	}
+	return quantile(vw, n, total, 0.5);
+}
+
+/* The lobe for a view at theta_v and perceptual roughness pr. */
+static void
+measure(double theta_v, double pr, struct sample *s, double *vw, double out[4])
+{
+	double alpha = pr * pr, mu = cos(theta_v), v[3], vh[3], t1[3], t2[3], len, lv;
+	double total = 0.0, phi25, phi50, phi75, d[3];
+	size_t k, n = 0;
+
+	if (mu < 1e-3)
+		mu = 1e-3;
+	v[0] = sqrt(1.0 - mu * mu);
+	v[1] = 0.0;
+	v[2] = mu;
+	lv = lambda(alpha, mu);
+	/* Heitz's visible-normal sampler (spec 7.3), in double. */
+	vh[0] = alpha * v[0];
+	vh[1] = alpha * v[1];
+	vh[2] = v[2];
+	len = sqrt(vh[0] * vh[0] + vh[1] * vh[1] + vh[2] * vh[2]);
+	for (k = 0; k < 3; k++)
+		vh[k] /= len;
+	len = sqrt(vh[0] * vh[0] + vh[1] * vh[1]);
+	if (len > 1e-12) {
+		t1[0] = -vh[1] / len;
+		t1[1] = vh[0] / len;
+	} else {
+		t1[0] = 1.0;
+		t1[1] = 0.0;
+	}
+	t1[2] = 0.0;
+	t2[0] = vh[1] * t1[2] - vh[2] * t1[1];
+	t2[1] = vh[2] * t1[0] - vh[0] * t1[2];
+	t2[2] = vh[0] * t1[1] - vh[1] * t1[0];
+	for (k = 0; k < SAMPLES; k++) {
+		double u0 = (k + 0.5) / SAMPLES, u1 = radical_inverse((unsigned)k);
+		double r = sqrt(u0), a = 2.0 * M_PI * u1, p1 = r * cos(a), p2 = r * sin(a);
+		double w = 0.5 * (1.0 + vh[2]), lh, h[3], vdh, *l = s[n].l;
+
+		p2 = (1.0 - w) * sqrt(fmax(0.0, 1.0 - p1 * p1)) + w * p2;
+		lh = sqrt(fmax(0.0, 1.0 - p1 * p1 - p2 * p2));
+		h[0] = alpha * (p1 * t1[0] + p2 * t2[0] + lh * vh[0]);
+		h[1] = alpha * (p1 * t1[1] + p2 * t2[1] + lh * vh[1]);
+		h[2] = fmax(0.0, p1 * t1[2] + p2 * t2[2] + lh * vh[2]);
+		len = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+		if (!(len > 0.0))
+			continue;
+		h[0] /= len;
+		h[1] /= len;
+		h[2] /= len;
+		vdh = v[0] * h[0] + v[1] * h[1] + v[2] * h[2];
+		l[0] = 2.0 * vdh * h[0] - v[0];
+		l[1] = 2.0 * vdh * h[1] - v[1];
+		l[2] = 2.0 * vdh * h[2] - v[2];
+		if (!(l[2] > 0.0))
+			continue; /* below the surface: no light */
+		s[n].w = (1.0 + lv) / (1.0 + lv + lambda(alpha, l[2]));
+		s[n].phi = atan2(-l[0], l[2]);
+		total += s[n].w;
+		n++;
+	}
+	qsort(s, n, sizeof(*s), by_phi);
+	for (k = 0; k < n; k++) {
+		vw[2 * k] = s[k].phi;
+		vw[2 * k + 1] = s[k].w;
+	}
+	phi25 = quantile(vw, n, total, 0.25);
+	phi50 = quantile(vw, n, total, 0.5);
+	phi75 = quantile(vw, n, total, 0.75);
+	d[0] = -sin(phi50);
+	d[1] = 0.0;
+	d[2] = cos(phi50);
+	for (k = 0; k < n; k++) {
+		const double *l = s[k].l;
+
+		vw[2 * k] = fabs(atan2(l[1], l[0] * d[0] + l[2] * d[2]));
+		vw[2 * k + 1] = s[k].w;
+	}
+	qsort(vw, n, 2 * sizeof(double), by_psi);
+	out[0] = phi50 - theta_v;
+	out[1] = phi50 - phi25;
+	out[2] = phi75 - phi50;
+	out[3] = quantile(vw, n, total, 0.5);
+}
+
+int
+main(void)
+{
+	static struct sample s[SAMPLES];
+	static double vw[2 * SAMPLES];
+	static double kernel[FOOTPRINT_ROUGHNESSES], scale[FOOTPRINT_ROUGHNESSES];
+	unsigned i, j, k;
+
+	for (j = 1; j < FOOTPRINT_ROUGHNESSES; j++) {
+		double pr = (double)j / (FOOTPRINT_ROUGHNESSES - 1), e[4];
+
+		kernel[j] = measure_kernel(pr, s, vw);
+		measure(0.0, pr, s, vw, e);
+		scale[j] = kernel[j] / ((e[1] + e[2] + e[3]) / 3.0);
+	}
+	printf("/* Made by footprint-gen (%d x %d entries, %d visible normals each): "
+	       "do not edit. */\n", FOOTPRINT_VIEWS, FOOTPRINT_ROUGHNESSES, SAMPLES);
+	printf("static const float footprint_table[%d][%d][4] = {\n", FOOTPRINT_VIEWS,
+	       FOOTPRINT_ROUGHNESSES);
+	for (i = 0; i < FOOTPRINT_VIEWS; i++) {
+		double theta_v = footprint_view_angle(i);
+
+		printf("{\n");
+		for (j = 0; j < FOOTPRINT_ROUGHNESSES; j++) {
+			double pr = (double)j / (FOOTPRINT_ROUGHNESSES - 1), e[4] = { 0, 0, 0, 0 };
+
+			if (j > 0 && i == 0) {
+				e[1] = e[2] = e[3] = kernel[j]; /* round, no bend */
+			} else if (j > 0) {
+				measure(theta_v, pr, s, vw, e);
+				for (k = 1; k < 4; k++)
+					e[k] *= scale[j];
+			}
+			printf("\t{");
+			for (k = 0; k < 4; k++)
+				printf(" %af,", (double)(float)e[k]);
+			printf(" },\n");
+		}
+		printf("},\n");
+	}
+	printf("};\n");
+	return ferror(stdout) ? 1 : 0;
+}

@@ -1,0 +1,257 @@
+#!/bin/sh
+test_description='reflect-shade -m footprint: its limits, scale, contact, and the truth'
+. "$srcdir/tests/lib.sh"
+. "$srcdir/tests/shade-lib.sh"
+
+GB="P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z roughness"
+
+# shade MODE IN OUT: an ascii stream shaded with MODE through room.rfl.
+shade () {
+	reflect-shade -fa -m "$1" --env=room.rfl "$2" >"$3"
+}
+
+test_expect_success 'setup: the default scene, its room prefiltered small' '
+	reflect-prefilter --size=32 -o room.rfl 2>/dev/null &&
+	level_chain lods.rfl 32 6 unity &&
+	reflect-gbuffer -x 48 -y 32 | reflect-project -fa >scene.txt
+'
+
+# Roughness 0: the lobe is a line, so the one tap is the box-projected
+# mirror direction at lod 0, which is what none reads there; where the
+# mirror ray R = 2 (N.V) N - V is below the geometric normal (bumps) or
+# the surface is seen from below, it reads nothing, as a path tracer.
+test_expect_success 'roughness 0 reads the box-projected mirror at lod 0, as none' '
+	awk "/^CHANNELS=/ { n = split(substr(\$0, 10), c, \" \")
+		for (i = 1; i <= n; i++) if (c[i] == \"roughness\") r = i }
+		body { \$r = 0 } { print } /^\$/ { body = 1 }" OFS="\t" scene.txt >r0.txt &&
+	shade none r0.txt none.out &&
+	shade footprint r0.txt fp.out &&
+	column none.out N.X N.Y N.Z V.X V.Y V.Z Ng.X Ng.Y Ng.Z spec.R spec.G spec.B >none.all &&
+	column fp.out spec.R spec.G spec.B >fp.all &&
+	test_line_count 1536 fp.all &&
+	paste none.all fp.all | awk "{ nv = \$1 * \$4 + \$2 * \$5 + \$3 * \$6
+		rg = 0; for (i = 1; i <= 3; i++) rg += (2 * nv * \$i - \$(i + 3)) * \$(i + 6)
+		if (nv > 0 && rg > 0) { print \$10, \$11, \$12 >\"want\"; print \$13, \$14, \$15 >\"got\" }
+		else print \$13, \$14, \$15 >\"dark\" }" &&
+	test $(wc -l <got) -gt 1400 &&
+	cmp_numbers want got 2e-4 &&
+	sort -u dark >below &&
+	echo "0 0 0" >want &&
+	cmp want below
+'
+
+# No hit (the point outside the box): every ray keeps its direction, so
+# the footprint is the lobe itself.  Seen head on (N = V) the lobe is the
+# prefilter's kernel, and lobe=round makes it so at any view: either way
+# one tap at R at the material's own lod, none's read.  The level chain
+# holds its lod in every texel, so spec is the lod, from the mapping.
+test_expect_success 'no hit: N = V, or lobe=round at any view, is none' '
+	awk "BEGIN {
+		srand(5)
+		for (k = 0; k < 40; k++) {
+			a = 6.2832 * rand(); z = 2 * rand() - 1; s = sqrt(1 - z * z)
+			nx = s * cos(a); ny = s * sin(a); nz = z; pr = rand()
+			printf \"%.5f %.5f %.5f %.9g %.9g %.9g %.9g %.9g %.9g %.4f\n\",
+				20 + 5 * rand(), 40 * rand(), -30 * rand(), nx, ny, nz, nx, ny, nz, pr
+		}
+	}" | stream nv.txt 40 1 "$GB" "PROBE_BOX=-3 0 -2 3 3 2" "PROBE_CENTER=0 1.5 0" &&
+	reflect-project -fa nv.txt >nv.rfl &&
+	column nv.rfl hit.dist >dist &&
+	test "$(sort -u dist)" = inf &&
+	reflect-shade -fa -m none --env=lods.rfl nv.rfl | column - spec.G >want &&
+	reflect-shade -fa -m footprint --env=lods.rfl nv.rfl | column - spec.G >got &&
+	cmp_numbers want got 1e-4 &&
+	awk "BEGIN {
+		srand(6)
+		for (k = 0; k < 40; k++) {
+			mu = 0.05 + 0.95 * rand(); pr = rand()
+			printf \"30 2 -40 0 1 0 %.9g %.9g 0 %.4f\n\", sqrt(1 - mu * mu), mu, pr
+		}
+	}" | stream slant.txt 40 1 "$GB" "PROBE_BOX=-3 0 -2 3 3 2" "PROBE_CENTER=0 1.5 0" &&
+	reflect-project -fa slant.txt >slant.rfl &&
+	reflect-shade -fa -m none --env=lods.rfl slant.rfl | column - spec.G >want &&
+	reflect-shade -fa -m footprint:lobe=round --env=lods.rfl slant.rfl |
+		column - spec.G >got &&
+	cmp_numbers want got 1e-4 &&
+	awk "BEGIN { srand(6); for (k = 0; k < 40; k++) { mu = 0.05 + 0.95 * rand()
+		pr = sprintf(\"%.4f\", rand()) + 0; print pr * (1.7 - 0.7 * pr) * 5 } }" >lod &&
+	cmp_numbers lod got 1e-4
+'
+
+# The measured lobe at a slant stretches in its plane and narrows across
+# it: its long axis takes several taps of a narrower kernel, so a glancing
+# look reads a lower lod than none (at r = 0.5, 80 degrees: the across
+# width is a quarter of the in-plane one, measured by footprint-gen).
+test_expect_success 'no hit at a glancing view: the lobe stretches, the lod drops' '
+	printf "30 2 -40 0 1 0 0.98480775 0.17364818 0 0.5\n" |
+	stream glance.txt 1 1 "$GB" "PROBE_BOX=-3 0 -2 3 3 2" "PROBE_CENTER=0 1.5 0" &&
+	reflect-project -fa glance.txt >glance.rfl &&
+	reflect-shade -fa -m none --env=lods.rfl glance.rfl | column - spec.G >none.lod &&
+	reflect-shade -fa -m footprint --env=lods.rfl glance.rfl | column - spec.G >fp.lod &&
+	echo 3.375 >want &&
+	cmp_numbers want none.lod 1e-4 &&
+	awk "{ exit !(\$1 > 2.2 && \$1 < 2.6) }" fp.lod
+'
+
+# At the capture point, P = C, the box changes nothing: the rays from P
+# are the rays from C, so head on it is none at any room.
+test_expect_success 'at the capture point, head on, it is none' '
+	awk "BEGIN {
+		srand(8)
+		for (k = 0; k < 30; k++) {
+			a = 6.2832 * rand(); z = 2 * rand() - 1; s = sqrt(1 - z * z)
+			printf \"0 1.5 0 %.9g %.9g %.9g %.9g %.9g %.9g %.4f\n\",
+				s * cos(a), s * sin(a), z, s * cos(a), s * sin(a), z, rand()
+		}
+	}" | stream c.txt 30 1 "$GB" "PROBE_BOX=-3 0 -2 3 3 2" "PROBE_CENTER=0 1.5 0" &&
+	reflect-project -fa c.txt >c.rfl &&
+	reflect-shade -fa -m none --env=lods.rfl c.rfl | column - spec.G >want &&
+	reflect-shade -fa -m footprint --env=lods.rfl c.rfl | column - spec.G >got &&
+	cmp_numbers want got 2e-3
+'
+
+# Contact hardening: a floor point looking at the wall x = 3 from ever
+# nearer; the hit's footprint, and so the lod, shrinks with the distance
+# to the wall (C is 3 m from it), and the nearest read is sharper than
+# none by far.
+test_expect_success 'contact: the nearer the wall, the lower the lod' '
+	for d in 2.5 1.5 0.8 0.3 0.1
+	do
+		awk -v d=$d "BEGIN { printf \"%.4f 0 0 0 1 0 -0.8660254 0.5 0 0.4\n\", 3 - d }" ||
+		return 1
+	done | stream wall.txt 5 1 "$GB" "PROBE_BOX=-3 0 -2 3 3 2" "PROBE_CENTER=0 1.5 0" &&
+	reflect-project -fa wall.txt >wall.rfl &&
+	reflect-shade -fa -m footprint --env=lods.rfl wall.rfl | column - spec.G >got &&
+	reflect-shade -fa -m none --env=lods.rfl wall.rfl | column - spec.G >none.lod &&
+	awk "NR > 1 && !(\$1 < prev - 0.05) { bad = 1 } { prev = \$1 } END { exit bad }" got &&
+	paste none.lod got | awk "END { exit !(\$2 < \$1 - 2) }"
+'
+
+# Scale invariance: the same room in centimetres (P, the box and the
+# capture point times 100) gives the same pixels: only angles and ratios
+# enter the model.
+test_expect_success 'the room in centimetres gives the same pixels' '
+	awk -v s=100 "
+		/^PROBE_BOX=|^PROBE_CENTER=/ { split(\$0, kv, \"=\"); n = split(kv[2], v, \" \")
+			line = kv[1] \"=\"; for (i = 1; i <= n; i++) line = line (i > 1 ? \" \" : \"\") v[i] * s
+			print line; next }
+		/^CHANNELS=/ { n = split(substr(\$0, 10), c, \" \")
+			for (i = 1; i <= n; i++) if (c[i] ~ /^P\\./) p[i] = 1 }
+		body { for (i in p) \$i = \$i * s }
+		{ print } /^\$/ { body = 1 }" OFS="\t" scene.txt >cm.txt &&
+	grep -q "^PROBE_BOX=-300 0 -200 300 300 200$" cm.txt &&
+	shade footprint scene.txt m.out &&
+	shade footprint cm.txt cm.out &&
+	column m.out spec.R spec.G spec.B >want &&
+	column cm.out spec.R spec.G spec.B >got &&
+	cmp_numbers want got 2e-3
+'
+
+# It reads the GGX chain (RF_PLUGIN_PREFILTERED): a raw environment is
+# prefiltered for it, where raytraced takes it as it is.
+test_expect_success 'a raw environment is prefiltered for it, not for raytraced' '
+	reflect-capture -n 16 >raw.rfl &&
+	reflect-gbuffer -x 8 -y 6 | reflect-project >small.rfl &&
+	reflect-shade -v -m footprint --env=raw.rfl small.rfl >/dev/null 2>err &&
+	test_grep "raw.rfl.: 16 texels, 5 levels" err &&
+	reflect-shade -v -m raytraced --env=raw.rfl small.rfl >/dev/null 2>err &&
+	test_grep "raw.rfl.: 16 texels, 1 levels" err
+'
+
+test_expect_success 'the bytes do not depend on the thread count' '
+	reflect-gbuffer -x 48 -y 32 | reflect-project >scene.rfl &&
+	for m in footprint footprint:taps=2 footprint:lobe=round footprint:bend=1
+	do
+		reflect-shade -h -j1 -m $m --final --env=room.rfl scene.rfl >j1 &&
+		reflect-shade -h -j2 -m $m --final --env=room.rfl scene.rfl >j2 &&
+		reflect-shade -h -j5 -m $m --final --env=room.rfl scene.rfl >j5 &&
+		cmp j1 j2 && cmp j1 j5 || return 1
+	done
+'
+
+test_expect_success 'no NaN on odd pixels: seen from below, along the surface, at a wall' '
+	printf "%s\n" "0 1 0 0 1 0 0 -1 0 0.5" "0 1 0 0 1 0 1 0 0 0" \
+		"0 1 0 0 1 0 1 0 0 0.5" "0 1 0 0 1 0 0.99999 0.0045 0 1" \
+		"0 0 0 0 1 0 0.7 0.7 0 1" "2.999 2.999 1.999 -0.6 -0.6 -0.5 -0.5 -0.5 -0.7 0.7" |
+	stream odd.txt 6 1 "$GB" "PROBE_BOX=-3 0 -2 3 3 2" "PROBE_CENTER=0 1.5 0" &&
+	reflect-project -fa odd.txt >odd.rfl &&
+	reflect-shade -fa -m footprint --invalid=zero --env=room.rfl odd.rfl | column - spec.R spec.G spec.B >got &&
+	test_line_count 6 got &&
+	! grep -i -E "nan|inf" got &&
+	head -n 1 got >below &&
+	echo "0 0 0" >want &&
+	cmp_numbers want below
+'
+
+test_expect_success 'bad parameters are refused with a message' '
+	test_expect_code 1 reflect-shade -m footprint:taps=0 --env=room.rfl scene.rfl 2>err &&
+	test_grep "taps" err &&
+	test_expect_code 1 reflect-shade -m footprint:taps=5 --env=room.rfl scene.rfl 2>err &&
+	test_grep "taps" err &&
+	test_expect_code 1 reflect-shade -m footprint:lobe=oval --env=room.rfl scene.rfl 2>err &&
+	test_grep "oval" err &&
+	test_expect_code 1 reflect-shade -m footprint:bend=-1 --env=room.rfl scene.rfl 2>err &&
+	test_grep "bend" err
+'
+
+# A room of the test's own, unlike the references (off-centre probe, a
+# floor of roughness 0.35 seen at a slant), against its truth traced by
+# reflect-trace: footprint must stay well under hdrp's error (measured when
+# written: footprint 0.155, hdrp 0.317, none 0.575; the bound 0.6 hdrp).
+test_expect_success 'a room of its own: against reflect-trace, well under hdrp' '
+	cat >room.scene <<-\EOF &&
+	name test-room
+	probe box -4 0 -3 4 3 3 center 1.5 1.8 1
+	camera position -2 1.6 2.5 target 1 0.2 -2 up 0 1 0 fov 60
+	pattern cell 0.8 line-width 0.08 base 0.3 checker 0.25 line 1 line-white 0.5
+	wall +x pattern 0.9 0.4 0.3
+	wall -x pattern 0.3 0.8 0.4
+	wall +y pattern 0.4 0.7 0.9
+	wall -y pattern 0.8 0.4 0.8
+	wall +z pattern 0.9 0.8 0.3
+	wall -z pattern 0.3 0.4 0.9
+	window -z min -1 0.8 max 1 2.2 radiance 14 12 9
+	window +x min -1.5 1 max 0.5 2 radiance 5 7 10
+	rect plane y 0.005 min -3.7 -2.7 max 3.7 2.7 roughness 0.35
+	EOF
+	reflect-gbuffer -x 80 -y 60 -c P,N,Ng,V,roughness,mask,objid,depth room.scene |
+		reflect-project >room-g.rfl &&
+	reflect-capture -n 64 --hide-reflective room.scene | reflect-prefilter -o room-env.rfl - \
+		2>/dev/null &&
+	reflect-trace -x 80 -y 60 --samples=256 room.scene >room-truth.rfl &&
+	for m in hdrp footprint
+	do
+		reflect-shade -m $m --final --env=room-env.rfl room-g.rfl |
+			reflect-compare -f a --mask --erode=1 - room-truth.rfl |
+			awk "{ print \$2 }" >$m.score || return 1
+	done &&
+	echo "hdrp $(cat hdrp.score) footprint $(cat footprint.score)" &&
+	paste hdrp.score footprint.score | awk "{ exit !(\$2 < 0.6 * \$1) }"
+'
+
+# The references beside the source tree (../shared/truth/README.md): the
+# errors measured when written, room-floor 0.214 and room-spheres 0.145
+# (hdrp: 0.456 and 0.390), pinned with a little room.
+truth="${REFLECT_TRUTH:-$srcdir/../shared/truth}"
+for case in room-floor:0.22 room-spheres:0.15
+do
+	scene=${case%%:*}
+	limit=${case#*:}
+	if ! test -f "$truth/$scene.gbuf.exr"
+	then
+		test_skip "$scene: footprint under $limit" "no references in $truth"
+		continue
+	fi
+	test_expect_success "$scene: relative RMSE of footprint under $limit" '
+		reflect-import --box=-5,0,-5,5,4,5 --center=0,2,0 "$truth/$scene.gbuf.exr" |
+			reflect-project >gbuf.rfl &&
+		reflect-shade -m footprint --final --env="$truth/$scene.probe.cube.exr" gbuf.rfl \
+			>shaded.rfl &&
+		reflect-import "$truth/$scene.ref.exr" >ref.rfl &&
+		"$builddir/tests/truthscore" shaded.rfl ref.rfl >score &&
+		echo "$scene: $(cat score)" &&
+		awk -v limit=$limit "{ exit !(\$1 > 30000 && \$2 < limit) }" score
+	'
+done
+
+test_done
