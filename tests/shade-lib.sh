@@ -104,3 +104,16 @@ cmp_numbers () {
 		exit err
 	}' "$1"
 }
+
+# truth_setup DIR SCENE: a path-traced reference of DIR (../shared/truth)
+# as the tests score against it: its G-buffer imported and projected
+# (SCENE.g.rfl), its probe prefiltered (SCENE.env.rfl) and its render
+# (SCENE.ref.rfl), made once in the current directory.
+truth_setup () {
+	test -f "$2.g.rfl" || {
+		reflect-import --box=-5,0,-5,5,4,5 --center=0,2,0 "$1/$2.gbuf.exr" |
+			reflect-project >"$2.g.rfl" &&
+		reflect-prefilter -o "$2.env.rfl" "$1/$2.probe.cube.exr" 2>/dev/null &&
+		reflect-import "$1/$2.ref.exr" >"$2.ref.rfl"
+	}
+}

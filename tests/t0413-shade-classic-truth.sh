@@ -1,6 +1,7 @@
 #!/bin/sh
 test_description='the classic modes against the path-traced references, as measured independently'
 . "$srcdir/tests/lib.sh"
+. "$srcdir/tests/shade-lib.sh"
 
 truth="${REFLECT_TRUTH:-$srcdir/../shared/truth}"
 
@@ -20,13 +21,7 @@ do
 		continue
 	fi
 	test_expect_success "$scene, $mode: $want within 0.01" '
-		if ! test -f "$scene.g.rfl"
-		then
-			reflect-import --box=-5,0,-5,5,4,5 --center=0,2,0 "$truth/$scene.gbuf.exr" |
-				reflect-project >"$scene.g.rfl" &&
-			reflect-prefilter -o "$scene.env.rfl" "$truth/$scene.probe.cube.exr" 2>/dev/null &&
-			reflect-import "$truth/$scene.ref.exr" >"$scene.ref.rfl"
-		fi &&
+		truth_setup "$truth" $scene &&
 		reflect-shade -m $mode --final --env="$scene.env.rfl" "$scene.g.rfl" >s.rfl &&
 		{ reflect-compare -f a --mask --erode=1 s.rfl "$scene.ref.rfl" >score ||
 			test $? = 3; } &&
