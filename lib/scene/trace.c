@@ -51,6 +51,9 @@ struct block {
 
 static double radical_inverse(uint32_t i);
 
+/* Samples a pass of integrate() takes at a time. */
+#define TRACE_CHUNK 64
+
 void
 rf_trace_options_init(struct rf_trace_options *o)
 {
@@ -90,7 +93,8 @@ rf_tracer_create(struct rf_tracer **tp, const rf_scene *s, size_t width, size_t 
 	t->seen = calloc(s->nobjects + 1, sizeof(*t->seen));
 	t->k = calloc((size_t)t->o.nthreads * (s->nobjects + 1), RF__ORIGIN_STRIDE *
 	              sizeof(double));
-	t->turn = malloc(((size_t)o->samples + 1) / 2 * 2 * sizeof(float));
+	/* padded to whole chunks: integrate() reads a chunk whole */
+	t->turn = calloc(((size_t)o->samples + 1) / 2 + TRACE_CHUNK, 2 * sizeof(float));
 	if (!t->kcam || !t->seen || !t->k || !t->turn) {
 		rf_tracer_destroy(t);
 		return RF_ENOMEM;
@@ -210,6 +214,11 @@ reflected(const struct rf_tracer *t, const double p[3], const double *k, const d
 
 /* The lobe's integral at a hit seen along -v over a Hammersley set of K
  * samples turned by rot: their sum (of weight x radiance) into acc. */
+#if defined(__GNUC__) && !defined(__clang__)
+/* No floating-point traps are looked at: selects may be computed on
+ * both sides, which lets the direction pass become vector code. */
+__attribute__((optimize("no-trapping-math")))
+#endif
 static void
 integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
           const double *k, uint32_t rot, uint32_t K, double acc[3])
@@ -267,57 +276,90 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 		const float fn[3] = { (float)n[0], (float)n[1], (float)n[2] };
 		const float fng[3] = { (float)ng[0], (float)ng[1], (float)ng[2] };
 		const float rc = cosf(6.28318530718f * (float)u1r), rs = sinf(6.28318530718f * (float)u1r);
-		for (i = 0; i < K; i++) {
-			float u0 = ((float)i + 0.5f) * inv_k + (float)u0r;
-			const float c0 = t->turn[2 * i], s0 = t->turn[2 * i + 1];
-			/* cos and sin of 2 pi (radical_inverse(i) + u1r) */
-			const float cs = c0 * rc - s0 * rs, sn = s0 * rc + c0 * rs;
-			float r, p1, p2, w, nhx, nhy, nhz, nex, ney, nez, len2, inv, vn;
-			float lx, ly, lz;
-			double l[3], wt;
-			float rgb[3];
+		/* Two passes over a chunk of samples: their directions and
+		 * weights in a loop without branches, which the compiler makes
+		 * vector code, then what each valid one sees. */
+		float lxs[TRACE_CHUNK], lys[TRACE_CHUNK], lzs[TRACE_CHUNK];
+		double wts[TRACE_CHUNK];
+		int ok[TRACE_CHUNK];
+		const int correlated = t->o.masking_correlated;
+		uint32_t i0, j, m;
 
-			u0 -= u0 >= 1.0f ? 1.0f : 0.0f;
-			r = sqrtf(u0);
-			p1 = r * cs;
-			p2 = r * sn;
-			p2 = (1.0f - s) * sqrtf(1.0f - p1 * p1) + s * p2;
-			w = 1.0f - p1 * p1 - p2 * p2;
-			w = w > 0.0f ? sqrtf(w) : 0.0f;
-			nhx = p1 * t1x + p2 * t2x + w * vhx;
-			nhy = p1 * t1y + p2 * t2y + w * vhy;
-			nhz = p1 * t1z + p2 * t2z + w * vhz;
-			nex = fa * nhx;
-			ney = fa * nhy;
-			nez = nhz > 0.0f ? nhz : 0.0f;
-			len2 = nex * nex + ney * ney + nez * nez;
-			if (!(len2 > 0.0f))
-				continue;
-			inv = 1.0f / sqrtf(len2);
-			nex *= inv;
-			ney *= inv;
-			nez *= inv;
-			vn = vx * nex + vy * ney + vz * nez;
-			lx = 2.0f * vn * nex - vx;
-			ly = 2.0f * vn * ney - vy;
-			lz = 2.0f * vn * nez - vz;
-			if (!(lz > 0.0f))
-				continue; /* below the shading surface */
-			for (c = 0; c < 3; c++)
-				l[c] = lx * fx[c] + ly * fy[c] + lz * fn[c];
-			if (!(l[0] * fng[0] + l[1] * fng[1] + l[2] * fng[2] > 0.0))
-				continue; /* below the geometric surface: 0, as in Cycles */
-			if (t->o.masking_correlated) {
-				wt = (1.0 + lv) / (1.0 + lv + lambda(alpha2, lz));
-			} else {
-				/* 1 / (1 + Lambda(mu)) = 2 mu / (mu + sqrt(mu^2 + a^2 (1 - mu^2))) */
-				const float m2 = lz * lz;
+		for (i0 = 0; i0 < K; i0 += m) {
+			m = K - i0 < TRACE_CHUNK ? K - i0 : TRACE_CHUNK;
+			/* whole chunks, the lanes past K not ok: a fixed trip
+			 * count needs no scalar epilogue, and -O2 vectorizes it */
+			for (j = 0; j < TRACE_CHUNK; j++) {
+				i = i0 + j;
+				float u0 = ((float)i + 0.5f) * inv_k + (float)u0r;
+				const float c0 = t->turn[2 * i], s0 = t->turn[2 * i + 1];
+				/* cos and sin of 2 pi (radical_inverse(i) + u1r) */
+				const float cs = c0 * rc - s0 * rs, sn = s0 * rc + c0 * rs;
+				float r, p1, p2, w, nhx, nhy, nhz, nex, ney, nez, len2, inv, vn;
+				float lx, ly, lz, lzc;
+				double l0, l1, l2, wt;
 
-				wt = 2.0f * lz / (lz + sqrtf(m2 + fa * fa * (1.0f - m2)));
+				/* selects written as arithmetic: a conditional
+				 * subtraction would be a branch the vectorizer
+				 * refuses (it could trap) */
+				u0 -= (float)(int)u0; /* u0 < 2: less 1 from 1 up */
+				r = sqrtf(u0);
+				p1 = r * cs;
+				p2 = r * sn;
+				p2 = (1.0f - s) * sqrtf(1.0f - p1 * p1) + s * p2;
+				w = 1.0f - p1 * p1 - p2 * p2;
+				w = sqrtf(w > 0.0f ? w : 0.0f);
+				nhx = p1 * t1x + p2 * t2x + w * vhx;
+				nhy = p1 * t1y + p2 * t2y + w * vhy;
+				nhz = p1 * t1z + p2 * t2z + w * vhz;
+				nex = fa * nhx;
+				ney = fa * nhy;
+				nez = nhz > 0.0f ? nhz : 0.0f;
+				len2 = nex * nex + ney * ney + nez * nez;
+				inv = 1.0f / sqrtf(len2 > 1e-30f ? len2 : 1e-30f);
+				nex *= inv;
+				ney *= inv;
+				nez *= inv;
+				vn = vx * nex + vy * ney + vz * nez;
+				lx = 2.0f * vn * nex - vx;
+				ly = 2.0f * vn * ney - vy;
+				lz = 2.0f * vn * nez - vz;
+				l0 = lx * fx[0] + ly * fy[0] + lz * fn[0];
+				l1 = lx * fx[1] + ly * fy[1] + lz * fn[1];
+				l2 = lx * fx[2] + ly * fy[2] + lz * fn[2];
+				/* below the shading surface, or the geometric one (0, as
+				 * in Cycles) */
+				ok[j] = (j < m) & (len2 > 0.0f) & (lz > 0.0f) &
+				        (l0 * fng[0] + l1 * fng[1] + l2 * fng[2] > 0.0);
+				lzc = lz > 0.0f ? lz : 1.0f;
+				{
+					/* correlated: (1 + Lambda(V)) / (1 + Lambda(V) +
+					 * Lambda(L)); separable: 1 / (1 + Lambda(L)) =
+					 * 2 mu / (mu + sqrt(mu^2 + a^2 (1 - mu^2))); both
+					 * made, one kept, so the loop has no branch */
+					const double m2d = (double)lzc * lzc;
+					const float m2 = lzc * lzc;
+					const double lam = 0.5 * (sqrt(1.0 + alpha2 * (1.0 - m2d) / m2d) - 1.0);
+					const double corr = (1.0 + lv) / (1.0 + lv + lam);
+					const double sep = 2.0f * lzc / (lzc + sqrtf(m2 + fa * fa * (1.0f - m2)));
+
+					wt = corr * correlated + sep * (1 - correlated);
+				}
+				lxs[j] = (float)l0;
+				lys[j] = (float)l1;
+				lzs[j] = (float)l2;
+				wts[j] = wt;
 			}
-			reflected(t, h->P, k, l, rgb);
-			for (c = 0; c < 3; c++)
-				acc[c] += wt * rgb[c];
+			for (j = 0; j < m; j++) {
+				double l[3] = { lxs[j], lys[j], lzs[j] };
+				float rgb[3];
+
+				if (!ok[j])
+					continue;
+				reflected(t, h->P, k, l, rgb);
+				for (c = 0; c < 3; c++)
+					acc[c] += wts[j] * rgb[c];
+			}
 		}
 	}
 }
