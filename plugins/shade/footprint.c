@@ -13,14 +13,17 @@
  *     units of the prefilter's own kernel.  The centre D goes bend= of
  *     the way from R to that median (the one fitted number, see the
  *     page).
- *  2. Its footprint seen from C.  Five rays from P, the centre and the
- *     four width points, go to where they leave the box (the host's
- *     project_rays, as reflect-project takes one ray); the directions
- *     from C to those exits span the footprint as the probe sees it:
- *     two vectors A (in-plane) and B (across) in the tangent plane of
- *     the centre's lookup.  Near a wall they close in (contact
- *     hardening), on a wall seen at a slant from C they spread, and
- *     from P = C or at infinity they are the lobe's own widths.
+ *  2. Its footprint seen from C.  Nine rays from P, the centre, the
+ *     four width points and four at half the widths, go to where they
+ *     leave the box (the host's project_rays, as reflect-project takes
+ *     one ray); the directions from C to those exits span the footprint
+ *     as the probe sees it: two vectors A (in-plane) and B (across) in
+ *     the tangent plane of the centre's lookup, each the mean of its
+ *     two secants (a secant whose end crosses a corner of the box bends
+ *     the footprint; two of them halve the kink).  Near a wall they
+ *     close in (contact hardening), on a wall seen at a slant from C
+ *     they spread, and from P = C or at infinity they are the lobe's
+ *     own widths.
  *  3. Its axes.  The singular values of [A B] are the footprint's
  *     major and minor widths at C; the right singular vector says which
  *     direction at P maps onto the major axis.
@@ -71,7 +74,8 @@ static const char *const outputs[] = { RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHAD
                                        NULL };
 
 #define NINPUTS 13
-#define RAYS 5 /* the footprint's centre and its four width points */
+#define RAYS 9 /* the footprint's centre, its four width points and four
+                  at half their widths */
 #define TAPS_MAX FOOTPRINT_TAPS_MAX
 
 struct footprint {
@@ -300,12 +304,17 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 		if (e[2] > el - 1e-3)
 			e[2] = fmax(0.0, el - 1e-3);
 	}
-	/* The footprint's centre and width points, taken through the box. */
+	/* The footprint's centre and width points, at the widths and at
+	 * half of them, taken through the box. */
 	lobe_direction(d, par, y, 0.0, 0.0, dirs);
 	lobe_direction(d, par, y, e[2], 0.0, dirs + 3);
 	lobe_direction(d, par, y, -e[1], 0.0, dirs + 6);
 	lobe_direction(d, par, y, 0.0, e[3], dirs + 9);
 	lobe_direction(d, par, y, 0.0, -e[3], dirs + 12);
+	lobe_direction(d, par, y, 0.5 * e[2], 0.0, dirs + 15);
+	lobe_direction(d, par, y, -0.5 * e[1], 0.0, dirs + 18);
+	lobe_direction(d, par, y, 0.0, 0.5 * e[3], dirs + 21);
+	lobe_direction(d, par, y, 0.0, -0.5 * e[3], dirs + 24);
 	if (host->project_rays) {
 		host->project_rays(host->ctx, RAYS, pf, dirs, look, dist, jac);
 	} else {
@@ -318,10 +327,10 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 	cross(c, t1, t2);
 	for (i = 0; i < RAYS; i++)
 		log_map(c, t1, t2, look + 3 * i, g[i]);
-	a[0] = 0.5 * (g[1][0] - g[2][0]);
-	a[1] = 0.5 * (g[1][1] - g[2][1]);
-	b[0] = 0.5 * (g[3][0] - g[4][0]);
-	b[1] = 0.5 * (g[3][1] - g[4][1]);
+	a[0] = 0.25 * (g[1][0] - g[2][0]) + 0.5 * (g[5][0] - g[6][0]);
+	a[1] = 0.25 * (g[1][1] - g[2][1]) + 0.5 * (g[5][1] - g[6][1]);
+	b[0] = 0.25 * (g[3][0] - g[4][0]) + 0.5 * (g[7][0] - g[8][0]);
+	b[1] = 0.25 * (g[3][1] - g[4][1]) + 0.5 * (g[7][1] - g[8][1]);
 	/* [A B]^T [A B]: its eigenvalues are the squared widths at C, its
 	 * eigenvectors the directions at P (in width units) that map onto
 	 * them. */
