@@ -150,10 +150,8 @@ load_environment(const struct shade_opts *o, const char *name, int from_header,
 	eo.path = name;
 	eo.load.from_header = from_header;
 	c = envmap_load(&eo, &info);
-	/* A mode tracing its own rays reads level 0: nothing to prefilter
-	 * (unless it says it reads the GGX chain). */
-	so.raw_ok = rf_plugin_writes_radiance(o->mode.plugin) &&
-	            !(o->mode.plugin->flags & RF_PLUGIN_PREFILTERED);
+	/* A mode tracing its own rays reads level 0: nothing to prefilter. */
+	so.raw_ok = rf_plugin_traces_raw(o->mode.plugin);
 	if (!info.prefiltered && !so.raw_ok) {
 		size_t size = rf_cubemap_size(c), levels;
 		char what[4200] = "";
@@ -329,7 +327,8 @@ blend_stages(const struct shade_opts *o, rf_shade *shade, const rf_header *in,
 		rf_plugin_host_set_probe(hosts[k], &b->probes[k]);
 		rf_plugin_host_set_environment(hosts[k], env[k].cube, env[k].mapping,
 		                               env[k].steps);
-		if ((rc = rf_plugin_host_set_radiance(hosts[k], env[k].cube)) < 0)
+		if (rf_plugin_traces_raw(o->mode.plugin) &&
+		    (rc = rf_plugin_host_set_radiance(hosts[k], env[k].cube)) < 0)
 			die_status(rc, NULL);
 		rf_plugin_host_set_seed(hosts[k], o->seed);
 		if ((rc = rf_stage_create(&stages[k], o->mode.plugin, o->mode.values,
@@ -391,7 +390,7 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	rf_plugin_host_set_probe(host, prc == 0 ? &probe : NULL);
 	rf_plugin_host_set_environment(host, env->cube, env->mapping, env->steps);
 	/* A mode tracing rays reads the plain levels, made once per environment. */
-	if (env->fresh && rf_plugin_writes_radiance(o->mode.plugin) &&
+	if (env->fresh && rf_plugin_traces_raw(o->mode.plugin) &&
 	    (rc = rf_plugin_host_set_radiance(host, env->cube)) < 0)
 		die_status(rc, NULL);
 	rf_plugin_host_set_seed(host, o->seed);

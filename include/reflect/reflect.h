@@ -235,6 +235,12 @@ RF_EXTERN const char *rf_plugin_kind_name(unsigned kind);
  * or an ABI 1.0 mode without roughness.eff), 0 for one the host
  * samples for. */
 RF_EXTERN int rf_plugin_writes_radiance(const struct rf_plugin *p);
+/* 1 for such a mode that traces into the environment as it is (level 0
+ * and plain box-filtered levels, the host's sample_radiance), 0 for one
+ * that reads the GGX chain (RF_PLUGIN_PREFILTERED) or is sampled for:
+ * whether a raw environment is prefiltered for the mode, and whether
+ * the host makes the plain levels. */
+RF_EXTERN int rf_plugin_traces_raw(const struct rf_plugin *p);
 /* Searches REFLECT_PLUGIN_PATH, then REFLECT_PLUGIN_SYSTEM_PATH (when set;
  * empty means none) else the installed directory.  A name containing '/'
  * is a path.  On failure err holds the reason. */

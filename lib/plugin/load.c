@@ -300,6 +300,12 @@ rf_plugin_writes_radiance(const struct rf_plugin *p)
 	return !writes(p, RF_SHADE_ROUGHNESS);
 }
 
+int
+rf_plugin_traces_raw(const struct rf_plugin *p)
+{
+	return rf_plugin_writes_radiance(p) && !(p->flags & RF_PLUGIN_PREFILTERED);
+}
+
 /* A kind's output contract (plugin.h): a shade mode writes the roughness
  * the host samples with, or with RF_PLUGIN_RADIANCE the radiance; an
  * accumulate mode reads values, not channels, into a state that starts

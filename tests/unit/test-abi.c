@@ -481,6 +481,7 @@ TEST(loader_refusals)
 	ASSERT_EQ(load("shade_kind", 0, &m), 0);
 	ASSERT_EQ(rf_module_plugin(m)->kind, RF_KIND_SHADE);
 	ASSERT_EQ(rf_plugin_writes_radiance(rf_module_plugin(m)), 0);
+	ASSERT_EQ(rf_plugin_traces_raw(rf_module_plugin(m)), 0);
 	rf_module_unload(m);
 	/* The output contract of a kind, and the flag that chooses it. */
 	ASSERT_EQ(load("shade_no_roughness", RF_KIND_SHADE, &m), RF_EPLUGIN);
@@ -506,6 +507,7 @@ TEST(loader_refusals)
 	ASSERT(strstr(msg, "sets flags 0x1 that ABI 1.0 does not define") != NULL);
 	ASSERT_EQ(load("shade_radiance", RF_KIND_SHADE, &m), 0);
 	ASSERT_EQ(rf_plugin_writes_radiance(rf_module_plugin(m)), 1);
+	ASSERT_EQ(rf_plugin_traces_raw(rf_module_plugin(m)), 1);
 	rf_module_unload(m);
 	/* A 1.0 mode had no flag: its outputs still say it samples itself. */
 	ASSERT_EQ(load("shade_radiance_1_0", RF_KIND_SHADE, &m), 0);
