@@ -23,39 +23,10 @@
 #include <math.h>
 #include <stdint.h>
 
+#include "../ggx.h"
+
 /* N and Ng closer than this (the sine of their angle) are one normal. */
 #define HORIZON_SAME_NORMAL 1e-4
-
-static inline double
-horizon_radical_inverse(uint32_t i)
-{
-	i = (i << 16) | (i >> 16);
-	i = ((i & 0x55555555u) << 1) | ((i & 0xAAAAAAAAu) >> 1);
-	i = ((i & 0x33333333u) << 2) | ((i & 0xCCCCCCCCu) >> 2);
-	i = ((i & 0x0F0F0F0Fu) << 4) | ((i & 0xF0F0F0F0u) >> 4);
-	i = ((i & 0x00FF00FFu) << 8) | ((i & 0xFF00FF00u) >> 8);
-	return (double)i * 2.3283064365386963e-10;
-}
-
-static inline double
-horizon_lambda(double a2, double c)
-{
-	double c2 = c * c;
-
-	return 0.5 * (sqrt(1.0 + a2 * (1.0 - c2) / c2) - 1.0);
-}
-
-static inline void
-horizon_normalise(double v[3])
-{
-	double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-
-	if (l > 0.0) {
-		v[0] /= l;
-		v[1] /= l;
-		v[2] /= l;
-	}
-}
 
 /* E_Ng / E_N for unit-free vectors n, ng, v (the view, from the surface
  * toward the eye), perceptual roughness r, k points. */
@@ -63,13 +34,14 @@ static inline double
 horizon_share(const float nf[3], const float ngf[3], const float vf[3], double r, int k)
 {
 	double n[3] = { nf[0], nf[1], nf[2] }, ng[3] = { ngf[0], ngf[1], ngf[2] };
-	double v[3] = { vf[0], vf[1], vf[2] }, t[3], b[3], c[3], vl[3], vh[3], t1[3], t2[3];
-	double alpha = r * r, a2, lv, num = 0.0, den = 0.0, s, sign, aa, bb, lensq;
+	double v[3] = { vf[0], vf[1], vf[2] }, t[3], b[3], c[3], vl[3];
+	double alpha = r * r, a2, lv, num = 0.0, den = 0.0, sign, aa, bb;
+	struct ggx_vndf g;
 	int i;
 
-	horizon_normalise(n);
-	horizon_normalise(ng);
-	horizon_normalise(v);
+	ggx_normalise(n);
+	ggx_normalise(ng);
+	ggx_normalise(v);
 	c[0] = n[1] * ng[2] - n[2] * ng[1];
 	c[1] = n[2] * ng[0] - n[0] * ng[2];
 	c[2] = n[0] * ng[1] - n[1] * ng[0];
@@ -94,45 +66,19 @@ horizon_share(const float nf[3], const float ngf[3], const float vf[3], double r
 	if (alpha < 1e-4)
 		alpha = 1e-4;
 	a2 = alpha * alpha;
-	lv = horizon_lambda(a2, vl[2]);
-	/* the visible normals' frame */
-	vh[0] = alpha * vl[0];
-	vh[1] = alpha * vl[1];
-	vh[2] = vl[2];
-	horizon_normalise(vh);
-	lensq = vh[0] * vh[0] + vh[1] * vh[1];
-	if (lensq > 0.0) {
-		t1[0] = -vh[1] / sqrt(lensq);
-		t1[1] = vh[0] / sqrt(lensq);
-	} else {
-		t1[0] = 1.0;
-		t1[1] = 0.0;
-	}
-	t1[2] = 0.0;
-	t2[0] = vh[1] * t1[2] - vh[2] * t1[1];
-	t2[1] = vh[2] * t1[0] - vh[0] * t1[2];
-	t2[2] = vh[0] * t1[1] - vh[1] * t1[0];
-	s = 0.5 * (1.0 + vh[2]);
+	lv = ggx_lambda(a2, vl[2]);
+	ggx_vndf_init(&g, vl, alpha);
 	for (i = 0; i < k; i++) {
-		double u1 = (i + 0.5) / k, u2 = horizon_radical_inverse((uint32_t)i);
-		double rr = sqrt(u1), phi = 2.0 * M_PI * u2, p1 = rr * cos(phi), p2 = rr * sin(phi);
-		double nh[3], h[3], l[3], vdh, w, lw;
+		double h[3], l[3], vdh, w, lw;
 		int j;
 
-		p2 = (1.0 - s) * sqrt(1.0 - p1 * p1) + s * p2;
-		for (j = 0; j < 3; j++)
-			nh[j] = p1 * t1[j] + p2 * t2[j] +
-			        sqrt(fmax(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh[j];
-		h[0] = alpha * nh[0];
-		h[1] = alpha * nh[1];
-		h[2] = fmax(0.0, nh[2]);
-		horizon_normalise(h);
+		ggx_vndf_normal(&g, (i + 0.5) / k, ggx_radical_inverse((uint32_t)i), h);
 		vdh = vl[0] * h[0] + vl[1] * h[1] + vl[2] * h[2];
 		for (j = 0; j < 3; j++)
 			l[j] = 2.0 * vdh * h[j] - vl[j];
 		if (!(l[2] > 0.0))
 			continue;
-		w = (1.0 + lv) / (1.0 + lv + horizon_lambda(a2, l[2]));
+		w = (1.0 + lv) / (1.0 + lv + ggx_lambda(a2, l[2]));
 		den += w;
 		/* l in the world, against Ng */
 		lw = 0.0;

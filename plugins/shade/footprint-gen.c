@@ -32,6 +32,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "../ggx.h"
 #include "footprint-shape.h"
 
 #define SAMPLES 4096
@@ -55,26 +56,6 @@ by_psi(const void *a, const void *b)
 	double x = *(const double *)a, y = *(const double *)b;
 
 	return (x > y) - (x < y);
-}
-
-static double
-radical_inverse(unsigned k)
-{
-	double r = 0.0, f = 0.5;
-
-	for (; k; k >>= 1, f *= 0.5)
-		if (k & 1)
-			r += f;
-	return r;
-}
-
-/* Smith's Lambda of GGX for a direction at cosine c from the normal. */
-static double
-lambda(double alpha, double c)
-{
-	double t2 = (1.0 - c * c) / (c * c);
-
-	return 0.5 * (sqrt(1.0 + alpha * alpha * t2) - 1.0);
 }
 
 /* The value where the cumulative weight of the sorted values (their
@@ -109,7 +90,7 @@ measure_kernel(double pr, struct sample *s, double *vw)
 	size_t k, n = 0;
 
 	for (k = 0; k < SAMPLES; k++) {
-		double u0 = (k + 0.5) / SAMPLES, u1 = radical_inverse((unsigned)k);
+		double u0 = (k + 0.5) / SAMPLES, u1 = ggx_radical_inverse((uint32_t)k);
 		double t2 = alpha * alpha * u0 / (1.0 - u0), ch = 1.0 / sqrt(1.0 + t2);
 		double sh = sqrt(1.0 - ch * ch), a = 2.0 * M_PI * u1, h[3], l[3];
 
@@ -138,8 +119,9 @@ measure_kernel(double pr, struct sample *s, double *vw)
 static void
 measure(double theta_v, double pr, struct sample *s, double *vw, double out[4])
 {
-	double alpha = pr * pr, mu = cos(theta_v), v[3], vh[3], t1[3], t2[3], len, lv;
+	double alpha = pr * pr, a2 = alpha * alpha, mu = cos(theta_v), v[3], lv;
 	double total = 0.0, phi25, phi50, phi75, d[3];
+	struct ggx_vndf g;
 	size_t k, n = 0;
 
 	if (mu < 1e-3)
@@ -147,49 +129,19 @@ measure(double theta_v, double pr, struct sample *s, double *vw, double out[4])
 	v[0] = sqrt(1.0 - mu * mu);
 	v[1] = 0.0;
 	v[2] = mu;
-	lv = lambda(alpha, mu);
-	/* Heitz's visible-normal sampler (spec 7.3), in double. */
-	vh[0] = alpha * v[0];
-	vh[1] = alpha * v[1];
-	vh[2] = v[2];
-	len = sqrt(vh[0] * vh[0] + vh[1] * vh[1] + vh[2] * vh[2]);
-	for (k = 0; k < 3; k++)
-		vh[k] /= len;
-	len = sqrt(vh[0] * vh[0] + vh[1] * vh[1]);
-	if (len > 1e-12) {
-		t1[0] = -vh[1] / len;
-		t1[1] = vh[0] / len;
-	} else {
-		t1[0] = 1.0;
-		t1[1] = 0.0;
-	}
-	t1[2] = 0.0;
-	t2[0] = vh[1] * t1[2] - vh[2] * t1[1];
-	t2[1] = vh[2] * t1[0] - vh[0] * t1[2];
-	t2[2] = vh[0] * t1[1] - vh[1] * t1[0];
+	lv = ggx_lambda(a2, mu);
+	ggx_vndf_init(&g, v, alpha);
 	for (k = 0; k < SAMPLES; k++) {
-		double u0 = (k + 0.5) / SAMPLES, u1 = radical_inverse((unsigned)k);
-		double r = sqrt(u0), a = 2.0 * M_PI * u1, p1 = r * cos(a), p2 = r * sin(a);
-		double w = 0.5 * (1.0 + vh[2]), lh, h[3], vdh, *l = s[n].l;
+		double h[3], vdh, *l = s[n].l;
 
-		p2 = (1.0 - w) * sqrt(fmax(0.0, 1.0 - p1 * p1)) + w * p2;
-		lh = sqrt(fmax(0.0, 1.0 - p1 * p1 - p2 * p2));
-		h[0] = alpha * (p1 * t1[0] + p2 * t2[0] + lh * vh[0]);
-		h[1] = alpha * (p1 * t1[1] + p2 * t2[1] + lh * vh[1]);
-		h[2] = fmax(0.0, p1 * t1[2] + p2 * t2[2] + lh * vh[2]);
-		len = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-		if (!(len > 0.0))
-			continue;
-		h[0] /= len;
-		h[1] /= len;
-		h[2] /= len;
+		ggx_vndf_normal(&g, (k + 0.5) / SAMPLES, ggx_radical_inverse((uint32_t)k), h);
 		vdh = v[0] * h[0] + v[1] * h[1] + v[2] * h[2];
 		l[0] = 2.0 * vdh * h[0] - v[0];
 		l[1] = 2.0 * vdh * h[1] - v[1];
 		l[2] = 2.0 * vdh * h[2] - v[2];
 		if (!(l[2] > 0.0))
-			continue; /* below the surface: no light */
-		s[n].w = (1.0 + lv) / (1.0 + lv + lambda(alpha, l[2]));
+			continue; /* below the surface (or no normal): no light */
+		s[n].w = (1.0 + lv) / (1.0 + lv + ggx_lambda(a2, l[2]));
 		s[n].phi = atan2(-l[0], l[2]);
 		total += s[n].w;
 		n++;
