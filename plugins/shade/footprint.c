@@ -86,13 +86,14 @@ struct footprint {
 };
 
 /* n taps' places along the footprint's long axis, in units of its
- * width, and weights, for kernels q times as wide: the n-quantiles of
+ * width, for kernels q times as wide: the n-quantiles of
  * the lobe's marginal there, which is the marginal of GGX's slopes
  * (Student's t of two degrees of freedom, t(p) = (2p - 1) / sqrt(2 p
  * (1 - p)), in units of its quartile t(3/4) = sqrt(2/3)), drawn in by
- * sqrt(1 - q^2) for the width each tap's kernel adds; equal weights. */
+ * sqrt(1 - q^2) for the width each tap's kernel adds.  Each tap stands
+ * for the same share of the lobe: the taps weigh the same. */
 static void
-tap_layout(unsigned n, double q, double pos[TAPS_MAX], double wt[TAPS_MAX])
+tap_layout(unsigned n, double q, double pos[TAPS_MAX])
 {
 	static const double at[TAPS_MAX][TAPS_MAX] = {
 		{ 0 },
@@ -104,10 +105,8 @@ tap_layout(unsigned n, double q, double pos[TAPS_MAX], double wt[TAPS_MAX])
 	double shrink = sqrt(q < 1.0 ? 1.0 - q * q : 0.0);
 	unsigned i;
 
-	for (i = 0; i < n; i++) {
+	for (i = 0; i < n; i++)
 		pos[i] = at[n - 1][i] * shrink;
-		wt[i] = 1.0 / n;
-	}
 }
 
 static inline double
@@ -246,8 +245,10 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 	float pf[3] = { in[0], in[1], in[2] }, dirs[3 * RAYS], look[3 * RAYS], dist[RAYS],
 	      jac[RAYS], tdir[3 * TAPS_MAX], tlook[3 * TAPS_MAX], tdist[TAPS_MAX],
 	      tjac[TAPS_MAX], sx[TAPS_MAX], sy[TAPS_MAX], sz[TAPS_MAX], sl[TAPS_MAX],
-	      rgba[4 * TAPS_MAX], tw[TAPS_MAX];
+	      rgba[4 * TAPS_MAX];
 	const double *below;
+	double centre_dot;
+	int centre_above;
 	unsigned k, i, ntap, kept;
 
 	out[0] = out[1] = out[2] = 0.0f;
@@ -259,11 +260,7 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 		return; /* seen from below its surface: no light, as in Cycles */
 	below = unit(ng) == 0 ? ng : n;
 	theta_v = acos(mu < 1.0 ? mu : 1.0);
-	if (fp->round) {
-		lobe_at(0.0, pr, e);
-	} else {
-		lobe_at(theta_v, pr, e);
-	}
+	lobe_at(fp->round ? 0.0 : theta_v, pr, e);
 	/* The incidence plane: x toward V along the surface, y across. */
 	for (k = 0; k < 3; k++)
 		x[k] = v[k] - mu * n[k];
@@ -278,21 +275,14 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 	}
 	cross(n, x, y);
 	{
+		/* the centre, theta_v + bend from N toward -x: R itself for
+		 * lobe=round, whose row has no bend */
 		double th = theta_v + fp->bend * e[0], st = sin(th), ct = cos(th);
 
-		if (fp->round) {
-			/* about R itself: 2 (N.V) N - V */
-			for (k = 0; k < 3; k++)
-				d[k] = 2.0 * mu * n[k] - v[k];
-			unit(d);
-			st = sqrt(1.0 - (mu < 1.0 ? mu * mu : 1.0));
-			ct = mu;
-		} else {
-			for (k = 0; k < 3; k++)
-				d[k] = -st * x[k] + ct * n[k];
-		}
-		for (k = 0; k < 3; k++)
+		for (k = 0; k < 3; k++) {
+			d[k] = -st * x[k] + ct * n[k];
 			par[k] = -ct * x[k] - st * n[k];
+		}
 	}
 	/* Toward the horizon the lobe ends at the surface: a width point
 	 * past it would leave the box through the surface's own wall, right
@@ -320,12 +310,14 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 	} else {
 		memcpy(look, dirs, sizeof(look));
 	}
+	centre_dot = dirs[0] * below[0] + dirs[1] * below[1] + dirs[2] * below[2];
+	centre_above = centre_dot > HORIZON;
 	for (k = 0; k < 3; k++)
 		c[k] = look[k];
 	unit(c);
 	perpendicular(c, t1);
 	cross(c, t1, t2);
-	for (i = 0; i < RAYS; i++)
+	for (i = 1; i < RAYS; i++) /* the centre's own is 0 */
 		log_map(c, t1, t2, look + 3 * i, g[i]);
 	a[0] = 0.25 * (g[1][0] - g[2][0]) + 0.5 * (g[5][0] - g[6][0]);
 	a[1] = 0.25 * (g[1][1] - g[2][1]) + 0.5 * (g[5][1] - g[6][1]);
@@ -356,11 +348,9 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 	sa = sin(phi);
 	kept = 0;
 	{
-		double pos[TAPS_MAX], wt[TAPS_MAX];
+		double pos[TAPS_MAX];
 
-		tap_layout(ntap, w / smaj, pos, wt);
-		double dn[3] = { dirs[0], dirs[1], dirs[2] };
-		int centre_above = dot(dn, below) > HORIZON;
+		tap_layout(ntap, w / smaj, pos);
 
 		for (i = 0; i < ntap; i++) {
 			double ta = pos[i] * ca, tb = pos[i] * sa;
@@ -389,17 +379,14 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 				if (!above(tdir + 3 * kept, below))
 					continue;
 			}
-			tw[kept++] = (float)wt[i];
+			kept++;
 		}
 	}
 	if (!kept) {
 		/* every tap below the surface: the centre, if it is above */
-		double l[3] = { dirs[0], dirs[1], dirs[2] };
-
-		if (!(dot(l, below) > 0.0))
+		if (!(centre_dot > 0.0))
 			return;
 		ntap = 1;
-		tw[0] = 1.0f;
 		kept = 1;
 	}
 	if (ntap == 1) {
@@ -425,17 +412,11 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 				host->ctx, (float)kernel_roughness(w * sqrt(tjac[i] / jac[0])));
 	}
 	host->sample_many(host->ctx, kept, sx, sy, sz, sl, rgba);
-	{
-		float total = 0.0f;
-
-		for (i = 0; i < kept; i++) {
-			total += tw[i];
-			for (k = 0; k < 3; k++)
-				out[k] += tw[i] * rgba[4 * i + k];
-		}
+	for (i = 0; i < kept; i++)
 		for (k = 0; k < 3; k++)
-			out[k] /= total;
-	}
+			out[k] += rgba[4 * i + k];
+	for (k = 0; k < 3; k++)
+		out[k] /= (float)kept;
 }
 
 static void
