@@ -339,6 +339,9 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 					 * made, one kept, so the loop has no branch */
 					const double m2d = (double)lzc * lzc;
 					const float m2 = lzc * lzc;
+					/* lambda() written out: GCC inlines no function
+					 * built with other flags into this one, and a
+					 * call keeps the loop scalar */
 					const double lam = 0.5 * (sqrt(1.0 + alpha2 * (1.0 - m2d) / m2d) - 1.0);
 					const double corr = (1.0 + lv) / (1.0 + lv + lam);
 					const double sep = 2.0f * lzc / (lzc + sqrtf(m2 + fa * fa * (1.0f - m2)));
