@@ -196,6 +196,160 @@ rf__wall_emission(const rf_scene *s, int face, const double uv[2], float rgb[3])
 	}
 }
 
+/*
+ * rf__wall_emission for a chunk of rays leaving the room from one point:
+ * the tracer's inner loop (reflect-trace reads the walls millions of
+ * times a second).  One pass without branches finds each ray's exit face
+ * and (u, v) and sorts it into grid line, even or odd cell, which the
+ * compiler makes vector code; the colours of those three classes are the
+ * pattern's per face, made once by pattern_at's own arithmetic, so every
+ * value is the bits rf__room_exit and rf__wall_emission give.  Rays in a
+ * window or on a wall that is not the pattern take the scalar path.
+ */
+/* rf__room_exit's slab along one axis (number i), its branches as
+ * selects: the wall at lo or hi that o + t d meets first so far. */
+#if defined(__GNUC__) && !defined(__clang__)
+/* as the caller's: GCC inlines no function built with other flags */
+__attribute__((optimize("no-trapping-math"), always_inline))
+#endif
+static inline void
+exit_slab(float lo, float hi, float o, float d, int i, float *t, int *face)
+{
+	const float bound = d > 0 ? hi : lo;
+	float ti = (bound - o) / d;
+
+	ti = d != 0 ? ti : INFINITY;
+	*face = ti < *t ? 2 * i + (d < 0) : *face;
+	*t = ti < *t ? ti : *t;
+}
+
+#if defined(__GNUC__) && !defined(__clang__)
+__attribute__((optimize("no-trapping-math"), always_inline))
+#endif
+static inline void
+room_emission_chunk(const rf_scene *s, const double o[3], const float *dx,
+                    const float *dy, const float *dz, const int *use, size_t n,
+                    float rgb[][3])
+{
+	const struct rf_scene_probe *room = s->nprobes ? &s->probes[0] : NULL;
+	const struct pattern *pt = &s->pattern;
+	/* per face (and a seventh for no exit): line, even cell, odd cell */
+	float colour[RF__FACES + 1][3][3];
+	int pattern[RF__FACES + 1];
+	int face[RF__EMIT_CHUNK], cls[RF__EMIT_CHUNK], win[RF__EMIT_CHUNK];
+	float us[RF__EMIT_CHUNK], vs[RF__EMIT_CHUNK];
+	float lo0, lo1, lo2, hi0, hi1, hi2, o0, o1, o2, inv_cell, cell, half_line;
+	size_t j, w;
+	int f, k;
+
+	if (!s->room || !room) {
+		for (j = 0; j < n; j++)
+			rgb[j][0] = rgb[j][1] = rgb[j][2] = 0.0f;
+		return;
+	}
+	for (f = 0; f <= RF__FACES; f++) {
+		const struct emission *e = f < RF__FACES ? rf__wall_emission_of(s, f) : NULL;
+		const float black[3] = { 0, 0, 0 };
+		const float *c = e ? e->rgb : black;
+
+		pattern[f] = e && e->kind == EMIT_PATTERN;
+		for (k = 0; k < 3; k++) {
+			colour[f][0][k] = (float)(pt->line * ((1.0 - pt->line_white) * c[k] +
+			                                      pt->line_white));
+			colour[f][1][k] = (float)(c[k] * (pt->base + 0.0));
+			colour[f][2][k] = (float)(c[k] * (pt->base + pt->checker));
+		}
+		if (!e)
+			for (k = 0; k < 3; k++)
+				colour[f][0][k] = colour[f][1][k] = colour[f][2][k] = 0.0f;
+	}
+	lo0 = room->box_min[0], lo1 = room->box_min[1], lo2 = room->box_min[2];
+	hi0 = room->box_max[0], hi1 = room->box_max[1], hi2 = room->box_max[2];
+	o0 = o[0], o1 = o[1], o2 = o[2];
+	inv_cell = pt->inv_cell, cell = pt->cell, half_line = 0.5 * pt->line_width;
+	/* a fixed trip count: no scalar epilogue, and -O2 vectorizes it;
+	 * lanes past n are computed and never read */
+	for (j = 0; j < RF__EMIT_CHUNK; j++) {
+		const float d0 = dx[j], d1 = dy[j], d2 = dz[j];
+		float t = INFINITY, p0, p1, p2, su, sv, a, b, fa, fb, du, dv;
+		int fc = -1, line, parity;
+
+		/* written out in scalars: the vectorizer takes no inner loop
+		 * and no load under a condition */
+		exit_slab(lo0, hi0, o0, d0, 0, &t, &fc);
+		exit_slab(lo1, hi1, o1, d1, 1, &t, &fc);
+		exit_slab(lo2, hi2, o2, d2, 2, &t, &fc);
+		fc = t >= 0.0f ? fc : -1;
+		p0 = o0 + t * d0;
+		p1 = o1 + t * d1;
+		p2 = o2 + t * d2;
+		us[j] = fc / 2 == 0 ? p2 : p0;
+		vs[j] = fc / 2 == 1 ? p2 : p1;
+		/* pattern_at's tests; fast_floor by int, inside whose range
+		 * the clamp keeps it (and where a NaN goes) */
+		su = us[j] * inv_cell;
+		sv = vs[j] * inv_cell;
+		a = su + 0.5f;
+		b = sv + 0.5f;
+		a = a < 1e9f ? a : 1e9f;
+		a = a > -1e9f ? a : -1e9f;
+		b = b < 1e9f ? b : 1e9f;
+		b = b > -1e9f ? b : -1e9f;
+		fa = (float)(int)a;
+		fa = fa > a ? fa - 1.0f : fa;
+		fb = (float)(int)b;
+		fb = fb > b ? fb - 1.0f : fb;
+		du = fabs(su + 0.5f - fa - 0.5f) * cell;
+		dv = fabs(sv + 0.5f - fb - 0.5f) * cell;
+		line = (du < half_line) | (dv < half_line);
+		/* floor(su) + floor(sv) = floor(su + 0.5) + floor(sv + 0.5)
+		 * would not hold: take su's own */
+		a = su < 1e9f ? su : 1e9f;
+		a = a > -1e9f ? a : -1e9f;
+		b = sv < 1e9f ? sv : 1e9f;
+		b = b > -1e9f ? b : -1e9f;
+		fa = (float)(int)a;
+		fa = fa > a ? fa - 1.0f : fa;
+		fb = (float)(int)b;
+		fb = fb > b ? fb - 1.0f : fb;
+		parity = ((int)fa + (int)fb) & 1;
+		cls[j] = line ? 0 : 1 + parity;
+		face[j] = fc;
+		win[j] = 0;
+	}
+	/* the first window a ray is in wins */
+	for (w = 0; w < s->nwindows; w++) {
+		const struct window *wd = &s->windows[w];
+
+		for (j = 0; j < RF__EMIT_CHUNK; j++)
+			win[j] |= (face[j] == wd->face) & (us[j] > wd->min[0]) &
+			          (us[j] < wd->max[0]) & (vs[j] > wd->min[1]) & (vs[j] < wd->max[1]);
+	}
+	for (j = 0; j < n; j++) {
+		const int fc = face[j] < 0 ? RF__FACES : face[j];
+
+		if (use[j] && face[j] >= 0 && (win[j] || !pattern[fc])) {
+			const double uv[2] = { us[j], vs[j] };
+
+			rf__wall_emission(s, face[j], uv, rgb[j]);
+			continue;
+		}
+		for (k = 0; k < 3; k++)
+			rgb[j][k] = colour[fc][cls[j]][k];
+	}
+}
+
+#if defined(__GNUC__) && !defined(__clang__)
+__attribute__((optimize("no-trapping-math")))
+#endif
+void
+rf__room_emission_chunk(const rf_scene *s, const double o[3], const float *dx,
+                        const float *dy, const float *dz, const int *use, size_t n,
+                        float rgb[][3])
+{
+	room_emission_chunk(s, o, dx, dy, dz, use, n, rgb);
+}
+
 void
 rf__emission(const rf_scene *s, const struct rf_hit *hit, float rgb[3])
 {

@@ -129,6 +129,15 @@ void rf__wall_uv(int face, const double p[3], double uv[2]);
 /* The wall a ray from o (inside the room) along d leaves the room by,
  * and where in its (u, v); -1 without a room or an exit. */
 int rf__room_exit(const rf_scene *s, const double o[3], const double d[3], double uv[2]);
+/* Rays a call of rf__room_emission_chunk takes at most. */
+#define RF__EMIT_CHUNK 64
+/* rf__room_exit then rf__wall_emission (black without an exit) for the
+ * rays d[j] from o, j < n; a ray without use[j] gets a finite colour
+ * that stands for nothing.  The arrays hold RF__EMIT_CHUNK entries,
+ * every one readable. */
+void rf__room_emission_chunk(const rf_scene *s, const double o[3], const float *dx,
+                             const float *dy, const float *dz, const int *use, size_t n,
+                             float rgb[][3]);
 /* The face of a wall's objid (RF_WALL_*), or -1. */
 int rf__wall_face(int objid);
 /* The wall's emission: its own or the room's. */

@@ -51,8 +51,8 @@ struct block {
 
 static double radical_inverse(uint32_t i);
 
-/* Samples a pass of integrate() takes at a time. */
-#define TRACE_CHUNK 64
+/* Samples a pass of integrate() takes at a time: the walls' chunk. */
+#define TRACE_CHUNK RF__EMIT_CHUNK
 
 void
 rf_trace_options_init(struct rf_trace_options *o)
@@ -286,13 +286,19 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 		uint32_t i0, j, m;
 
 		for (i0 = 0; i0 < K; i0 += m) {
+			/* the chunk's turns copied: the arrays below escape to
+			 * the walls' pass, and loads through a pointer that might
+			 * alias their stores would keep the loop scalar */
+			float turn[2 * TRACE_CHUNK];
+
+			memcpy(turn, t->turn + 2 * (size_t)i0, sizeof(turn));
 			m = K - i0 < TRACE_CHUNK ? K - i0 : TRACE_CHUNK;
 			/* whole chunks, the lanes past K not ok: a fixed trip
 			 * count needs no scalar epilogue, and -O2 vectorizes it */
 			for (j = 0; j < TRACE_CHUNK; j++) {
 				i = i0 + j;
 				float u0 = ((float)i + 0.5f) * inv_k + (float)u0r;
-				const float c0 = t->turn[2 * i], s0 = t->turn[2 * i + 1];
+				const float c0 = turn[2 * j], s0 = turn[2 * j + 1];
 				/* cos and sin of 2 pi (radical_inverse(i) + u1r) */
 				const float cs = c0 * rc - s0 * rs, sn = s0 * rc + c0 * rs;
 				float r, p1, p2, w, nhx, nhy, nhz, nex, ney, nez, len2, inv, vn;
@@ -352,6 +358,19 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 				lys[j] = (float)l1;
 				lzs[j] = (float)l2;
 				wts[j] = wt;
+			}
+			if (!t->nseen) {
+				/* the room alone: the walls of the whole chunk at once */
+				float rgb[TRACE_CHUNK][3];
+
+				rf__room_emission_chunk(t->s, h->P, lxs, lys, lzs, ok, m, rgb);
+				for (j = 0; j < m; j++) {
+					if (!ok[j])
+						continue;
+					for (c = 0; c < 3; c++)
+						acc[c] += wts[j] * rgb[j][c];
+				}
+				continue;
 			}
 			for (j = 0; j < m; j++) {
 				double l[3] = { lxs[j], lys[j], lzs[j] };
