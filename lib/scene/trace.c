@@ -265,7 +265,10 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 	{
 		/* the loop in float scalars, every vector in registers: the
 		 * sample's direction needs no more than float's precision */
-		const float fa = (float)a, s = 0.5f * (1.0f + (float)vh[2]);
+		const float fa = (float)a, fa2 = fa * fa, s = 0.5f * (1.0f + (float)vh[2]);
+		/* 2 (1 + Lambda(V)); Lambda(V) is finite, for the pixel faces
+		 * the view */
+		const float kv = 2.0f * (1.0f + (float)lv);
 		const float t1x = (float)t1[0], t1y = (float)t1[1], t1z = (float)t1[2];
 		const float t2x = (float)t2[0], t2y = (float)t2[1], t2z = (float)t2[2];
 		const float vhx = (float)vh[0], vhy = (float)vh[1], vhz = (float)vh[2];
@@ -280,7 +283,7 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 		 * weights in a loop without branches, which the compiler makes
 		 * vector code, then what each valid one sees. */
 		float lxs[TRACE_CHUNK], lys[TRACE_CHUNK], lzs[TRACE_CHUNK];
-		double wts[TRACE_CHUNK];
+		float wts[TRACE_CHUNK];
 		int ok[TRACE_CHUNK];
 		const int correlated = t->o.masking_correlated;
 		uint32_t i0, j, m;
@@ -302,8 +305,7 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 				/* cos and sin of 2 pi (radical_inverse(i) + u1r) */
 				const float cs = c0 * rc - s0 * rs, sn = s0 * rc + c0 * rs;
 				float r, p1, p2, w, nhx, nhy, nhz, nex, ney, nez, len2, inv, vn;
-				float lx, ly, lz, lzc;
-				double l0, l1, l2, wt;
+				float lx, ly, lz, lzc, l0, l1, l2, wt;
 
 				/* selects written as arithmetic: a conditional
 				 * subtraction would be a branch the vectorizer
@@ -336,27 +338,28 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 				/* below the shading surface, or the geometric one (0, as
 				 * in Cycles) */
 				ok[j] = (j < m) & (len2 > 0.0f) & (lz > 0.0f) &
-				        (l0 * fng[0] + l1 * fng[1] + l2 * fng[2] > 0.0);
+				        (l0 * fng[0] + l1 * fng[1] + l2 * fng[2] > 0.0f);
 				lzc = lz > 0.0f ? lz : 1.0f;
 				{
-					/* correlated: (1 + Lambda(V)) / (1 + Lambda(V) +
-					 * Lambda(L)); separable: 1 / (1 + Lambda(L)) =
-					 * 2 mu / (mu + sqrt(mu^2 + a^2 (1 - mu^2))); both
-					 * made, one kept, so the loop has no branch */
-					const double m2d = (double)lzc * lzc;
+					/* With A = sqrt(mu^2 + a^2 (1 - mu^2)), Lambda(L) =
+					 * (A / mu - 1) / 2, so with k = 2 (1 + Lambda(V))
+					 * correlated: (1 + Lambda(V)) / (1 + Lambda(V) +
+					 * Lambda(L)) = k mu / (k mu + A - mu); separable:
+					 * 1 / (1 + Lambda(L)) = 2 mu / (mu + A).  One root,
+					 * and one division of the numerator and denominator
+					 * selected, so the loop has no branch */
 					const float m2 = lzc * lzc;
-					/* lambda() written out: GCC inlines no function
-					 * built with other flags into this one, and a
-					 * call keeps the loop scalar */
-					const double lam = 0.5 * (sqrt(1.0 + alpha2 * (1.0 - m2d) / m2d) - 1.0);
-					const double corr = (1.0 + lv) / (1.0 + lv + lam);
-					const double sep = 2.0f * lzc / (lzc + sqrtf(m2 + fa * fa * (1.0f - m2)));
+					const float A = sqrtf(m2 + fa2 * (1.0f - m2));
+					const float num = correlated ? kv * lzc : 2.0f * lzc;
+					const float den = correlated ? kv * lzc + A - lzc : lzc + A;
 
-					wt = corr * correlated + sep * (1 - correlated);
+					/* 0 for a ray that does not count: the sum below
+					 * adds every lane */
+					wt = ok[j] ? num / den : 0.0f;
 				}
-				lxs[j] = (float)l0;
-				lys[j] = (float)l1;
-				lzs[j] = (float)l2;
+				lxs[j] = l0;
+				lys[j] = l1;
+				lzs[j] = l2;
 				wts[j] = wt;
 			}
 			if (!t->nseen) {
@@ -364,12 +367,10 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 				float rgb[TRACE_CHUNK][3];
 
 				rf__room_emission_chunk(t->s, h->P, lxs, lys, lzs, ok, m, rgb);
-				for (j = 0; j < m; j++) {
-					if (!ok[j])
-						continue;
+				/* no branch: a ray that does not count weighs 0 */
+				for (j = 0; j < m; j++)
 					for (c = 0; c < 3; c++)
 						acc[c] += wts[j] * rgb[j][c];
-				}
 				continue;
 			}
 			for (j = 0; j < m; j++) {
