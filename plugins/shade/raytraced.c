@@ -527,16 +527,19 @@ trace_lobe(struct raytraced *rt, const struct lobe *lb, uint32_t n, const float 
 		                                     : cl * (nv + av) / (av * cl + al * nv);
 		t = hz * hz * (alpha2 - 1.0f) + 1.0f;
 		pd = g1v * (alpha2 / (3.14159265359f * t * t)) / (4.0f * nv);
+		/* Every lane is written where the next ray that counts goes,
+		 * and the count moves by those that do: no branch to mispredict
+		 * on rays that fall below the surface at random.  The count
+		 * never passes the lane's own ray, so every write is inside
+		 * the arrays. */
 		for (j = 0; j < 4; j++) {
-			if (!ok[j])
-				continue;
 			rt->weight[count] = wt[j];
 			rt->pdf[count] = pd[j];
 			rt->index[count] = i + (uint32_t)j;
 			rt->dir[3 * count] = wx[j];
 			rt->dir[3 * count + 1] = wy[j];
 			rt->dir[3 * count + 2] = wz[j];
-			count++;
+			count += (uint32_t)ok[j] & 1u;
 		}
 	}
 #endif
