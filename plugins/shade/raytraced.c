@@ -98,6 +98,7 @@ struct raytraced {
 	uint32_t grid;   /* sampler=mis: the table's side, or 0 */
 	float *table; /* its nodes and marginals (mis_layout) */
 	float *dens; /* each ray's density in the square */
+	int wide;    /* the eight-lane code (AVX2) */
 };
 
 /* ---- random numbers ------------------------------------------------------ */
@@ -162,6 +163,15 @@ local_frame(const float n[3], float x[3], float y[3])
  * stretched view vh and its frame t1, t2 in the local frame (z up). */
 struct vndf_view {
 	float vh[3], t1[3], t2[3], w, alpha;
+};
+
+/* What a pixel's rays share: the lobe's frame, its view and the terms
+ * of the estimator that do not depend on the ray. */
+struct lobe {
+	struct vndf_view view;
+	float p[3], n[3], x[3], y[3], v[3], ng[3];
+	float nv, alpha2, av, g1v, fixed_lod;
+	int has_ng;
 };
 
 static inline void
@@ -258,56 +268,50 @@ v4_sqrt(v4f x)
 {
 	return __builtin_ia32_sqrtps(x);
 }
+
+#define LANES 4
+#define VF v4f
+#define VI v4i
+#define NAME(x) x##_4
+#define LANES_ATTR
+#include "raytraced-lanes.h"
+#undef LANES
+#undef VF
+#undef VI
+#undef NAME
+#undef LANES_ATTR
+#endif
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+/* AVX2 without FMA: eight lanes, every rounding the same */
+#define RAYTRACED_WIDE 1
+typedef float v8f __attribute__((vector_size(32)));
+typedef int v8i __attribute__((vector_size(32)));
+#define LANES 8
+#define VF v8f
+#define VI v8i
+#define NAME(x) x##_8
+#define LANES_ATTR __attribute__((target("avx2")))
+#include "raytraced-lanes.h"
+#undef LANES
+#undef VF
+#undef VI
+#undef NAME
+#undef LANES_ATTR
 #endif
 
 static void
-sample_vndf_batch(const struct vndf_view *s, size_t n, const float *restrict u0,
+sample_vndf_batch(int wide, const struct vndf_view *s, size_t n, const float *restrict u0,
                   const float *restrict u1, float *restrict hx, float *restrict hy,
                   float *restrict hz)
 {
 	size_t i = 0;
 
+#if defined(RAYTRACED_WIDE)
+	if (wide)
+		i = vndf_lanes_8(s, i, n, u0, u1, hx, hy, hz);
+#endif
 #if defined(__SSE2__)
-	const v4f one = { 1, 1, 1, 1 }, half = { 0.5f, 0.5f, 0.5f, 0.5f };
-	const v4f w = { s->w, s->w, s->w, s->w }, alpha = { s->alpha, s->alpha, s->alpha,
-	                                                    s->alpha };
-
-	for (; i + 4 <= n; i += 4) {
-		v4f a, b, r, m, x, x2, sign, sn, cs, p1, p2, q, lh, nx, ny, nz, len;
-		v4i k;
-
-		memcpy(&a, u0 + i, sizeof(a));
-		memcpy(&b, u1 + i, sizeof(b));
-		r = v4_sqrt(a);
-		/* sincos_turn, lane by lane the same operations */
-		k = __builtin_convertvector(b * 2.0f + half, v4i);
-		m = __builtin_convertvector(k, v4f);
-		x = (b - half * m) * 6.28318530718f;
-		x2 = x * x;
-		sign = __builtin_convertvector(1 - 2 * (k & 1), v4f);
-		sn = x * (one + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 +
-		     x2 * (1.0f / 362880 - x2 * (1.0f / 39916800))))));
-		cs = one + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 +
-		     x2 * (1.0f / 40320 + x2 * (-1.0f / 3628800 + x2 * (1.0f / 479001600))))));
-		sn = sign * sn;
-		cs = sign * cs;
-		p1 = r * cs;
-		p2 = r * sn;
-		q = one - p1 * p1;
-		p2 = (one - w) * v4_sqrt(v4_max0(q)) + w * p2;
-		q = one - p1 * p1 - p2 * p2;
-		lh = v4_sqrt(v4_max0(q));
-		nx = alpha * (p1 * s->t1[0] + p2 * s->t2[0] + lh * s->vh[0]);
-		ny = alpha * (p1 * s->t1[1] + p2 * s->t2[1] + lh * s->vh[1]);
-		nz = v4_max0(p1 * s->t1[2] + p2 * s->t2[2] + lh * s->vh[2]);
-		len = one / v4_sqrt(nx * nx + ny * ny + nz * nz);
-		nx = nx * len;
-		ny = ny * len;
-		nz = nz * len;
-		memcpy(hx + i, &nx, sizeof(nx));
-		memcpy(hy + i, &ny, sizeof(ny));
-		memcpy(hz + i, &nz, sizeof(nz));
-	}
+	i = vndf_lanes_4(s, i, n, u0, u1, hx, hy, hz);
 #endif
 	for (; i < n; i++)
 		sample_vndf_one(s, u0[i], u1[i], hx + i, hy + i, hz + i);
@@ -370,53 +374,18 @@ footprint_lod(const struct rf_host *host, const float d[3], float omega)
  * the same operations (the same bits; the largest of three magnitudes is
  * the same by max as by comparisons). */
 static void
-footprint_lods(const struct rf_host *host, uint32_t n, const float *restrict lookup,
+footprint_lods(int wide, const struct rf_host *host, uint32_t n, const float *restrict lookup,
                const float *restrict jac, const float *restrict pdf, float share,
                float *restrict lod)
 {
 	uint32_t i = 0;
 
+#if defined(RAYTRACED_WIDE)
+	if (wide)
+		i = lod_lanes_8(host, i, n, lookup, jac, pdf, share, lod);
+#endif
 #if defined(__SSE2__)
-	const float top = (float)(host->env_levels - 1);
-	const float scale = 4.0f / ((float)host->env_size * (float)host->env_size);
-	const v4f zero = { 0, 0, 0, 0 }, one = { 1, 1, 1, 1 }, vtop = { top, top, top, top };
-	const v4i expmask = { 0xFF, 0xFF, 0xFF, 0xFF }, mant = { 0x007FFFFF, 0x007FFFFF,
-	                                                        0x007FFFFF, 0x007FFFFF };
-	const v4i onebits = { 0x3F800000, 0x3F800000, 0x3F800000, 0x3F800000 };
-	const v4f lowest = { -1e30f, -1e30f, -1e30f, -1e30f };
-
-	for (; i + 4 <= n; i += 4) {
-		const v4i magnitude = { 0x7FFFFFFF, 0x7FFFFFFF, 0x7FFFFFFF, 0x7FFFFFFF };
-		v4f d[3], m, texel, omega, x, e, f, t, t2, l, r;
-		v4i bits, pos, ok;
-		int j;
-
-		aos_to_soa(lookup + 3 * i, d);
-		for (j = 0; j < 3; j++)
-			d[j] = (v4f)((v4i)d[j] & magnitude);
-		m = __builtin_ia32_maxps(__builtin_ia32_maxps(d[0], d[1]), d[2]);
-		texel = scale * m * m * m;
-		memcpy(&omega, jac + i, sizeof(omega));
-		memcpy(&t, pdf + i, sizeof(t));
-		omega = omega / (share * t);
-		x = omega / texel;
-		/* fast_log2, lane by lane */
-		bits = (v4i)x;
-		e = __builtin_convertvector((bits >> 23) & expmask, v4f) - 127.0f;
-		f = (v4f)((bits & mant) | onebits);
-		t = (f - one) / (f + one);
-		t2 = t * t;
-		l = e + 2.88539008f * t * (one + t2 * (1.0f / 3 + t2 * (1.0f / 5 + t2 * (1.0f / 7))));
-		pos = x > zero;
-		l = (v4f)(((v4i)l & pos) | ((v4i)lowest & ~pos));
-		l = 0.5f * l;
-		/* clamp to [0, top]; NaN: 0 */
-		ok = l < vtop;
-		r = (v4f)(((v4i)l & ok) | ((v4i)vtop & ~ok));
-		pos = l > zero;
-		r = (v4f)((v4i)r & pos);
-		memcpy(lod + i, &r, sizeof(r));
-	}
+	i = lod_lanes_4(host, i, n, lookup, jac, pdf, share, lod);
 #endif
 	for (; i < n; i++)
 		lod[i] = footprint_lod(host, lookup + 3 * i, jac[i] / (share * pdf[i]));
@@ -467,15 +436,6 @@ read_rays(struct raytraced *rt, uint32_t n)
 	host->sample_radiance(host->ctx, n, rt->x, rt->y, rt->z, rt->lod, rt->rgba);
 }
 
-/* What a pixel's rays share: the lobe's frame, its view and the terms
- * of the estimator that do not depend on the ray. */
-struct lobe {
-	struct vndf_view view;
-	float p[3], n[3], x[3], y[3], v[3], ng[3];
-	float nv, alpha2, av, g1v, fixed_lod;
-	int has_ng;
-};
-
 /* Takes n rays of the lobe from their numbers u0, u1 (whose density in
  * the unit square is dens, or 1 when dens is NULL) to their weights
  * f N.L / pdf (rt->weight) and radiance (rt->rgba), with the index of
@@ -494,54 +454,16 @@ trace_lobe(struct raytraced *rt, const struct lobe *lb, uint32_t n, const float 
 
 	/* The microfacet normals of all rays at once, into scratch that the
 	 * projection overwrites later. */
-	sample_vndf_batch(&lb->view, n, u0, u1, hxs, hys, hzs);
-#if defined(__SSE2__)
-	/* Four rays at a time, as the loop below does one: the same
+	sample_vndf_batch(rt->wide, &lb->view, n, u0, u1, hxs, hys, hzs);
+	/* Whole vectors of rays, as the loop below does one: the same
 	 * operations, so the same bits. */
-	for (; !original && i + 4 <= n; i += 4) {
-		const v4f zero = { 0, 0, 0, 0 }, one = { 1, 1, 1, 1 };
-		v4f hx, hy, hz, c, lx, ly, lz, wx, wy, wz, cl, gl, al, wt, pd, t;
-		v4i ok;
-		int j;
-
-		memcpy(&hx, hxs + i, sizeof(hx));
-		memcpy(&hy, hys + i, sizeof(hy));
-		memcpy(&hz, hzs + i, sizeof(hz));
-		c = v[0] * hx + v[1] * hy + v[2] * hz;
-		c = v4_max0(c);
-		ok = c < one; /* as sat(): NaN and below 0 give 0, above 1 gives 1 */
-		c = (v4f)(((v4i)c & ok) | ((v4i)one & ~ok));
-		lx = 2.0f * c * hx - v[0];
-		ly = 2.0f * c * hy - v[1];
-		lz = 2.0f * c * hz - v[2];
-		wx = lx * x[0] + ly * y[0] + lz * nn[0];
-		wy = lx * x[1] + ly * y[1] + lz * nn[1];
-		wz = lx * x[2] + ly * y[2] + lz * nn[2];
-		cl = nn[0] * wx + nn[1] * wy + nn[2] * wz;
-		gl = ng[0] * wx + ng[1] * wy + ng[2] * wz;
-		ok = cl > zero;
-		if (has_ng)
-			ok &= gl > zero;
-		al = v4_sqrt(alpha2 + (1.0f - alpha2) * cl * cl);
-		wt = rt->masking == MASKING_SEPARABLE ? 2.0f * cl / (cl + al)
-		                                     : cl * (nv + av) / (av * cl + al * nv);
-		t = hz * hz * (alpha2 - 1.0f) + 1.0f;
-		pd = g1v * (alpha2 / (3.14159265359f * t * t)) / (4.0f * nv);
-		/* Every lane is written where the next ray that counts goes,
-		 * and the count moves by those that do: no branch to mispredict
-		 * on rays that fall below the surface at random.  The count
-		 * never passes the lane's own ray, so every write is inside
-		 * the arrays. */
-		for (j = 0; j < 4; j++) {
-			rt->weight[count] = wt[j];
-			rt->pdf[count] = pd[j];
-			rt->index[count] = i + (uint32_t)j;
-			rt->dir[3 * count] = wx[j];
-			rt->dir[3 * count + 1] = wy[j];
-			rt->dir[3 * count + 2] = wz[j];
-			count += (uint32_t)ok[j] & 1u;
-		}
-	}
+#if defined(RAYTRACED_WIDE)
+	if (!original && rt->wide)
+		i = lobe_lanes_8(rt, lb, i, n, hxs, hys, hzs, &count);
+#endif
+#if defined(__SSE2__)
+	if (!original)
+		i = lobe_lanes_4(rt, lb, i, n, hxs, hys, hzs, &count);
 #endif
 	for (; i < n; i++) {
 		float h[3] = { hxs[i], hys[i], hzs[i] };
@@ -588,7 +510,7 @@ trace_lobe(struct raytraced *rt, const struct lobe *lb, uint32_t n, const float 
 			rt->weight[i] /= dens[rt->index[i]];
 	project(rt, lb->p, count);
 	if (!original && !rt->mipoffset) {
-		footprint_lods(host, count, rt->lookup, rt->jac, rt->pdf, share, rt->lod);
+		footprint_lods(rt->wide, host, count, rt->lookup, rt->jac, rt->pdf, share, rt->lod);
 	} else {
 		for (i = 0; i < count; i++)
 			rt->lod[i] = lb->fixed_lod;
@@ -1001,6 +923,17 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 		return -1;
 	}
 	rt->host = host;
+#if defined(RAYTRACED_WIDE)
+	{
+		/* REFLECT_SIMD=off, the library's switch for its own kernels:
+		 * the four-lane code, to compare (the same bits) */
+		const char *simd = getenv("REFLECT_SIMD");
+
+		__builtin_cpu_init();
+		rt->wide = __builtin_cpu_supports("avx2") &&
+		           !(simd && (!strcmp(simd, "off") || !strcmp(simd, "0")));
+	}
+#endif
 	rt->samples = (uint32_t)values[SAMPLES];
 	rt->pattern = (int)values[PATTERN];
 	rt->animate = values[ANIMATE] != 0.0;
