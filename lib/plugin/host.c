@@ -39,6 +39,7 @@ struct rf_plugin_host {
 	struct rf__rgba_levels levels;
 	int vector;
 	struct box box;
+	int wide_rays; /* project_rays in eight lanes (AVX2) */
 	struct bevel bevel; /* the probe's rounded box, when probe.bevel > 0 */
 	/* The first fail() of a block: set once (failed), read after the
 	 * block's threads are joined. */
@@ -141,67 +142,55 @@ lod_to_roughness(void *ctx, float lod)
 	return rf_lod_to_roughness(h->mapping, h->steps, lod);
 }
 
-/* project_rays' loop for p inside the box, four rays at a time in SSE
- * vectors where the compiler has them, by the same operations in the
- * same order (the same bits as one at a time); returns how many rays it
- * did, a multiple of 4. */
+/* project_rays' loop for p inside the box, whole vectors of rays at a
+ * time (project-lanes.h), by the same operations in the same order (the
+ * same bits as one at a time). */
+#if defined(__SSE2__)
+typedef float proj_v4 __attribute__((vector_size(16)));
+typedef int proj_v4i __attribute__((vector_size(16)));
+#define LANES 4
+#define VF proj_v4
+#define VI proj_v4i
+#define NAME(x) x##_4
+#define LANES_ATTR
+#include "plugin/project-lanes.h"
+#undef LANES
+#undef VF
+#undef VI
+#undef NAME
+#undef LANES_ATTR
+#endif
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+/* AVX2 without FMA: eight lanes, every rounding the same */
+#define PROJECT_WIDE 1
+typedef float proj_v8 __attribute__((vector_size(32)));
+typedef int proj_v8i __attribute__((vector_size(32)));
+#define LANES 8
+#define VF proj_v8
+#define VI proj_v8i
+#define NAME(x) x##_8
+#define LANES_ATTR __attribute__((target("avx2")))
+#include "plugin/project-lanes.h"
+#undef LANES
+#undef VF
+#undef VI
+#undef NAME
+#undef LANES_ATTR
+#endif
+
+/* How many rays from p inside the box the vector loops did. */
 static uint32_t
-project_rays4(const struct box *b, uint32_t n, const float p[3], const float *dirs,
-              float *lookup, float *dist, float *jacobian)
+project_rays_vector(const rf_plugin_host *h, uint32_t n, const float p[3], const float *dirs,
+                    float *lookup, float *dist, float *jacobian)
 {
 	uint32_t i = 0;
 
+#if defined(PROJECT_WIDE)
+	if (h->wide_rays)
+		i = project_lanes_8(&h->box, i, n, p, dirs, lookup, dist, jacobian);
+#endif
 #if defined(__SSE2__)
-	const box_v4 inf = { INFINITY, INFINITY, INFINITY, INFINITY }, zero = { 0, 0, 0, 0 };
-	const box_v4 one = { 1, 1, 1, 1 };
-	const box_v4i sign = { 0x7FFFFFFF, 0x7FFFFFFF, 0x7FFFFFFF, 0x7FFFFFFF };
-
-	for (; i + 4 <= n; i += 4) {
-		box_v4 dv[3], t = inf, lk[3], hx, hy, hz, len, inv, num, den, jac, da, la;
-		box_v4i axis = { 0, 0, 0, 0 }, hit, pos;
-		int k;
-
-		aos_to_soa(dirs + 3 * i, dv);
-		for (k = 0; k < 3; k++) {
-			const box_v4 hi = { b->hi[k], b->hi[k], b->hi[k], b->hi[k] };
-			const box_v4 lo = { b->lo[k], b->lo[k], b->lo[k], b->lo[k] };
-			const box_v4i kv = { k, k, k, k };
-			box_v4 wall = box_select(dv[k] > zero, hi, lo), tk, ad;
-			box_v4i take;
-
-			tk = (wall - p[k]) / dv[k];
-			ad = (box_v4)((box_v4i)dv[k] & sign);
-			take = (ad > AXIS_EPSILON) & (tk < t);
-			t = box_select(take, tk, t);
-			axis = (kv & take) | (axis & ~take);
-		}
-		hit = t < inf;
-		t = box_select(t < zero, zero, t);
-		hx = p[0] + dv[0] * t - b->center[0];
-		hy = p[1] + dv[1] * t - b->center[1];
-		hz = p[2] + dv[2] * t - b->center[2];
-		len = __builtin_ia32_sqrtps(hx * hx + hy * hy + hz * hz);
-		inv = one / len;
-		pos = len > zero;
-		lk[0] = box_select(pos, hx * inv, dv[0]);
-		lk[1] = box_select(pos, hy * inv, dv[1]);
-		lk[2] = box_select(pos, hz * inv, dv[2]);
-		/* the lookup's and the ray's components on the wall's axis */
-		la = box_select(axis == 0, lk[0], box_select(axis == 1, lk[1], lk[2]));
-		da = box_select(axis == 0, dv[0], box_select(axis == 1, dv[1], dv[2]));
-		la = (box_v4)((box_v4i)la & sign);
-		da = (box_v4)((box_v4i)da & sign);
-		num = t * t * la;
-		den = len * len * da;
-		jac = box_select(pos, num / den, one);
-		for (k = 0; k < 3; k++)
-			lk[k] = box_select(hit, lk[k], dv[k]);
-		jac = box_select(hit, jac, one);
-		t = box_select(hit, t, inf);
-		soa_to_aos(lk, lookup + 3 * i);
-		memcpy(dist + i, &t, sizeof(t));
-		memcpy(jacobian + i, &jac, sizeof(jac));
-	}
+	i = project_lanes_4(&h->box, i, n, p, dirs, lookup, dist, jacobian);
 #endif
 	return i;
 }
@@ -255,7 +244,7 @@ project_rays(void *ctx, uint32_t n, const float p[3], const float *dirs, float *
 	for (k = 0; k < 3; k++)
 		if (p[k] < b->outer_lo[k] || p[k] > b->outer_hi[k])
 			inside = 0;
-	i = inside ? project_rays4(b, n, p, dirs, lookup, dist, jacobian) : 0;
+	i = inside ? project_rays_vector(h, n, p, dirs, lookup, dist, jacobian) : 0;
 	for (; i < n; i++) {
 		const float *dir = dirs + 3 * i;
 		float *d = lookup + 3 * i, t = INFINITY, reach;
@@ -507,6 +496,17 @@ rf_plugin_host_create(rf_plugin_host **hp)
 	if (!(*hp = h = calloc(1, sizeof(*h))))
 		return RF_ENOMEM;
 	h->table.size = sizeof(h->table);
+#if defined(PROJECT_WIDE)
+	{
+		/* REFLECT_SIMD=off: the four-lane code, to compare (the same
+		 * bits) */
+		const char *simd = getenv("REFLECT_SIMD");
+
+		__builtin_cpu_init();
+		h->wide_rays = __builtin_cpu_supports("avx2") &&
+		               !(simd && (!strcmp(simd, "off") || !strcmp(simd, "0")));
+	}
+#endif
 	h->table.abi_major = RF_PLUGIN_ABI_MAJOR;
 	h->table.abi_minor = RF_PLUGIN_ABI_MINOR;
 	h->table.ctx = h;
