@@ -10,6 +10,7 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <string.h>
 
 /* Two 64 x 64 blue-noise masks, made at build time by bluenoise-gen.c. */
 #include "shade/bluenoise.h"
@@ -68,7 +69,8 @@ fract(float x)
 static inline float
 fract_below2(float x)
 {
-	return x >= 1.0f ? x - 1.0f : x;
+	/* less 1 or less 0, no branch: the loop becomes vector code */
+	return x - (float)(x >= 1.0f);
 }
 
 /* Point i of the Hammersley set of n: ((i + 1/2) / n, radical inverse). */
@@ -117,20 +119,21 @@ sequence_pairs(int pattern, uint32_t seed, uint32_t frame, uint32_t r2_step, uin
 		f0 = (float)r2_step * 0.7548776662f;
 		f1 = (float)r2_step * 0.5698402910f;
 	}
-	for (i = 0; i < n; i++) {
-		float a = ham0[i], b = ham1[i];
-
-		if (pattern == SEQUENCE_BLUE) {
-			a = fract_below2(a + b0);
-			b = fract_below2(b + b1);
+	/* one pass a step, each without a test inside */
+	if (pattern == SEQUENCE_BLUE) {
+		for (i = 0; i < n; i++) {
+			u0[i] = fract_below2(ham0[i] + b0);
+			u1[i] = fract_below2(ham1[i] + b1);
 		}
-		if (r2_step) {
-			a = fract(a + f0);
-			b = fract(b + f1);
-		}
-		u0[i] = a;
-		u1[i] = b;
+	} else {
+		memcpy(u0, ham0, n * sizeof(*u0));
+		memcpy(u1, ham1, n * sizeof(*u1));
 	}
+	if (r2_step)
+		for (i = 0; i < n; i++) {
+			u0[i] = fract(u0[i] + f0);
+			u1[i] = fract(u1[i] + f1);
+		}
 }
 
 #endif
