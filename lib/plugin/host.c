@@ -145,38 +145,8 @@ lod_to_roughness(void *ctx, float lod)
 /* project_rays' loop for p inside the box, whole vectors of rays at a
  * time (project-lanes.h), by the same operations in the same order (the
  * same bits as one at a time). */
-#if defined(__SSE2__)
-typedef float proj_v4 __attribute__((vector_size(16)));
-typedef int proj_v4i __attribute__((vector_size(16)));
-#define LANES 4
-#define VF proj_v4
-#define VI proj_v4i
-#define NAME(x) x##_4
-#define LANES_ATTR
-#include "plugin/project-lanes.h"
-#undef LANES
-#undef VF
-#undef VI
-#undef NAME
-#undef LANES_ATTR
-#endif
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-/* AVX2 without FMA: eight lanes, every rounding the same */
-#define PROJECT_WIDE 1
-typedef float proj_v8 __attribute__((vector_size(32)));
-typedef int proj_v8i __attribute__((vector_size(32)));
-#define LANES 8
-#define VF proj_v8
-#define VI proj_v8i
-#define NAME(x) x##_8
-#define LANES_ATTR __attribute__((target("avx2")))
-#include "plugin/project-lanes.h"
-#undef LANES
-#undef VF
-#undef VI
-#undef NAME
-#undef LANES_ATTR
-#endif
+#define LANES_BODY "plugin/project-lanes.h"
+#include "lanes-widths.h"
 
 /* How many rays from p inside the box the vector loops did. */
 static uint32_t
@@ -185,7 +155,7 @@ project_rays_vector(const rf_plugin_host *h, uint32_t n, const float p[3], const
 {
 	uint32_t i = 0;
 
-#if defined(PROJECT_WIDE)
+#if defined(LANES_WIDE)
 	if (h->wide_rays)
 		i = project_lanes_8(&h->box, i, n, p, dirs, lookup, dist, jacobian);
 #endif
@@ -496,17 +466,7 @@ rf_plugin_host_create(rf_plugin_host **hp)
 	if (!(*hp = h = calloc(1, sizeof(*h))))
 		return RF_ENOMEM;
 	h->table.size = sizeof(h->table);
-#if defined(PROJECT_WIDE)
-	{
-		/* REFLECT_SIMD=off: the four-lane code, to compare (the same
-		 * bits) */
-		const char *simd = getenv("REFLECT_SIMD");
-
-		__builtin_cpu_init();
-		h->wide_rays = __builtin_cpu_supports("avx2") &&
-		               !(simd && (!strcmp(simd, "off") || !strcmp(simd, "0")));
-	}
-#endif
+	h->wide_rays = lanes_wide();
 	h->table.abi_major = RF_PLUGIN_ABI_MAJOR;
 	h->table.abi_minor = RF_PLUGIN_ABI_MINOR;
 	h->table.ctx = h;

@@ -3,41 +3,13 @@
  * includes it for 4 (SSE, every x86-64) and, where the compiler can
  * target it, for 8 (AVX2, chosen at run time).  The same operations lane
  * by lane, in the same order, and no fused multiply-add: the same bits
- * at either width.  Before including, define LANES, VF and VI (vector
- * types of LANES floats and int32s), NAME(x) (x with a suffix) and
- * TAPS_ATTR (the functions' target attribute, or nothing).
+ * at either width.  Included by lanes-widths.h (see lanes.h).
  */
 
-TAPS_ATTR static inline VF
-NAME(v_splat)(float x)
-{
-	VF v;
-	int k;
-
-	for (k = 0; k < LANES; k++)
-		v[k] = x;
-	return v;
-}
-
-TAPS_ATTR static inline VF
-NAME(v_select)(VI m, VF a, VF b)
-{
-	return (VF)(((VI)a & m) | ((VI)b & ~m));
-}
-
-TAPS_ATTR static inline VF
-NAME(v_sqrt)(VF x)
-{
-	VF r;
-	int i;
-
-	for (i = 0; i < LANES; i++)
-		r[i] = sqrtf(x[i]);
-	return r;
-}
+#include "../lanes.h"
 
 /* exp_neg, lane by lane the same operations */
-TAPS_ATTR static inline VF
+LANES_ATTR static inline VF
 NAME(v_exp_neg)(VF x)
 {
 	const VF t = x * 1.44269504f;
@@ -51,7 +23,7 @@ NAME(v_exp_neg)(VF x)
 	return NAME(v_select)(ok, r, NAME(v_splat)(0.0f));
 }
 
-TAPS_ATTR static inline VF
+LANES_ATTR static inline VF
 NAME(v_ipow)(VF x, uint32_t n)
 {
 	VF r = NAME(v_splat)(1.0f);
@@ -71,17 +43,8 @@ NAME(v_ipow)(VF x, uint32_t n)
 	return r;
 }
 
-TAPS_ATTR static inline VF
-NAME(vload)(const float *p)
-{
-	VF v;
-
-	memcpy(&v, p, sizeof(v));
-	return v;
-}
-
 /* Field f of pixels x .. x + LANES - 1 of a planar row of width w. */
-TAPS_ATTR static inline VF
+LANES_ATTR static inline VF
 NAME(lanes)(const float *row, size_t w, size_t f, long x)
 {
 	const float *a = row + f * w;
@@ -104,7 +67,7 @@ NAME(lanes)(const float *row, size_t w, size_t f, long x)
  * through memory, tap by tap, cost a fifth of the filter.  Through
  * memory, not vectors returned: the caller is not compiled for the wide
  * target. */
-TAPS_ATTR static void
+LANES_ATTR static void
 NAME(taps)(const struct atrous *a, const struct rf_span *span, long x, const float *lp,
            uint32_t v0, uint32_t v1, float *wsum_out, float *vsum_out)
 {
@@ -136,7 +99,7 @@ NAME(taps)(const struct atrous *a, const struct rf_span *span, long x, const flo
 			const long qx = x + dx * (long)step;
 			/* lanes all inside the row: plain loads, else lane by lane */
 			const int inside = qx >= 0 && qx + LANES <= (long)w;
-#define LD(f) (inside ? NAME(vload)(q + (size_t)(f) * w + qx) : NAME(lanes)(q, w, (f), qx))
+#define LD(f) (inside ? NAME(v_load)(q + (size_t)(f) * w + qx) : NAME(lanes)(q, w, (f), qx))
 			VF nd, e, wt, ddx, ddy, ddz, dist2, plane;
 			VI keep;
 
@@ -190,7 +153,7 @@ NAME(taps)(const struct atrous *a, const struct rf_span *span, long x, const flo
 
 			if (t == centre)
 				continue;
-			vq = tap_inside[t] ? NAME(vload)(q + f * w + tap_x[t])
+			vq = tap_inside[t] ? NAME(v_load)(q + f * w + tap_x[t])
 			                   : NAME(lanes)(q, w, f, tap_x[t]);
 			vsum += wts[t] * (vq - pv);
 		}

@@ -215,35 +215,8 @@ lobe_limit(const struct atrous *a, const struct rf_span *span, float *act)
  * vector code, the same bits wherever it lies and at either width.  A
  * tap off the row's ends reads lanes one by one, an objid of NaN for the
  * lanes outside (which then weigh nothing). */
-typedef float v4f __attribute__((vector_size(16)));
-typedef int32_t v4i __attribute__((vector_size(16)));
-#define LANES 4
-#define VF v4f
-#define VI v4i
-#define NAME(x) x##_4
-#define TAPS_ATTR
-#include "atrous-taps.h"
-#undef LANES
-#undef VF
-#undef VI
-#undef NAME
-#undef TAPS_ATTR
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define ATROUS_WIDE 1
-typedef float v8f __attribute__((vector_size(32)));
-typedef int32_t v8i __attribute__((vector_size(32)));
-#define LANES 8
-#define VF v8f
-#define VI v8i
-#define NAME(x) x##_8
-#define TAPS_ATTR __attribute__((target("avx2")))
-#include "atrous-taps.h"
-#undef LANES
-#undef VF
-#undef VI
-#undef NAME
-#undef TAPS_ATTR
-#endif
+#define LANES_BODY "filter/atrous-taps.h"
+#include "../lanes-widths.h"
 
 /* Per-instance scratch, grown in run() (once a size, not per pixel). */
 static int
@@ -324,7 +297,7 @@ group(const struct atrous *a, const struct rf_span *span, uint32_t i, const floa
 	for (v0 = 0; v0 < nv; v0 += 64) {
 		uint32_t v1 = v0 + 64 < nv ? v0 + 64 : nv;
 
-#if defined(ATROUS_WIDE)
+#if defined(LANES_WIDE)
 		if (a->wide) {
 			taps_8(a, span, (long)i, lp + i, v0, v1, wsum, vsum[0]);
 		} else
@@ -374,17 +347,7 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	a->inv_rough = (float)(1.0 / values[ROUGHNESS]);
 	a->inv_color = values[COLOR] > 0.0 ? (float)(1.0 / values[COLOR]) : 0.0f;
 	a->lobe = (float)values[LOBE];
-#if defined(ATROUS_WIDE)
-	{
-		/* REFLECT_SIMD=off, the library's switch for its own kernels:
-		 * the four-lane code, to compare (the same bits) */
-		const char *simd = getenv("REFLECT_SIMD");
-
-		__builtin_cpu_init();
-		a->wide = __builtin_cpu_supports("avx2") &&
-		          !(simd && (!strcmp(simd, "off") || !strcmp(simd, "0")));
-	}
-#endif
+	a->wide = lanes_wide();
 	for (i = 0; i < a->passes; i++)
 		radius[i] = 2u << i;
 	if (host->filter_passes(host->ctx, a->passes, radius) < 0) {

@@ -6,74 +6,10 @@
  * where it stopped; the caller finishes with the narrower width and then
  * one ray at a time.  The same operations lane by lane, in the same
  * order, and no fused multiply-add: the same bits at either width and in
- * the scalar loops.  Before including, define LANES, VF and VI (vector
- * types of LANES floats and int32s), NAME(x) (x with a suffix) and
- * LANES_ATTR (the functions' target attribute, or nothing).
+ * the scalar loops.  Included by lanes-widths.h (see lanes.h).
  */
 
-LANES_ATTR static inline VF
-NAME(v_splat)(float x)
-{
-	VF v;
-	int k;
-
-	for (k = 0; k < LANES; k++)
-		v[k] = x;
-	return v;
-}
-
-LANES_ATTR static inline VF
-NAME(v_max0)(VF x)
-{
-	/* as max0: NaN and -0 give 0 */
-	return (VF)((VI)x & (x > NAME(v_splat)(0.0f)));
-}
-
-LANES_ATTR static inline VF
-NAME(v_sqrt)(VF x)
-{
-	VF r;
-	int k;
-
-	for (k = 0; k < LANES; k++)
-		r[k] = sqrtf(x[k]);
-	return r;
-}
-
-LANES_ATTR static inline VF
-NAME(v_load)(const float *p)
-{
-	VF v;
-
-	memcpy(&v, p, sizeof(v));
-	return v;
-}
-
-LANES_ATTR static inline void
-NAME(v_store)(float *p, VF v)
-{
-	memcpy(p, &v, sizeof(v));
-}
-
-/* LANES xyz triples to three vectors, four at a time by soa.h's
- * shuffles, joined in registers (lanes written one by one would go
- * through memory, and the wide load after the narrow stores waits:
- * 15 % of lod_lanes_8). */
-LANES_ATTR static inline void
-NAME(v_aos_to_soa)(const float *in, VF v[3])
-{
-#if LANES == 4
-	aos_to_soa(in, v);
-#else
-	soa_v4 a[3], b[3];
-	int j;
-
-	aos_to_soa(in, a);
-	aos_to_soa(in + 12, b);
-	for (j = 0; j < 3; j++)
-		v[j] = __builtin_shufflevector(a[j], b[j], 0, 1, 2, 3, 4, 5, 6, 7);
-#endif
-}
+#include "../lanes.h"
 
 /* Heitz's sampler (sample_vndf_one), LANES rays at a time. */
 LANES_ATTR static size_t
@@ -197,8 +133,8 @@ NAME(lod_lanes)(const struct rf_host *host, uint32_t i, uint32_t n,
 		for (j = 0; j < 3; j++)
 			d[j] = (VF)((VI)d[j] & 0x7FFFFFFF);
 		/* maxps's rule, a > b ? a : b */
-		m = (VF)(((VI)d[0] & (d[0] > d[1])) | ((VI)d[1] & ~(d[0] > d[1])));
-		m = (VF)(((VI)m & (m > d[2])) | ((VI)d[2] & ~(m > d[2])));
+		m = NAME(v_select)(d[0] > d[1], d[0], d[1]);
+		m = NAME(v_select)(m > d[2], m, d[2]);
 		texel = scale * m * m * m;
 		omega = NAME(v_load)(jac + i);
 		t = NAME(v_load)(pdf + i);

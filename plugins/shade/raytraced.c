@@ -250,54 +250,9 @@ sample_vndf_one(const struct vndf_view *s, float u0, float u1, float *hx, float 
 	*hz = nz * len;
 }
 
-#if defined(__SSE2__)
-typedef float v4f __attribute__((vector_size(16)));
-typedef int v4i __attribute__((vector_size(16)));
-
-static inline v4f
-v4_max0(v4f x)
-{
-	const v4f zero = { 0, 0, 0, 0 };
-
-	/* as max0: NaN and -0 give 0 */
-	return (v4f)((v4i)x & (x > zero));
-}
-
-static inline v4f
-v4_sqrt(v4f x)
-{
-	return __builtin_ia32_sqrtps(x);
-}
-
-#define LANES 4
-#define VF v4f
-#define VI v4i
-#define NAME(x) x##_4
-#define LANES_ATTR
-#include "raytraced-lanes.h"
-#undef LANES
-#undef VF
-#undef VI
-#undef NAME
-#undef LANES_ATTR
-#endif
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-/* AVX2 without FMA: eight lanes, every rounding the same */
-#define RAYTRACED_WIDE 1
-typedef float v8f __attribute__((vector_size(32)));
-typedef int v8i __attribute__((vector_size(32)));
-#define LANES 8
-#define VF v8f
-#define VI v8i
-#define NAME(x) x##_8
-#define LANES_ATTR __attribute__((target("avx2")))
-#include "raytraced-lanes.h"
-#undef LANES
-#undef VF
-#undef VI
-#undef NAME
-#undef LANES_ATTR
-#endif
+/* the lobe's loops in vectors of 4 lanes, and of 8 with AVX2 */
+#define LANES_BODY "shade/raytraced-lanes.h"
+#include "../lanes-widths.h"
 
 static void
 sample_vndf_batch(int wide, const struct vndf_view *s, size_t n, const float *restrict u0,
@@ -306,7 +261,7 @@ sample_vndf_batch(int wide, const struct vndf_view *s, size_t n, const float *re
 {
 	size_t i = 0;
 
-#if defined(RAYTRACED_WIDE)
+#if defined(LANES_WIDE)
 	if (wide)
 		i = vndf_lanes_8(s, i, n, u0, u1, hx, hy, hz);
 #endif
@@ -380,7 +335,7 @@ footprint_lods(int wide, const struct rf_host *host, uint32_t n, const float *re
 {
 	uint32_t i = 0;
 
-#if defined(RAYTRACED_WIDE)
+#if defined(LANES_WIDE)
 	if (wide)
 		i = lod_lanes_8(host, i, n, lookup, jac, pdf, share, lod);
 #endif
@@ -457,7 +412,7 @@ trace_lobe(struct raytraced *rt, const struct lobe *lb, uint32_t n, const float 
 	sample_vndf_batch(rt->wide, &lb->view, n, u0, u1, hxs, hys, hzs);
 	/* Whole vectors of rays, as the loop below does one: the same
 	 * operations, so the same bits. */
-#if defined(RAYTRACED_WIDE)
+#if defined(LANES_WIDE)
 	if (!original && rt->wide)
 		i = lobe_lanes_8(rt, lb, i, n, hxs, hys, hzs, &count);
 #endif
@@ -574,14 +529,14 @@ count_at_most(const float *r, uint32_t stride, float s)
 	uint32_t i = 0, count = 0;
 
 #if defined(__SSE2__)
-	const v4f vs = { s, s, s, s };
-	v4i acc = { 0, 0, 0, 0 };
+	const lanes_v4f vs = { s, s, s, s };
+	lanes_v4i acc = { 0, 0, 0, 0 };
 
 	for (; i < stride; i += 4) {
-		v4f x;
+		lanes_v4f x;
 
 		memcpy(&x, r + i, sizeof(x));
-		acc -= (v4i)(x <= vs);
+		acc -= (lanes_v4i)(x <= vs);
 	}
 	count = (uint32_t)(acc[0] + acc[1] + acc[2] + acc[3]);
 #endif
@@ -716,23 +671,23 @@ invert_trapezoids(size_t n, const float *restrict a0, const float *restrict a1,
 	size_t i = 0;
 
 #if defined(__SSE2__)
-	const v4f zero = { 0, 0, 0, 0 }, top = { 0.99999994f, 0.99999994f, 0.99999994f,
+	const lanes_v4f zero = { 0, 0, 0, 0 }, top = { 0.99999994f, 0.99999994f, 0.99999994f,
 	                                         0.99999994f };
 
 	for (; i + 4 <= n; i += 4) {
-		v4f va0, va1, vs, vo, q, r;
-		v4i in;
+		lanes_v4f va0, va1, vs, vo, q, r;
+		lanes_v4i in;
 
 		memcpy(&va0, a0 + i, sizeof(va0));
 		memcpy(&va1, a1 + i, sizeof(va1));
 		memcpy(&vs, s + i, sizeof(vs));
 		memcpy(&vo, off + i, sizeof(vo));
 		q = vs * g;
-		r = 2.0f * q / (va0 + v4_sqrt(v4_max0(va0 * va0 + 2.0f * (va1 - va0) * q)));
+		r = 2.0f * q / (va0 + v_sqrt_4(v_max0_4(va0 * va0 + 2.0f * (va1 - va0) * q)));
 		in = r > zero;
-		r = (v4f)((v4i)r & in); /* below 0 and NaN: 0 */
+		r = (lanes_v4f)((lanes_v4i)r & in); /* below 0 and NaN: 0 */
 		in = r < top;
-		r = (v4f)(((v4i)r & in) | ((v4i)top & ~in));
+		r = (lanes_v4f)(((lanes_v4i)r & in) | ((lanes_v4i)top & ~in));
 		memcpy(t + i, &r, sizeof(r));
 		r = vo + r * h;
 		memcpy(u + i, &r, sizeof(r));
@@ -923,17 +878,7 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 		return -1;
 	}
 	rt->host = host;
-#if defined(RAYTRACED_WIDE)
-	{
-		/* REFLECT_SIMD=off, the library's switch for its own kernels:
-		 * the four-lane code, to compare (the same bits) */
-		const char *simd = getenv("REFLECT_SIMD");
-
-		__builtin_cpu_init();
-		rt->wide = __builtin_cpu_supports("avx2") &&
-		           !(simd && (!strcmp(simd, "off") || !strcmp(simd, "0")));
-	}
-#endif
+	rt->wide = lanes_wide();
 	rt->samples = (uint32_t)values[SAMPLES];
 	rt->pattern = (int)values[PATTERN];
 	rt->animate = values[ANIMATE] != 0.0;
