@@ -206,6 +206,22 @@ rf__wall_emission(const rf_scene *s, int face, const double uv[2], float rgb[3])
  * value is the bits rf__room_exit and rf__wall_emission give.  Rays in a
  * window or on a wall that is not the pattern take the scalar path.
  */
+/* fast_floor by int, inside whose range the clamp keeps x (and where a
+ * NaN goes) */
+#if defined(__GNUC__) && !defined(__clang__)
+__attribute__((optimize("no-trapping-math"), always_inline))
+#endif
+static inline float
+floor_clamped(float x)
+{
+	float f;
+
+	x = x < 1e9f ? x : 1e9f;
+	x = x > -1e9f ? x : -1e9f;
+	f = (float)(int)x;
+	return f > x ? f - 1.0f : f;
+}
+
 /* rf__room_exit's slab along one axis (number i), its branches as
  * selects: the wall at lo or hi that o + t d meets first so far. */
 #if defined(__GNUC__) && !defined(__clang__)
@@ -271,7 +287,7 @@ room_emission_chunk(const rf_scene *s, const double o[3], const float *dx,
 	 * lanes past n are computed and never read */
 	for (j = 0; j < RF__EMIT_CHUNK; j++) {
 		const float d0 = dx[j], d1 = dy[j], d2 = dz[j];
-		float t = INFINITY, p0, p1, p2, su, sv, a, b, fa, fb, du, dv;
+		float t = INFINITY, p0, p1, p2, su, sv, fa, fb, du, dv;
 		int fc = -1, line, parity;
 
 		/* written out in scalars: the vectorizer takes no inner loop
@@ -285,33 +301,16 @@ room_emission_chunk(const rf_scene *s, const double o[3], const float *dx,
 		p2 = o2 + t * d2;
 		us[j] = fc / 2 == 0 ? p2 : p0;
 		vs[j] = fc / 2 == 1 ? p2 : p1;
-		/* pattern_at's tests; fast_floor by int, inside whose range
-		 * the clamp keeps it (and where a NaN goes) */
+		/* pattern_at's tests */
 		su = us[j] * inv_cell;
 		sv = vs[j] * inv_cell;
-		a = su + 0.5f;
-		b = sv + 0.5f;
-		a = a < 1e9f ? a : 1e9f;
-		a = a > -1e9f ? a : -1e9f;
-		b = b < 1e9f ? b : 1e9f;
-		b = b > -1e9f ? b : -1e9f;
-		fa = (float)(int)a;
-		fa = fa > a ? fa - 1.0f : fa;
-		fb = (float)(int)b;
-		fb = fb > b ? fb - 1.0f : fb;
-		du = fabs(su + 0.5f - fa - 0.5f) * cell;
-		dv = fabs(sv + 0.5f - fb - 0.5f) * cell;
+		du = fabsf(su + 0.5f - floor_clamped(su + 0.5f) - 0.5f) * cell;
+		dv = fabsf(sv + 0.5f - floor_clamped(sv + 0.5f) - 0.5f) * cell;
 		line = (du < half_line) | (dv < half_line);
 		/* floor(su) + floor(sv) = floor(su + 0.5) + floor(sv + 0.5)
 		 * would not hold: take su's own */
-		a = su < 1e9f ? su : 1e9f;
-		a = a > -1e9f ? a : -1e9f;
-		b = sv < 1e9f ? sv : 1e9f;
-		b = b > -1e9f ? b : -1e9f;
-		fa = (float)(int)a;
-		fa = fa > a ? fa - 1.0f : fa;
-		fb = (float)(int)b;
-		fb = fb > b ? fb - 1.0f : fb;
+		fa = floor_clamped(su);
+		fb = floor_clamped(sv);
 		parity = ((int)fa + (int)fb) & 1;
 		cls[j] = line ? 0 : 1 + parity;
 		face[j] = fc;
