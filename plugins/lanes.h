@@ -21,7 +21,7 @@
 
 #include "soa.h"
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define LANES_WIDE 1
 typedef float lanes_v8f __attribute__((vector_size(32)));
 typedef int lanes_v8i __attribute__((vector_size(32)));
