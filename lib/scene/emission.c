@@ -239,81 +239,64 @@ exit_slab(float lo, float hi, float o, float d, int i, float *t, int *face)
 	*t = ti < *t ? ti : *t;
 }
 
+/* The pattern's three colours on each face (and black for a seventh,
+ * no exit): line, even cell, odd cell, by pattern_at's own arithmetic;
+ * pattern[f] says whether face f shows the pattern. */
+static void
+face_colours(const rf_scene *s, float colour[RF__FACES + 1][3][3], int pattern[RF__FACES + 1])
+{
+	const struct pattern *pt = &s->pattern;
+	int f, k;
+
+	for (f = 0; f <= RF__FACES; f++) {
+		const struct emission *e = f < RF__FACES ? rf__wall_emission_of(s, f) : NULL;
+
+		pattern[f] = e && e->kind == EMIT_PATTERN;
+		for (k = 0; k < 3; k++) {
+			const float c = e ? e->rgb[k] : 0.0f;
+
+			colour[f][0][k] = e ? (float)(pt->line * ((1.0 - pt->line_white) * c +
+			                                          pt->line_white))
+			                    : 0.0f;
+			colour[f][1][k] = (float)(c * (pt->base + 0.0));
+			colour[f][2][k] = (float)(c * (pt->base + pt->checker));
+		}
+	}
+}
+
+/* What the rays of a chunk that meet face[j] (-1: none) at (us, vs)
+ * see: one loop without branches sorts them into grid line, even cell
+ * or odd cell, a second finds those in a window; rays in a window or on
+ * a wall that is not the pattern take rf__wall_emission. */
 #if defined(__GNUC__) && !defined(__clang__)
 __attribute__((optimize("no-trapping-math"), always_inline))
 #endif
 static inline void
-room_emission_chunk(const rf_scene *s, const double o[3], const float *dx,
-                    const float *dy, const float *dz, const int *use, size_t n,
-                    float rgb[][3])
+wall_colours(const rf_scene *s, const int *face, const float *us, const float *vs,
+             const int *use, size_t n, float rgb[][3])
 {
-	const struct rf_scene_probe *room = s->nprobes ? &s->probes[0] : NULL;
 	const struct pattern *pt = &s->pattern;
-	/* per face (and a seventh for no exit): line, even cell, odd cell */
+	const float inv_cell = (float)pt->inv_cell, cell = (float)pt->cell;
+	const float half_line = (float)(0.5 * pt->line_width);
 	float colour[RF__FACES + 1][3][3];
-	int pattern[RF__FACES + 1];
-	int face[RF__EMIT_CHUNK], cls[RF__EMIT_CHUNK], win[RF__EMIT_CHUNK];
-	float us[RF__EMIT_CHUNK], vs[RF__EMIT_CHUNK];
-	float lo0, lo1, lo2, hi0, hi1, hi2, o0, o1, o2, inv_cell, cell, half_line;
+	int pattern[RF__FACES + 1], cls[RF__EMIT_CHUNK], win[RF__EMIT_CHUNK];
 	size_t j, w;
-	int f, k;
+	int k;
 
-	if (!s->room || !room) {
-		for (j = 0; j < n; j++)
-			rgb[j][0] = rgb[j][1] = rgb[j][2] = 0.0f;
-		return;
-	}
-	for (f = 0; f <= RF__FACES; f++) {
-		const struct emission *e = f < RF__FACES ? rf__wall_emission_of(s, f) : NULL;
-		const float black[3] = { 0, 0, 0 };
-		const float *c = e ? e->rgb : black;
-
-		pattern[f] = e && e->kind == EMIT_PATTERN;
-		for (k = 0; k < 3; k++) {
-			colour[f][0][k] = (float)(pt->line * ((1.0 - pt->line_white) * c[k] +
-			                                      pt->line_white));
-			colour[f][1][k] = (float)(c[k] * (pt->base + 0.0));
-			colour[f][2][k] = (float)(c[k] * (pt->base + pt->checker));
-		}
-		if (!e)
-			for (k = 0; k < 3; k++)
-				colour[f][0][k] = colour[f][1][k] = colour[f][2][k] = 0.0f;
-	}
-	lo0 = room->box_min[0], lo1 = room->box_min[1], lo2 = room->box_min[2];
-	hi0 = room->box_max[0], hi1 = room->box_max[1], hi2 = room->box_max[2];
-	o0 = o[0], o1 = o[1], o2 = o[2];
-	inv_cell = pt->inv_cell, cell = pt->cell, half_line = 0.5 * pt->line_width;
+	face_colours(s, colour, pattern);
 	/* a fixed trip count: no scalar epilogue, and -O2 vectorizes it;
 	 * lanes past n are computed and never read */
 	for (j = 0; j < RF__EMIT_CHUNK; j++) {
-		const float d0 = dx[j], d1 = dy[j], d2 = dz[j];
-		float t = INFINITY, p0, p1, p2, su, sv, fa, fb, du, dv;
-		int fc = -1, line, parity;
-
-		/* written out in scalars: the vectorizer takes no inner loop
-		 * and no load under a condition */
-		exit_slab(lo0, hi0, o0, d0, 0, &t, &fc);
-		exit_slab(lo1, hi1, o1, d1, 1, &t, &fc);
-		exit_slab(lo2, hi2, o2, d2, 2, &t, &fc);
-		fc = t >= 0.0f ? fc : -1;
-		p0 = o0 + t * d0;
-		p1 = o1 + t * d1;
-		p2 = o2 + t * d2;
-		us[j] = fc / 2 == 0 ? p2 : p0;
-		vs[j] = fc / 2 == 1 ? p2 : p1;
 		/* pattern_at's tests */
-		su = us[j] * inv_cell;
-		sv = vs[j] * inv_cell;
-		du = fabsf(su + 0.5f - floor_clamped(su + 0.5f) - 0.5f) * cell;
-		dv = fabsf(sv + 0.5f - floor_clamped(sv + 0.5f) - 0.5f) * cell;
-		line = (du < half_line) | (dv < half_line);
+		const float su = us[j] * inv_cell, sv = vs[j] * inv_cell;
+		const float du = fabsf(su + 0.5f - floor_clamped(su + 0.5f) - 0.5f) * cell;
+		const float dv = fabsf(sv + 0.5f - floor_clamped(sv + 0.5f) - 0.5f) * cell;
+		const int line = (du < half_line) | (dv < half_line);
 		/* floor(su) + floor(sv) = floor(su + 0.5) + floor(sv + 0.5)
 		 * would not hold: take su's own */
-		fa = floor_clamped(su);
-		fb = floor_clamped(sv);
-		parity = ((int)fa + (int)fb) & 1;
+		const int parity = ((int)floor_clamped(su) + (int)floor_clamped(sv)) & 1;
+
 		cls[j] = line ? 0 : 1 + parity;
-		face[j] = fc;
 		win[j] = 0;
 	}
 	/* the first window a ray is in wins */
@@ -336,6 +319,66 @@ room_emission_chunk(const rf_scene *s, const double o[3], const float *dx,
 		for (k = 0; k < 3; k++)
 			rgb[j][k] = colour[fc][cls[j]][k];
 	}
+}
+
+#if defined(__GNUC__) && !defined(__clang__)
+__attribute__((optimize("no-trapping-math"), always_inline))
+#endif
+static inline void
+room_emission_chunk(const rf_scene *s, const double o[3], const float *dx,
+                    const float *dy, const float *dz, const int *use, size_t n,
+                    float rgb[][3])
+{
+	const struct rf_scene_probe *room = s->nprobes ? &s->probes[0] : NULL;
+	int face[RF__EMIT_CHUNK];
+	float us[RF__EMIT_CHUNK], vs[RF__EMIT_CHUNK];
+	float lo0, lo1, lo2, hi0, hi1, hi2, o0, o1, o2;
+	size_t j;
+
+	if (!s->room || !room) {
+		for (j = 0; j < n; j++)
+			rgb[j][0] = rgb[j][1] = rgb[j][2] = 0.0f;
+		return;
+	}
+	lo0 = room->box_min[0], lo1 = room->box_min[1], lo2 = room->box_min[2];
+	hi0 = room->box_max[0], hi1 = room->box_max[1], hi2 = room->box_max[2];
+	o0 = o[0], o1 = o[1], o2 = o[2];
+	for (j = 0; j < RF__EMIT_CHUNK; j++) {
+		const float d0 = dx[j], d1 = dy[j], d2 = dz[j];
+		float t = INFINITY, p0, p1, p2;
+		int fc = -1;
+
+		/* written out in scalars: the vectorizer takes no inner loop
+		 * and no load under a condition */
+		exit_slab(lo0, hi0, o0, d0, 0, &t, &fc);
+		exit_slab(lo1, hi1, o1, d1, 1, &t, &fc);
+		exit_slab(lo2, hi2, o2, d2, 2, &t, &fc);
+		fc = t >= 0.0f ? fc : -1;
+		p0 = o0 + t * d0;
+		p1 = o1 + t * d1;
+		p2 = o2 + t * d2;
+		us[j] = fc / 2 == 0 ? p2 : p0;
+		vs[j] = fc / 2 == 1 ? p2 : p1;
+		face[j] = fc;
+	}
+	wall_colours(s, face, us, vs, use, n, rgb);
+}
+
+#if defined(__GNUC__) && !defined(__clang__)
+__attribute__((optimize("no-trapping-math")))
+#endif
+void
+rf__wall_emission_chunk(const rf_scene *s, int wall, const float *us, const float *vs,
+                        size_t n, float rgb[][3])
+{
+	int face[RF__EMIT_CHUNK], use[RF__EMIT_CHUNK];
+	size_t j;
+
+	for (j = 0; j < RF__EMIT_CHUNK; j++) {
+		face[j] = wall;
+		use[j] = 1;
+	}
+	wall_colours(s, face, us, vs, use, n, rgb);
 }
 
 #if defined(__GNUC__) && !defined(__clang__)

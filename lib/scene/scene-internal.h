@@ -138,6 +138,10 @@ int rf__room_exit(const rf_scene *s, const double o[3], const double d[3], doubl
 void rf__room_emission_chunk(const rf_scene *s, const double o[3], const float *dx,
                              const float *dy, const float *dz, const int *use, size_t n,
                              float rgb[][3]);
+/* rf__wall_emission for the n points (us[j], vs[j]) of one wall, as
+ * rf__room_emission_chunk reads them. */
+void rf__wall_emission_chunk(const rf_scene *s, int wall, const float *us, const float *vs,
+                             size_t n, float rgb[][3]);
 /* The face of a wall's objid (RF_WALL_*), or -1. */
 int rf__wall_face(int objid);
 /* The wall's emission: its own or the room's. */
