@@ -199,32 +199,38 @@ wall_samples(const struct capture *c, int f, size_t i, size_t j, int wall, size_
 	const double step = 2.0 / ((double)c->n * (double)ns);
 	const double a0 = 2.0 * (double)i / (double)c->n - 1.0 + 0.5 * step;
 	const double b0 = 2.0 * (double)j / (double)c->n - 1.0 + 0.5 * step;
-	double acc[3] = { 0, 0, 0 }, p[3], uv[2];
-	size_t sa, sb;
-	float rgb[3];
-	int m;
+	/* the wall's (u, v) are two of the point's axes: (z, y), (x, z) or
+	 * (x, y), as rf__wall_uv has them */
+	const int ku = k == 0 ? 2 : 0, kv = k == 1 ? 2 : 1;
+	float us[RF__EMIT_CHUNK], vs[RF__EMIT_CHUNK], rgb[RF__EMIT_CHUNK][3];
+	double acc[3] = { 0, 0, 0 };
+	size_t s, total = ns * ns, m, q;
+	int x;
 
-	for (sb = 0; sb < ns; sb++) {
-		const double b = b0 + (double)sb * step;
-
-		for (sa = 0; sa < ns; sa++) {
-			const double a = a0 + (double)sa * step;
+	/* the grid's points a chunk at a time, row after row, read all at
+	 * once by the walls' vector code */
+	for (s = 0; s < total; s += m) {
+		m = total - s < RF__EMIT_CHUNK ? total - s : RF__EMIT_CHUNK;
+		for (q = 0; q < m; q++) {
+			const double a = a0 + (double)((s + q) % ns) * step;
+			const double b = b0 + (double)((s + q) / ns) * step;
 			double d[3], t;
 
-			for (m = 0; m < 3; m++)
-				d[m] = fr->major[m] + a * fr->axis_a[m] + b * fr->axis_b[m];
+			for (x = 0; x < 3; x++)
+				d[x] = fr->major[x] + a * fr->axis_a[x] + b * fr->axis_b[x];
 			t = plane / d[k];
-			for (m = 0; m < 3; m++)
-				p[m] = c->origin[m] + t * d[m];
-			p[k] = plane + c->origin[k];
-			rf__wall_uv(wall, p, uv);
-			rf__wall_emission(c->s, wall, uv, rgb);
-			for (m = 0; m < 3; m++)
-				acc[m] += rgb[m];
+			us[q] = (float)(c->origin[ku] + t * d[ku]);
+			vs[q] = (float)(c->origin[kv] + t * d[kv]);
 		}
+		for (; q < RF__EMIT_CHUNK; q++)
+			us[q] = vs[q] = 0.0f;
+		rf__wall_emission_chunk(c->s, wall, us, vs, m, rgb);
+		for (q = 0; q < m; q++)
+			for (x = 0; x < 3; x++)
+				acc[x] += rgb[q][x];
 	}
-	for (m = 0; m < 3; m++)
-		out[m] = (float)(acc[m] / (double)(ns * ns));
+	for (x = 0; x < 3; x++)
+		out[x] = (float)(acc[x] / (double)(ns * ns));
 }
 
 /* Does anything the wall emits change inside [u0, u1] x [v0, v1]? */
