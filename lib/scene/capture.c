@@ -29,6 +29,7 @@
 #include <string.h>
 
 #include "envmap/envmap-internal.h"
+#include "envmap/rgba_levels.h"
 #include "project/projection.h"
 #include "util/pool.h"
 #include "scene/scene-internal.h"
@@ -62,8 +63,10 @@ struct capture {
 	size_t nvisible;
 	struct face_frame frames[6];
 	struct face_bounds *bounds; /* [face * nvisible + k]; a0 > a1: off the face */
-	/* the bounce before, prefiltered, for shading objects; NULL: none */
+	/* the bounce before, prefiltered, for shading objects; NULL: none;
+	 * and its levels as the shading pass reads them */
 	const rf_cubemap *env;
+	struct rf__rgba_levels env_levels;
 	enum rf_mapping mapping;
 	float steps;
 	float shq[3][9];
@@ -304,7 +307,16 @@ shade_object(const struct capture *c, const struct rf_hit *h, const double d[3],
 	if (c->probe->box_projection && box_exit(&c->box, p, r, &t) == 0)
 		lookup_from_hit(&c->box, p, r, t, dir, &reach);
 	lod = rf_roughness_to_lod(c->mapping, c->steps, h->roughness);
-	rf_cubemap_sample(c->env, dir, lod, spec);
+	{
+		/* the shading pass's own read of the levels (reflect-shade -m
+		 * none): twice as fast as rf_cubemap_sample */
+		const struct rf__lod l = rf__rgba_levels_lod(&c->env_levels, lod);
+		const rf__v4 q = rf__rgba_levels_fetch(dir, &l);
+
+		spec[0] = q[0];
+		spec[1] = q[1];
+		spec[2] = q[2];
+	}
 	rf_dfg_lookup(nv > 0.0f ? nv : 0.0f, h->roughness, &a, &b);
 	rf__sh9_quadratic_eval(c->shq, n, e);
 	for (k = 0; k < 3; k++) {
@@ -489,6 +501,9 @@ light_from(struct capture *c, const rf_cubemap *cube, rf_cubemap **chain, char *
 	po.nthreads = c->o->nthreads;
 	if ((rc = rf_prefilter(cube, *chain, &po, err, errlen)) < 0)
 		return rc;
+	rf__rgba_levels_destroy(&c->env_levels);
+	if ((rc = rf__rgba_levels_from_cube(&c->env_levels, *chain)) < 0)
+		return rc;
 	c->env = *chain;
 	c->mapping = po.mapping;
 	c->steps = (float)(rf_cubemap_levels(*chain) - 1);
@@ -584,6 +599,7 @@ out:
 	rf_cubemap_destroy(cur);
 	rf_cubemap_destroy(prev);
 	rf_cubemap_destroy(chain);
+	rf__rgba_levels_destroy(&c.env_levels);
 	free(c.k);
 	free(c.visible);
 	free(c.bounds);
