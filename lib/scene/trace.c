@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ggx.h"
 #include "util/pool.h"
 #include "scene/scene-internal.h"
 
@@ -36,7 +37,7 @@ struct rf_tracer {
 	uint32_t *seen;     /* objects reflected rays can meet */
 	size_t nseen;
 	double *k;          /* per thread: rf__trace_prepare for a pixel */
-	/* cos and sin of 2 pi radical_inverse(i) for a half's samples: a
+	/* cos and sin of 2 pi ggx_radical_inverse(i) for a half's samples: a
 	 * pixel's rotation turns them by angle addition instead of a sincos
 	 * a sample (a tenth of the time) */
 	float *turn;
@@ -48,8 +49,6 @@ struct block {
 	float *out;
 	size_t y;
 };
-
-static double radical_inverse(uint32_t i);
 
 /* Samples a pass of integrate() takes at a time: the walls' chunk. */
 #define TRACE_CHUNK RF__EMIT_CHUNK
@@ -100,7 +99,7 @@ rf_tracer_create(struct rf_tracer **tp, const rf_scene *s, size_t width, size_t 
 		return RF_ENOMEM;
 	}
 	for (i = 0; i < ((size_t)o->samples + 1) / 2; i++) {
-		double a = 2.0 * M_PI * radical_inverse((uint32_t)i);
+		double a = 2.0 * M_PI * ggx_radical_inverse((uint32_t)i);
 
 		t->turn[2 * i] = (float)cos(a);
 		t->turn[2 * i + 1] = (float)sin(a);
@@ -170,25 +169,6 @@ hash(uint32_t x)
 	return x;
 }
 
-static double
-radical_inverse(uint32_t i)
-{
-	i = (i << 16) | (i >> 16);
-	i = ((i & 0x00ff00ffu) << 8) | ((i & 0xff00ff00u) >> 8);
-	i = ((i & 0x0f0f0f0fu) << 4) | ((i & 0xf0f0f0f0u) >> 4);
-	i = ((i & 0x33333333u) << 2) | ((i & 0xccccccccu) >> 2);
-	i = ((i & 0x55555555u) << 1) | ((i & 0xaaaaaaaau) >> 1);
-	return (double)i * (1.0 / 4294967296.0);
-}
-
-static double
-lambda(double alpha2, double mu)
-{
-	double m2 = mu * mu;
-
-	return m2 > 0.0 ? 0.5 * (sqrt(1.0 + alpha2 * (1.0 - m2) / m2) - 1.0) : INFINITY;
-}
-
 /* What a reflected ray from p along d meets emits. */
 static void
 reflected(const struct rf_tracer *t, const double p[3], const double *k, const double d[3],
@@ -244,7 +224,7 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 	vl[0] = rf__dot(v, x);
 	vl[1] = rf__dot(v, y);
 	vl[2] = rf__dot(v, n);
-	lv = lambda(alpha2, vl[2]);
+	lv = ggx_lambda(alpha2, vl[2]); /* vl[2] > 0: trace_row asks */
 	/* Heitz's view-stretched frame */
 	vh[0] = a * vl[0];
 	vh[1] = a * vl[1];
@@ -302,7 +282,7 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 				i = i0 + j;
 				float u0 = ((float)i + 0.5f) * inv_k + (float)u0r;
 				const float c0 = turn[2 * j], s0 = turn[2 * j + 1];
-				/* cos and sin of 2 pi (radical_inverse(i) + u1r) */
+				/* cos and sin of 2 pi (ggx_radical_inverse(i) + u1r) */
 				const float cs = c0 * rc - s0 * rs, sn = s0 * rc + c0 * rs;
 				float r, p1, p2, w, nhx, nhy, nhz, nex, ney, nez, len2, inv, vn;
 				float lx, ly, lz, lzc, l0, l1, l2, wt;

@@ -7,6 +7,9 @@
 #include <math.h>
 #include <stdint.h>
 
+/* the radical inverse and Smith's Lambda, in double */
+#include "ggx.h"
+
 /*
  * Samples per entry.  Drawing the GGX distribution of *visible* normals
  * (Heitz 2018) rather than the plain normal distribution makes every
@@ -16,26 +19,6 @@
  * is within 1e-3 of the integral for n.v >= 0.05 (tests/unit/test-dfg.c).
  */
 #define DFG_SAMPLES 1024
-
-static inline double
-radical_inverse(uint32_t i)
-{
-	i = (i << 16) | (i >> 16);
-	i = ((i & 0x55555555u) << 1) | ((i & 0xAAAAAAAAu) >> 1);
-	i = ((i & 0x33333333u) << 2) | ((i & 0xCCCCCCCCu) >> 2);
-	i = ((i & 0x0F0F0F0Fu) << 4) | ((i & 0xF0F0F0F0u) >> 4);
-	i = ((i & 0x00FF00FFu) << 8) | ((i & 0xFF00FF00u) >> 8);
-	return (double)i * 2.3283064365386963e-10;
-}
-
-/* Smith's Lambda for GGX at a direction of cosine c to the normal. */
-static inline double
-lambda(double a2, double c)
-{
-	double c2 = c * c;
-
-	return 0.5 * (sqrt(1.0 + a2 * (1.0 - c2) / c2) - 1.0);
-}
 
 static inline double
 pow5(double x)
@@ -50,7 +33,7 @@ pow5(double x)
 static inline void
 disc_point(unsigned i, unsigned n, double p[3])
 {
-	double phi = 2.0 * M_PI * radical_inverse(i);
+	double phi = 2.0 * M_PI * ggx_radical_inverse(i);
 
 	p[0] = sqrt(((double)i + 0.5) / (double)n);
 	p[1] = cos(phi);
@@ -86,7 +69,7 @@ integrate(double nv, double roughness, const double *disc, unsigned n, double *a
 	hx /= len;
 	hz /= len;
 	s = 0.5 * (1.0 + hz);
-	lv = lambda(a2, nv);
+	lv = ggx_lambda(a2, nv);
 	for (i = 0; i < n; i++) {
 		const double *p = disc + 3 * i;
 		double t1 = p[0] * p[1], t2 = p[0] * p[2], t3, mx, my, mz, vh, lz, w, fc;
@@ -108,7 +91,7 @@ integrate(double nv, double roughness, const double *disc, unsigned n, double *a
 		if (lz <= 0.0 || vh <= 0.0)
 			continue;
 		/* Visible-normal sampling leaves G2 / G1(v) as the weight. */
-		w = (1.0 + lv) / (1.0 + lv + lambda(a2, lz));
+		w = (1.0 + lv) / (1.0 + lv + ggx_lambda(a2, lz));
 		fc = pow5(1.0 - vh);
 		sum_a += w * (1.0 - fc);
 		sum_b += w * fc;
