@@ -58,6 +58,19 @@ by_psi(const void *a, const void *b)
 	return (x > y) - (x < y);
 }
 
+/* The n samples sorted by angle, as the pairs (phi, w) quantile reads. */
+static void
+sort_by_phi(struct sample *s, size_t n, double *vw)
+{
+	size_t k;
+
+	qsort(s, n, sizeof(*s), by_phi);
+	for (k = 0; k < n; k++) {
+		vw[2 * k] = s[k].phi;
+		vw[2 * k + 1] = s[k].w;
+	}
+}
+
 /* The value where the cumulative weight of the sorted values (their
  * weights alongside, pairs of doubles) reaches share of the total. */
 static double
@@ -107,11 +120,7 @@ measure_kernel(double pr, struct sample *s, double *vw)
 		total += s[n].w;
 		n++;
 	}
-	qsort(s, n, sizeof(*s), by_phi);
-	for (k = 0; k < n; k++) {
-		vw[2 * k] = s[k].phi;
-		vw[2 * k + 1] = s[k].w;
-	}
+	sort_by_phi(s, n, vw);
 	return quantile(vw, n, total, 0.5);
 }
 
@@ -146,11 +155,7 @@ measure(double theta_v, double pr, struct sample *s, double *vw, double out[4])
 		total += s[n].w;
 		n++;
 	}
-	qsort(s, n, sizeof(*s), by_phi);
-	for (k = 0; k < n; k++) {
-		vw[2 * k] = s[k].phi;
-		vw[2 * k + 1] = s[k].w;
-	}
+	sort_by_phi(s, n, vw);
 	phi25 = quantile(vw, n, total, 0.25);
 	phi50 = quantile(vw, n, total, 0.5);
 	phi75 = quantile(vw, n, total, 0.75);
