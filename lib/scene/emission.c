@@ -239,11 +239,8 @@ exit_slab(float lo, float hi, float o, float d, int i, float *t, int *face)
 	*t = ti < *t ? ti : *t;
 }
 
-/* The pattern's three colours on each face (and black for a seventh,
- * no exit): line, even cell, odd cell, by pattern_at's own arithmetic;
- * pattern[f] says whether face f shows the pattern. */
-static void
-face_colours(const rf_scene *s, float colour[RF__FACES + 1][3][3], int pattern[RF__FACES + 1])
+void
+rf__wall_classes(rf_scene *s)
 {
 	const struct pattern *pt = &s->pattern;
 	int f, k;
@@ -251,15 +248,15 @@ face_colours(const rf_scene *s, float colour[RF__FACES + 1][3][3], int pattern[R
 	for (f = 0; f <= RF__FACES; f++) {
 		const struct emission *e = f < RF__FACES ? rf__wall_emission_of(s, f) : NULL;
 
-		pattern[f] = e && e->kind == EMIT_PATTERN;
+		s->wall_pattern[f] = e && e->kind == EMIT_PATTERN;
 		for (k = 0; k < 3; k++) {
 			const float c = e ? e->rgb[k] : 0.0f;
 
-			colour[f][0][k] = e ? (float)(pt->line * ((1.0 - pt->line_white) * c +
-			                                          pt->line_white))
-			                    : 0.0f;
-			colour[f][1][k] = (float)(c * (pt->base + 0.0));
-			colour[f][2][k] = (float)(c * (pt->base + pt->checker));
+			s->wall_class_rgb[f][0][k] = e ? (float)(pt->line * ((1.0 - pt->line_white) * c +
+			                                                     pt->line_white))
+			                               : 0.0f;
+			s->wall_class_rgb[f][1][k] = (float)(c * (pt->base + 0.0));
+			s->wall_class_rgb[f][2][k] = (float)(c * (pt->base + pt->checker));
 		}
 	}
 }
@@ -278,12 +275,10 @@ wall_colours(const rf_scene *s, const int *face, const float *us, const float *v
 	const struct pattern *pt = &s->pattern;
 	const float inv_cell = (float)pt->inv_cell, cell = (float)pt->cell;
 	const float half_line = (float)(0.5 * pt->line_width);
-	float colour[RF__FACES + 1][3][3];
-	int pattern[RF__FACES + 1], cls[RF__EMIT_CHUNK], win[RF__EMIT_CHUNK];
+	int cls[RF__EMIT_CHUNK], win[RF__EMIT_CHUNK];
 	size_t j, w;
 	int k;
 
-	face_colours(s, colour, pattern);
 	/* a fixed trip count: no scalar epilogue, and -O2 vectorizes it;
 	 * lanes past n are computed and never read */
 	for (j = 0; j < RF__EMIT_CHUNK; j++) {
@@ -310,14 +305,14 @@ wall_colours(const rf_scene *s, const int *face, const float *us, const float *v
 	for (j = 0; j < n; j++) {
 		const int fc = face[j] < 0 ? RF__FACES : face[j];
 
-		if (use[j] && face[j] >= 0 && (win[j] || !pattern[fc])) {
+		if (use[j] && face[j] >= 0 && (win[j] || !s->wall_pattern[fc])) {
 			const double uv[2] = { us[j], vs[j] };
 
 			rf__wall_emission(s, face[j], uv, rgb[j]);
 			continue;
 		}
 		for (k = 0; k < 3; k++)
-			rgb[j][k] = colour[fc][cls[j]][k];
+			rgb[j][k] = s->wall_class_rgb[fc][cls[j]][k];
 	}
 }
 

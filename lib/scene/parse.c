@@ -1138,6 +1138,7 @@ rf_scene_parse(rf_scene **sp, const char *text, size_t len, const char *name,
 		rf_scene_destroy(p.s);
 		return rc;
 	}
+	rf__wall_classes(p.s);
 	*sp = p.s;
 	return 0;
 }

@@ -93,6 +93,11 @@ struct rf_scene {
 	/* Each wall's emission when set by a wall line, else the room's. */
 	struct emission wall_em[RF__FACES];
 	struct pattern pattern;
+	/* What the walls' chunk reads (rf__wall_classes): per face, and a
+	 * seventh for no exit (black), the pattern's line, even cell and odd
+	 * cell colours, and whether the face shows the pattern. */
+	float wall_class_rgb[RF__FACES + 1][3][3];
+	int wall_pattern[RF__FACES + 1];
 	struct window *windows;
 	size_t nwindows;
 	int has_emission; /* anything emits: the G-buffer writes emission.* */
@@ -129,6 +134,10 @@ void rf__wall_uv(int face, const double p[3], double uv[2]);
 /* The wall a ray from o (inside the room) along d leaves the room by,
  * and where in its (u, v); -1 without a room or an exit. */
 int rf__room_exit(const rf_scene *s, const double o[3], const double d[3], double uv[2]);
+/* Fills the scene's wall_class_rgb and wall_pattern from its walls'
+ * emission and pattern, by pattern_at's own arithmetic: once the scene
+ * is read. */
+void rf__wall_classes(rf_scene *s);
 /* Rays a call of rf__room_emission_chunk takes at most. */
 #define RF__EMIT_CHUNK 64
 /* rf__room_exit then rf__wall_emission (black without an exit) for the
