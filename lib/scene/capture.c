@@ -191,6 +191,23 @@ texel_dir(enum rf_face f, size_t n, double i, double j, double d[3])
 /* The mean of ns x ns samples of texel (i, j) of face f, all on wall
  * `wall`: each sample's point on the wall's plane straight from the
  * face's (a, b), without a unit direction or a slab test. */
+/* The walls' chunk for the first n of us, vs (the rest zeroed: every
+ * entry is read), summed into acc in order. */
+static void
+wall_chunk(const rf_scene *s, int wall, float *us, float *vs, size_t n,
+           float rgb[][3], double acc[3])
+{
+	size_t q;
+	int x;
+
+	for (q = n; q < RF__EMIT_CHUNK; q++)
+		us[q] = vs[q] = 0.0f;
+	rf__wall_emission_chunk(s, wall, us, vs, n, rgb);
+	for (q = 0; q < n; q++)
+		for (x = 0; x < 3; x++)
+			acc[x] += rgb[q][x];
+}
+
 static void
 wall_samples(const struct capture *c, int f, size_t i, size_t j, int wall, size_t ns,
              float out[3])
@@ -207,16 +224,16 @@ wall_samples(const struct capture *c, int f, size_t i, size_t j, int wall, size_
 	const int ku = k == 0 ? 2 : 0, kv = k == 1 ? 2 : 1;
 	float us[RF__EMIT_CHUNK], vs[RF__EMIT_CHUNK], rgb[RF__EMIT_CHUNK][3];
 	double acc[3] = { 0, 0, 0 };
-	size_t s, total = ns * ns, m, q;
+	size_t sa, sb, q = 0;
 	int x;
 
-	/* the grid's points a chunk at a time, row after row, read all at
-	 * once by the walls' vector code */
-	for (s = 0; s < total; s += m) {
-		m = total - s < RF__EMIT_CHUNK ? total - s : RF__EMIT_CHUNK;
-		for (q = 0; q < m; q++) {
-			const double a = a0 + (double)((s + q) % ns) * step;
-			const double b = b0 + (double)((s + q) / ns) * step;
+	/* the grid's points row after row, read by the walls' vector code a
+	 * chunk at a time (and the last, part full) */
+	for (sb = 0; sb < ns; sb++) {
+		const double b = b0 + (double)sb * step;
+
+		for (sa = 0; sa < ns; sa++) {
+			const double a = a0 + (double)sa * step;
 			double d[3], t;
 
 			for (x = 0; x < 3; x++)
@@ -224,13 +241,11 @@ wall_samples(const struct capture *c, int f, size_t i, size_t j, int wall, size_
 			t = plane / d[k];
 			us[q] = (float)(c->origin[ku] + t * d[ku]);
 			vs[q] = (float)(c->origin[kv] + t * d[kv]);
+			if (++q == RF__EMIT_CHUNK || (sb == ns - 1 && sa == ns - 1)) {
+				wall_chunk(c->s, wall, us, vs, q, rgb, acc);
+				q = 0;
+			}
 		}
-		for (; q < RF__EMIT_CHUNK; q++)
-			us[q] = vs[q] = 0.0f;
-		rf__wall_emission_chunk(c->s, wall, us, vs, m, rgb);
-		for (q = 0; q < m; q++)
-			for (x = 0; x < 3; x++)
-				acc[x] += rgb[q][x];
 	}
 	for (x = 0; x < 3; x++)
 		out[x] = (float)(acc[x] / (double)(ns * ns));
