@@ -73,6 +73,34 @@ fract_below2(float x)
 	return x - (float)(x >= 1.0f);
 }
 
+/* out = fract(in + b) for in and b in [0, 1), by fract_below2.  Its
+ * select becomes a branch in GCC's scalar code (at -O2 the loop is not
+ * vectorized: n is unknown), and a branch on noise is mispredicted half
+ * the time: 40 % of the raytraced mode's own loop at 64 blue rays.  Four
+ * at a time in vector code, the same subtraction of 1 or 0. */
+static inline void
+shift_below2(const float *restrict in, float b, uint32_t n, float *restrict out)
+{
+	uint32_t i = 0;
+
+#if defined(__GNUC__) || defined(__clang__)
+	typedef float v4f __attribute__((vector_size(16)));
+	typedef int v4i __attribute__((vector_size(16)));
+	const v4f one = { 1.0f, 1.0f, 1.0f, 1.0f }, vb = { b, b, b, b };
+
+	for (; i + 4 <= n; i += 4) {
+		v4f x;
+
+		memcpy(&x, in + i, sizeof(x));
+		x += vb;
+		x -= (v4f)((v4i)one & (x >= one));
+		memcpy(out + i, &x, sizeof(x));
+	}
+#endif
+	for (; i < n; i++)
+		out[i] = fract_below2(in[i] + b);
+}
+
 /* Point i of the Hammersley set of n: ((i + 1/2) / n, radical inverse). */
 static inline void
 hammersley(uint32_t i, uint32_t n, float *a, float *b)
@@ -121,10 +149,8 @@ sequence_pairs(int pattern, uint32_t seed, uint32_t frame, uint32_t r2_step, uin
 	}
 	/* one pass a step, each without a test inside */
 	if (pattern == SEQUENCE_BLUE) {
-		for (i = 0; i < n; i++) {
-			u0[i] = fract_below2(ham0[i] + b0);
-			u1[i] = fract_below2(ham1[i] + b1);
-		}
+		shift_below2(ham0, b0, n, u0);
+		shift_below2(ham1, b1, n, u1);
 	} else {
 		memcpy(u0, ham0, n * sizeof(*u0));
 		memcpy(u1, ham1, n * sizeof(*u1));
