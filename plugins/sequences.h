@@ -12,6 +12,8 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "lanes.h"
+
 /* Two 64 x 64 blue-noise masks, made at build time by bluenoise-gen.c. */
 #include "shade/bluenoise.h"
 
@@ -65,11 +67,10 @@ fract(float x)
 
 /* fract of an x in [0, 2), the sum of two numbers in [0, 1): the same
  * bits as fract, without floorf (a call on x86-64's baseline, half of
- * the raytraced mode's time outside its rays). */
+ * the raytraced mode's time outside its rays): less 1 or less 0. */
 static inline float
 fract_below2(float x)
 {
-	/* less 1 or less 0, no branch: the loop becomes vector code */
 	return x - (float)(x >= 1.0f);
 }
 
@@ -83,17 +84,15 @@ shift_below2(const float *restrict in, float b, uint32_t n, float *restrict out)
 {
 	uint32_t i = 0;
 
-#if defined(__GNUC__) || defined(__clang__)
-	typedef float v4f __attribute__((vector_size(16)));
-	typedef int v4i __attribute__((vector_size(16)));
-	const v4f one = { 1.0f, 1.0f, 1.0f, 1.0f }, vb = { b, b, b, b };
+#if defined(__SSE2__)
+	const lanes_v4f one = { 1.0f, 1.0f, 1.0f, 1.0f }, vb = { b, b, b, b };
 
 	for (; i + 4 <= n; i += 4) {
-		v4f x;
+		lanes_v4f x;
 
 		memcpy(&x, in + i, sizeof(x));
 		x += vb;
-		x -= (v4f)((v4i)one & (x >= one));
+		x -= (lanes_v4f)((lanes_v4i)one & (x >= one));
 		memcpy(out + i, &x, sizeof(x));
 	}
 #endif
