@@ -586,25 +586,25 @@ mis_table(struct raytraced *rt, const struct lobe *lb)
 	float i0 = 0.0f, i1 = 0.0f, mean = 0.0f, plain = 0.0f, mixed = 0.0f;
 	uint32_t i, j, count;
 
-	/* Row 0 (u0 = 0) is the lobe's centre whatever u1: one node read
-	 * for its g, the rest g - 1 numbers after it, row by row. */
-	u0[0] = u1[0] = 0.0f;
+	/* Row 0 (u0 = 0) is the lobe's centre whatever u1: only its last
+	 * node is read, and the rays start there. */
+	u0[g - 1] = u1[g - 1] = 0.0f;
 	for (i = 1; i <= g; i++)
 		for (j = 0; j < g; j++) {
-			u0[1 + (i - 1) * g + j] = (float)i * h;
-			u1[1 + (i - 1) * g + j] = (float)j * h;
+			u0[i * g + j] = (float)i * h;
+			u1[i * g + j] = (float)j * h;
 		}
-	count = trace_lobe(rt, lb, 1 + g * g, u0, u1, NULL, (float)(g * g));
+	count = trace_lobe(rt, lb, 1 + g * g, u0 + g - 1, u1 + g - 1, NULL, (float)(g * g));
 	memset(y, 0, nodes * sizeof(*y));
 	for (i = 0; i < count; i++) {
 		const float *c = rt->rgba + 4 * i;
 		float v = rt->weight[i] * (0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]);
 
 		if (v > 0.0f && v < 1e30f) /* NaN and Inf weigh nothing */
-			y[rt->index[i] ? rt->index[i] - 1 + g : 0] = v;
+			y[g - 1 + rt->index[i]] = v;
 	}
-	for (j = 1; j < g; j++)
-		y[j] = y[0];
+	for (j = 0; j + 1 < g; j++)
+		y[j] = y[g - 1];
 	/* The marginals at the nodes: row means (u0), and column means
 	 * integrated over u0 by trapezoids (u1). */
 	for (i = 0; i <= g; i++) {
