@@ -215,18 +215,13 @@ is_alpha_name(const char *name)
 static size_t
 resolve_factor(const struct export_opts *o, const rf_header *h, size_t frame)
 {
-	const char *v = rf_header_get(h, RF_KEY_SUPERSAMPLE);
 	size_t f = o->downsample > 0 ? (size_t)o->downsample : 1;
-	unsigned long n;
-	char *end;
 
-	if (o->downsample < 0 && v) {
-		n = strtoul(v, &end, 10);
-		if (end == v || *end || n < 1 || n > 16)
-			die("frame %zu: header key %s='%s' is not a whole number in [1, 16]",
-			    frame, RF_KEY_SUPERSAMPLE, v);
-		f = n;
-	}
+	if (o->downsample < 0 && rf_header_supersample(h, &f) < 0)
+		die("frame %zu: header key %s='%s' is not a whole number in [1, %d] that "
+		    "divides the %zux%zu frame's sides", frame, RF_KEY_SUPERSAMPLE,
+		    rf_header_get(h, RF_KEY_SUPERSAMPLE), RF_SUPERSAMPLE_MAX, rf_header_ncols(h),
+		    rf_header_nrows(h));
 	if (rf_header_ncols(h) % f || rf_header_nrows(h) % f)
 		die("frame %zu: a %zux%zu frame does not downsample by %zu (its sides are "
 		    "not multiples of it); choose another --downsample", frame,

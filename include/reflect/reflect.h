@@ -120,6 +120,12 @@ RF_EXTERN int rf_header_add_command(rf_header *h, int argc, char *const *argv);
 /* The stored lines in order, for printing; NULL past the end. */
 RF_EXTERN const char *rf_header_line(const rf_header *h, size_t i);
 
+/* How many samples across a pixel is (RF_KEY_SUPERSAMPLE): 1 without
+ * the key; RF_EFORMAT when the value is not a whole number in [1,
+ * RF_SUPERSAMPLE_MAX] or the frame's sides are not multiples of it. */
+#define RF_SUPERSAMPLE_MAX 16
+RF_EXTERN int rf_header_supersample(const rf_header *h, size_t *factor);
+
 /*
  * The header keys the tools share (reflect-stream(5) lists them).  Each
  * name is defined here once; the probe's keys are written and read only

@@ -1,5 +1,6 @@
 /* The stream header as a value: size, channels and the lines it carries. */
 #include <ctype.h>
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -254,6 +255,25 @@ rf_header_get(const rf_header *h, const char *key)
 	int i = find_key(h, key);
 
 	return i < 0 ? NULL : h->lines[i] + strlen(key) + 1;
+}
+
+int
+rf_header_supersample(const rf_header *h, size_t *factor)
+{
+	const char *v = rf_header_get(h, RF_KEY_SUPERSAMPLE);
+	unsigned long n = 1;
+	char *end;
+
+	*factor = 1;
+	if (v) {
+		errno = 0;
+		n = strtoul(v, &end, 10);
+		if (end == v || *end || errno || n < 1 || n > RF_SUPERSAMPLE_MAX ||
+		    h->ncols % n || h->nrows % n)
+			return RF_EFORMAT;
+	}
+	*factor = n;
+	return 0;
 }
 
 int
