@@ -59,6 +59,23 @@ test_expect_success 'a grid of rows, images and streams, a bar under false colou
 	cmp expect size
 '
 
+# A supersampled stream is drawn at its picture's size, resolved as
+# reflect-export resolves it: the cell of the stream is the cell of
+# the exported image.
+test_expect_success 'a SUPERSAMPLE stream is drawn resolved' '
+	reflect-gbuffer --supersample=2 -x 12 -y 8 | reflect-project |
+		reflect-shade -m hdrp --final 2>/dev/null >ss.rfl &&
+	reflect-export --depth=float -o ss.exr ss.rfl &&
+	reflect-montage --label-scale=1 -o from-stream.png s=ss.rfl &&
+	reflect-montage --label-scale=1 -o from-image.png s=ss.exr &&
+	"$imgdump" -8 from-stream.png >got &&
+	head -n 1 got >size &&
+	echo "12 8 3" >expect &&
+	cmp expect size &&
+	"$imgdump" -8 from-image.png >want &&
+	cmp want got
+'
+
 test_expect_success 'bad cells are refused with the fix' '
 	test_expect_code 1 reflect-montage -o x.png nolabel 2>err &&
 	test_grep "is not LABEL=FILE" err &&

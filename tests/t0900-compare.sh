@@ -115,6 +115,25 @@ test_expect_success 'channels: R G B by default, else spec.*, else the shared on
 	test_grep "has no channel .q." err
 '
 
+# A supersampled stream is the picture at twice its size: compared and
+# drawn resolved, as reflect-export writes it.
+test_expect_success 'a SUPERSAMPLE stream is resolved before it is compared' '
+	reflect-gbuffer --supersample=2 -x 12 -y 8 | reflect-project |
+		reflect-shade -m hdrp --final 2>/dev/null >ss.rfl &&
+	reflect-export --depth=float -o ss.exr ss.rfl &&
+	"$builddir/tests/imgdump" ss.exr | sed -n 1p >size &&
+	echo "12 8 3" >expect &&
+	diff expect size &&
+	reflect-compare ss.exr ss.rfl >out &&
+	test_grep "R G B, 96 pixels" out &&
+	test_grep "^PASS$" out &&
+	reflect-compare ss.rfl ss.rfl >out &&
+	test_grep "96 pixels" out &&
+	sed "s/^SUPERSAMPLE=2$/SUPERSAMPLE=5/" ss.rfl >bad.rfl &&
+	test_expect_code 1 reflect-compare bad.rfl ss.rfl 2>err &&
+	test_grep "SUPERSAMPLE=.5. is not a whole number in \[1, 16\] that divides the 24x16" err
+'
+
 test_expect_success 'an image against a stream, and a heat map with its bar' '
 	reflect-gbuffer -x 40 -y 30 | reflect-project | reflect-shade -m none --final \
 		2>/dev/null >shaded.rfl &&

@@ -10,6 +10,7 @@
 
 #include "stream/stream-internal.h"
 #include "util/util.h"
+#include "reflect/image.h"
 #include "reflect/reflect.h"
 
 struct rf_picture {
@@ -60,12 +61,55 @@ name(rf_picture *p, size_t i, const char *s)
 	return (p->names[i] = strdup(s)) ? 0 : RF_ENOMEM;
 }
 
+/*
+ * A supersampled frame (SUPERSAMPLE, from reflect-gbuffer --supersample)
+ * is the picture at factor times its size: resolved as reflect-export
+ * resolves it by default (a box over each pixel's samples, objid taken
+ * at the centre), so that a picture compares and draws at its own size.
+ */
+static int
+resolve(rf_picture *p, size_t factor, const char *path, char *err, size_t errlen)
+{
+	unsigned char nearest[RF_CHANNELS_MAX] = { 0 };
+	rf_downsampler *d;
+	size_t i, n;
+	float *out;
+	int rc;
+
+	for (i = 0; i < p->nch && i < RF_CHANNELS_MAX; i++)
+		nearest[i] = !strcmp(p->names[i], "objid");
+	if ((rc = rf_downsampler_create(&d, p->width, p->height, p->nch, factor, RF_RESOLVE_BOX,
+	                                RF_RESOLVE_SIGMA_DEFAULT, nearest)) < 0) {
+		rf__format(err, errlen, "'%s': cannot resolve its %zu x %zu samples a pixel: %s",
+		           path, factor, factor, rf_strerror(rc));
+		return rc;
+	}
+	if (!(out = malloc(rf_downsampler_width(d) * rf_downsampler_height(d) * p->nch *
+	                   sizeof(float) + 1))) {
+		rf_downsampler_destroy(d);
+		rf__format(err, errlen, "'%s': out of memory", path);
+		return RF_ENOMEM;
+	}
+	rc = rf_downsampler_push(d, p->px, p->height, out, &n);
+	if (rc == 0) {
+		free(p->px);
+		p->px = out;
+		p->width = rf_downsampler_width(d);
+		p->height = rf_downsampler_height(d);
+	} else {
+		free(out);
+		rf__format(err, errlen, "'%s': %s", path, rf_strerror(rc));
+	}
+	rf_downsampler_destroy(d);
+	return rc;
+}
+
 static int
 read_stream(rf_picture **pp, FILE *fp, const char *path, char *err, size_t errlen)
 {
 	const rf_header *h;
 	rf_reader *r;
-	size_t i;
+	size_t i, factor = 1;
 	int rc;
 
 	if ((rc = rf_reader_open(&r, fp, path, NULL)) < 0) {
@@ -90,6 +134,13 @@ read_stream(rf_picture **pp, FILE *fp, const char *path, char *err, size_t errle
 		rc = name(*pp, i, rf_header_channel(h, i));
 	if (rc == 0 && (*pp)->height && (rc = rf_reader_read_rows(r, (*pp)->px, (*pp)->height)) < 0)
 		rf__format(err, errlen, "%s", rf_reader_error(r));
+	if (rc == 0 && (rc = rf_header_supersample(h, &factor)) < 0)
+		rf__format(err, errlen, "'%s': header key %s='%s' is not a whole number in [1, %d] "
+		           "that divides the %zux%zu frame's sides", path, RF_KEY_SUPERSAMPLE,
+		           rf_header_get(h, RF_KEY_SUPERSAMPLE), RF_SUPERSAMPLE_MAX,
+		           rf_header_ncols(h), rf_header_nrows(h));
+	if (rc == 0 && factor > 1)
+		rc = resolve(*pp, factor, path, err, errlen);
 	rf_reader_close(r);
 	if (rc < 0) {
 		rf_picture_destroy(*pp);
