@@ -50,8 +50,35 @@ struct compare_opts {
 
 #define MAX_CHANNELS 64
 
-/* The channels compared: -c's, else R G B, else spec.R spec.G spec.B,
- * else every channel the two share; their indices into cols. */
+/* Dies: the two share no colour; says what each has. */
+static void
+no_colour(const rf_picture *a, const rf_picture *b, const char *an, const char *bn)
+{
+	const rf_picture *p[2] = { a, b };
+	const char *n[2] = { an, bn };
+	size_t k, i;
+
+	cli_message_start();
+	fputs("no colour to compare: neither R G B nor spec.R spec.G spec.B is in both", stderr);
+	for (k = 0; k < 2; k++) {
+		fputs(k ? "; " : " (", stderr);
+		cli_put_quoted(stderr, n[k]);
+		fputs(" has", stderr);
+		for (i = 0; i < rf_picture_nchannels(p[k]); i++) {
+			fputc(' ', stderr);
+			cli_put_quoted(stderr, rf_picture_channel(p[k], i));
+		}
+		if (!rf_picture_nchannels(p[k]))
+			fputs(" none", stderr);
+	}
+	fputs("); name them with -c, as A_NAME=B_NAME where they differ\n", stderr);
+	exit(EXIT_BAD_INPUT);
+}
+
+/* The channels compared: -c's (NAME, or A_NAME=B_NAME), else R G B,
+ * else spec.R spec.G spec.B: colour only, so that a pass always means
+ * that colours agree, never that a mask or an id did; their indices
+ * into cols. */
 static size_t
 choose_channels(const struct compare_opts *o, const rf_picture *a, const rf_picture *b,
                 const char *an, const char *bn, int *acol, int *bcol, char *names,
@@ -63,15 +90,23 @@ choose_channels(const struct compare_opts *o, const rf_picture *a, const rf_pict
 
 	names[0] = '\0';
 	if (o->channels) {
-		char *list = estrdup(o->channels), *save = NULL, *t;
+		char *list = estrdup(o->channels), *save = NULL, *t, *eq;
 
 		for (t = strtok_r(list, ", ", &save); t; t = strtok_r(NULL, ", ", &save)) {
+			const char *bname = t;
+
 			if (n == MAX_CHANNELS)
 				die("-c: more than %d channels", MAX_CHANNELS);
+			if ((eq = strchr(t, '='))) {
+				*eq = '\0';
+				bname = eq + 1;
+				if (!*t || !*bname || strchr(bname, '='))
+					die("-c: '%s=%s' is not A_NAME=B_NAME", t, bname);
+			}
 			if ((acol[n] = rf_picture_find_channel(a, t)) < 0)
 				die("'%s' has no channel '%s'", an, t);
-			if ((bcol[n] = rf_picture_find_channel(b, t)) < 0)
-				die("'%s' has no channel '%s'", bn, t);
+			if ((bcol[n] = rf_picture_find_channel(b, bname)) < 0)
+				die("'%s' has no channel '%s'", bn, bname);
 			n++;
 		}
 		free(list);
@@ -90,21 +125,22 @@ choose_channels(const struct compare_opts *o, const rf_picture *a, const rf_pict
 			if (k == 3)
 				set = s;
 		}
-		for (i = 0; set && i < 3; i++) {
+		if (!set)
+			no_colour(a, b, an, bn);
+		for (i = 0; i < 3; i++) {
 			acol[n] = rf_picture_find_channel(a, set[i]);
 			bcol[n++] = rf_picture_find_channel(b, set[i]);
 		}
-		for (i = 0; !set && i < rf_picture_nchannels(a) && n < MAX_CHANNELS; i++)
-			if ((bcol[n] = rf_picture_find_channel(b, rf_picture_channel(a, i))) >= 0)
-				acol[n++] = (int)i;
-		if (!n)
-			die("'%s' and '%s' have no channel in common: name them with -c", an, bn);
 	}
 	for (i = 0; i < n; i++) {
 		size_t len = strlen(names);
+		const char *na = rf_picture_channel(a, (size_t)acol[i]);
+		const char *nb = rf_picture_channel(b, (size_t)bcol[i]);
 
-		snprintf(names + len, names_len - len, "%s%s", i ? " " : "",
-		         rf_picture_channel(a, (size_t)acol[i]));
+		if (strcmp(na, nb))
+			snprintf(names + len, names_len - len, "%s%s=%s", i ? " " : "", na, nb);
+		else
+			snprintf(names + len, names_len - len, "%s%s", i ? " " : "", na);
 	}
 	return n;
 }
@@ -250,7 +286,8 @@ main(int argc, char **argv)
 			       "How far A is from B: two images (any type reflect reads) or streams.\n"
 			       "Exit 0 when they agree within the thresholds, 3 when they do not.\n"
 			       "See reflect-compare(1).\n"
-			       "  -c CHANNELS  compared (default R G B, else spec.*, else shared)\n"
+			       "  -c CHANNELS  compared (default R G B, else spec.*); A_NAME=B_NAME\n"
+			       "      where the two name a channel differently\n"
 			       "  --mask[=CHANNEL] --objid=CHANNEL|none --erode=N  the pixels\n"
 			       "      that count: on the mask, N pixels from another object (1)\n"
 			       "  --fail=A --failpercent=P --hardfail=H  fail when over P %% of the\n"
@@ -291,6 +328,11 @@ main(int argc, char **argv)
 	in.height = rf_picture_height(a);
 	in.keep = keep;
 	rf_compare_stats(&st, &in, o.peak, o.fail, o.warn >= 0 ? o.warn : o.fail);
+	if (!st.npixels && o.mask)
+		die("'%s' against '%s': no pixel to compare: the mask '%s' is empty%s", argv[optind],
+		    argv[optind + 1], o.mask, o.erode ? " once eroded (try a smaller --erode)" : "");
+	if (!st.npixels)
+		die("'%s' against '%s': no pixel to compare", argv[optind], argv[optind + 1]);
 	warn_share = st.npixels ? 100.0 * (double)st.nwarn / (double)st.npixels : 0.0;
 	if (o.heatmap)
 		write_heatmap(o.heatmap, &in, o.scale > 0 ? o.scale

@@ -3,6 +3,8 @@ test_description='reflect-compare: figures by hand, the eroded mask, thresholds 
 . "$srcdir/tests/lib.sh"
 . "$srcdir/tests/shade-lib.sh"
 
+SQ="'"
+
 # rgb FILE W H VALUE...: an ascii stream of R G B, one value a pixel (the
 # same in the three channels), rows top first
 rgb () {
@@ -95,7 +97,7 @@ test_expect_success 'a value that is not finite fails, and is counted' '
 	test_grep "\"result\": \"fail\"" j
 '
 
-test_expect_success 'channels: R G B by default, else spec.*, else the shared ones; -c' '
+test_expect_success 'channels: R G B by default, else spec.*; -c names any' '
 	stream s.txt 1 1 "spec.R spec.G spec.B x" <<-\EOF &&
 	1 2 3 9
 	EOF
@@ -106,13 +108,75 @@ test_expect_success 'channels: R G B by default, else spec.*, else the shared on
 	test_grep "spec.R spec.G spec.B, 1 pixels" out &&
 	reflect-compare -c x s.txt t.txt >out &&
 	test_grep "^PASS$" out &&
-	stream u.txt 1 1 "y" <<-\EOF &&
-	9
-	EOF
-	test_expect_code 1 reflect-compare s.txt u.txt 2>err &&
-	test_grep "no channel in common: name them with -c" err &&
 	test_expect_code 1 reflect-compare -c q s.txt t.txt 2>err &&
 	test_grep "has no channel .q." err
+'
+
+# Two pictures whose colours differ but whose other channels agree: a
+# comparison of colour finds them apart, and one with no colour in
+# common is refused, never a pass on the mask or the ids.
+test_expect_success 'no colour in common: refused, naming what each side has' '
+	stream c1.txt 2 1 "R G B mask objid" <<-\EOF &&
+	0.1 0.2 0.3 1 4
+	0.4 0.5 0.6 1 4
+	EOF
+	stream c2.txt 2 1 "mask objid" <<-\EOF &&
+	1 4
+	1 4
+	EOF
+	stream c3.txt 2 1 "spec.R spec.G spec.B mask objid" <<-\EOF &&
+	0.9 0.9 0.9 1 4
+	0.9 0.9 0.9 1 4
+	EOF
+	for pair in "c1.txt c2.txt" "c2.txt c1.txt" "c1.txt c3.txt" "c2.txt c2.txt"
+	do
+		test_expect_code 1 reflect-compare $pair >out 2>err &&
+		test ! -s out &&
+		test_grep "no colour to compare" err &&
+		test_grep ".mask. .objid." err || return 1
+	done &&
+	echo "reflect-compare: no colour to compare: neither R G B nor spec.R spec.G spec.B is in both (${SQ}c2.txt${SQ} has ${SQ}mask${SQ} ${SQ}objid${SQ}; ${SQ}c2.txt${SQ} has ${SQ}mask${SQ} ${SQ}objid${SQ}); name them with -c, as A_NAME=B_NAME where they differ" >expect &&
+	diff -u expect err
+'
+
+test_expect_success '-c A_NAME=B_NAME: channels named differently on each side' '
+	stream h1.txt 2 1 "half1.R half1.G" <<-\EOF &&
+	0.5 1
+	0.25 2
+	EOF
+	stream h2.txt 2 1 "half2.G half2.R" <<-\EOF &&
+	1 0.5
+	2 0.75
+	EOF
+	# half1.R against half2.R: 0 and 0.5 apart, RMSE sqrt(0.125)
+	test_expect_code 3 reflect-compare -fa -c half1.R=half2.R h1.txt h2.txt >got &&
+	cut -d" " -f1 got >rmse &&
+	echo 0.353553391 >expect &&
+	test_cmp_numbers expect rmse 1e-8 &&
+	reflect-compare -c half1.G=half2.G h1.txt h2.txt >out &&
+	test_grep "half1.G=half2.G, 2 pixels" out &&
+	test_grep "^PASS$" out &&
+	test_expect_code 1 reflect-compare -c half1.R=half1.R h1.txt h2.txt 2>err &&
+	test_grep ".h2.txt. has no channel .half1.R." err &&
+	for bad in "=half2.R" "half1.R=" "a=b=c"
+	do
+		test_expect_code 1 reflect-compare -c "$bad" h1.txt h2.txt 2>err &&
+		test_grep "is not A_NAME=B_NAME" err || return 1
+	done
+'
+
+test_expect_success 'an empty mask compares nothing and never passes' '
+	stream e1.txt 2 1 "R G B mask" <<-\EOF &&
+	0.1 0.2 0.3 0
+	0.4 0.5 0.6 0
+	EOF
+	stream e2.txt 2 1 "R G B" <<-\EOF &&
+	9 9 9
+	9 9 9
+	EOF
+	test_expect_code 1 reflect-compare --mask --objid=none e1.txt e2.txt >out 2>err &&
+	test ! -s out &&
+	test_grep "no pixel to compare: the mask .mask. is empty" err
 '
 
 # A supersampled stream is the picture at twice its size: compared and
