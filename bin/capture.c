@@ -156,7 +156,7 @@ main(int argc, char **argv)
 	}
 	if (argc - optind > 1)
 		usage();
-	file = optind < argc ? argv[optind] : NULL;
+	file = cli_input_or_default(optind < argc ? argv[optind] : NULL);
 	/* every option checked before the scene is loaded */
 	first = strcmp(which, "all") ? (size_t)parse_whole("p", which, 1, 1e6) - 1 : 0;
 	s = cli_load_scene(file);
@@ -175,8 +175,9 @@ main(int argc, char **argv)
 			size_t n = rf_scene_nprobes(s);
 
 			rf_scene_destroy(s);
-			die("-p %s: %s has %zu probe%s", which, file ? file : "the default scene",
-			    n, n == 1 ? "" : "s");
+			die("-p %s: %s has %zu probe%s", which,
+			    !file || !strcmp(file, "default") ? "the default scene"
+			    : !strcmp(file, "-") ? "<stdin>" : file, n, n == 1 ? "" : "s");
 		}
 	}
 	for (k = first; k <= last; k++) {

@@ -5,6 +5,7 @@
 #include <stdarg.h>
 #include <stdatomic.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -338,4 +339,16 @@ cli_threads(const char *arg)
 	}
 	n = sysconf(_SC_NPROCESSORS_ONLN);
 	return n < 1 ? 1 : n > 256 ? 256 : (int)n;
+}
+
+const char *
+cli_input_or_default(const char *operand)
+{
+	struct stat st;
+
+	if (operand)
+		return operand;
+	if (fstat(STDIN_FILENO, &st) < 0)
+		return NULL;
+	return S_ISFIFO(st.st_mode) || S_ISSOCK(st.st_mode) || S_ISREG(st.st_mode) ? "-" : NULL;
 }

@@ -128,8 +128,14 @@ void cli_stage_rows(struct cli_io *io, rf_stage *stage, const rf_header *in,
 /* Threads over row blocks: -j N, else REFLECT_THREADS, else every core. */
 int cli_threads(const char *arg);
 
-/* A scene file (reflect-scene(5)), "-" for standard input, NULL for the
- * embedded default; death with the parser's message. */
+/* The input operand of a tool with an embedded default (a scene, an
+ * environment): the operand when one is given; else "-" when standard
+ * input is a pipe, a socket or a file, so that nothing piped in is
+ * ignored; else (a terminal, /dev/null, closed) NULL, the default. */
+const char *cli_input_or_default(const char *operand);
+
+/* A scene file (reflect-scene(5)), "-" for standard input, NULL or
+ * "default" for the embedded default; death with the parser's message. */
 struct rf_scene;
 struct rf_scene *cli_load_scene(const char *path);
 

@@ -96,7 +96,7 @@ capture_load(const char *spec, const struct envmap_opts *o, struct rf_chain_info
 	if (!strcmp(file, "<stdin>") || !strcmp(file, "-"))
 		die("'capture:%s': the scene came from standard input and cannot be read "
 		    "again; bake the probe with reflect-capture and give it with --env", spec);
-	s = cli_load_scene(strcmp(file, "default") ? file : NULL);
+	s = cli_load_scene(file);
 	rf_capture_options_init(&co);
 	co.nthreads = o->load.nthreads > 0 ? o->load.nthreads : 1;
 	if ((rc = rf_scene_capture(s, (size_t)k - 1, &co, &c, err, sizeof(err))) < 0) {

@@ -13,7 +13,7 @@ cli_load_scene(const char *path)
 	FILE *fp;
 	int rc;
 
-	if (!path) {
+	if (!path || !strcmp(path, "default")) {
 		if ((rc = rf_scene_default(&s, err, sizeof(err))) < 0)
 			die_status(rc, err);
 		return s;

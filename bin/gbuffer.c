@@ -171,7 +171,7 @@ main(int argc, char **argv)
 	}
 	if (argc - optind > 1)
 		usage();
-	file = optind < argc ? argv[optind] : NULL;
+	file = cli_input_or_default(optind < argc ? argv[optind] : NULL);
 	/* The samples of a pixel are the pixels of a frame N times larger:
 	 * their rays cross it at the centres of an N x N grid. */
 	if (width > ((size_t)1 << 20) / supersample || height > ((size_t)1 << 20) / supersample)

@@ -261,6 +261,8 @@ main(int argc, char **argv)
 		die("--zstd: no KTX 2 file to write (-o or --irradiance ending in .ktx2)");
 	if (optind < argc)
 		eo.path = argv[optind];
+	else if (!eo.path)
+		eo.path = cli_input_or_default(NULL);
 	o.pf.nthreads = cli_threads(threads);
 	eo.load.nthreads = o.pf.nthreads;
 	if (isatty(STDERR_FILENO))

@@ -102,7 +102,7 @@ main(int argc, char **argv)
 	}
 	if (argc - optind > 1)
 		usage();
-	file = optind < argc ? argv[optind] : NULL;
+	file = cli_input_or_default(optind < argc ? argv[optind] : NULL);
 	if (o.halves && o.samples < 2)
 		die("--halves: %u sample%s cannot make two halves (2 or more for halves)",
 		    o.samples, o.samples == 1 ? "" : "s");

@@ -158,6 +158,52 @@ test_expect_success 'reading - or no file means stdin' '
 	cmp expect.raw got.raw
 '
 
+# The tools with an embedded default (a scene, an environment) read a
+# piped or redirected standard input and never the default instead;
+# the default needs a terminal, /dev/null, or the word "default".
+test_expect_success 'set up a scene unlike the default' '
+	reflect-gbuffer --print-default-scene | sed "s/fov 55/fov 30/" >narrow.scene &&
+	test_grep "fov 30" narrow.scene
+'
+
+for tool in "reflect-gbuffer" "reflect-trace --samples=1"
+do
+	test_expect_success "${tool%% *} reads a scene piped or redirected into it" '
+		'"$tool"' -x 4 -y 2 </dev/null | reflect-info >default.info &&
+		test_grep "CAMERA=.* 55$" default.info &&
+		for how in pipe file name
+		do
+			case $how in
+			pipe) cat narrow.scene | '"$tool"' -x 4 -y 2 >s.rfl && fov=30 ;;
+			file) '"$tool"' -x 4 -y 2 <narrow.scene >s.rfl && fov=30 ;;
+			name) '"$tool"' -x 4 -y 2 default <narrow.scene >s.rfl && fov=55 ;;
+			esac || return 1
+			reflect-info s.rfl >s.info || return 1
+			test_grep "CAMERA=.* $fov$" s.info || return 1
+		done
+	'
+done
+
+test_expect_success 'reflect-capture and reflect-prefilter: the pipe of the man page' '
+	sed "s/box -3 0 -2 3 3 2/box -3 0 -2 3 3.5 2/" narrow.scene >tall.scene &&
+	reflect-capture -n 8 tall.scene >tall.rfl &&
+	reflect-capture -h -n 8 tall.scene >tall.raw &&
+	reflect-capture -h -n 8 </dev/null >room.raw &&
+	cat tall.scene | reflect-capture -h -n 8 >piped.raw &&
+	cmp tall.raw piped.raw &&
+	! cmp -s tall.raw room.raw &&
+	reflect-prefilter -s 4 -o expect.rfl tall.rfl 2>/dev/null &&
+	reflect-capture -n 8 tall.scene | reflect-prefilter -s 4 -o got.rfl 2>/dev/null &&
+	reflect-info got.rfl >got.info &&
+	test_grep "NCOLS=8" got.info &&
+	reflect-compare expect.rfl got.rfl >out &&
+	test_grep "^PASS$" out &&
+	reflect-prefilter -s 4 --size=8 -o default.rfl </dev/null 2>/dev/null &&
+	reflect-prefilter -s 4 --size=8 -o named.rfl default <tall.rfl 2>/dev/null &&
+	reflect-compare default.rfl named.rfl >out &&
+	test_grep "^PASS$" out
+'
+
 test_expect_success 'bad input in stdin is named <stdin>' '
 	printf "#?REFLECT1\nNCOLS=x\n" | test_expect_code 1 reflect-info - 2>err &&
 	echo "reflect-info: ${SQ}<stdin>${SQ}: header line 2: NCOLS is not a number (${SQ}x${SQ})" >expect &&
