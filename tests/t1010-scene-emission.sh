@@ -160,6 +160,40 @@ test_expect_success 'reflect-shade shows the emission on walls, adds it with --f
 	awk "{ exit !(\$2 > \$1 * 0.9 + 2.999 && \$2 < \$1 * 1.01 + 3.001 && \$3 == 3 && \$4 == 0) }" got
 '
 
+# A probe that names no env in a scene that emits is that scene seen
+# from the probe (what "env capture" asks), never the embedded room of
+# another scene; "env default" still gets the embedded room, and so
+# does a probe of a scene that emits nothing.
+test_expect_success 'a probe without env in an emitting scene is captured' '
+	cat >green.scene <<-\EOF &&
+	probe box -2 -2 -2 2 2 2 center 0 1.5 1.5
+	room emission 0 1 0
+	camera position 0 0 1.5 target 0 0 0 fov 20
+	sphere center 0 0 0 radius 0.5 roughness 0
+	EOF
+	reflect-gbuffer -x 1 -y 1 green.scene | reflect-info >info &&
+	test_grep "PROBE_ENV=capture:green.scene#1$" info &&
+	reflect-gbuffer -x 1 -y 1 green.scene | reflect-project |
+		reflect-shade -fa -m none 2>/dev/null >g.txt &&
+	gb_pixel g.txt 0 0 spec.R spec.G spec.B >got &&
+	# a white mirror in a green room: no red, no blue, the green wall
+	awk "{ exit !(\$1 == 0 && \$3 == 0 && \$2 > 0.9 && \$2 <= 1) }" got &&
+	sed "s/radius 0.5 roughness 0$/&\nprobe box -2 -2 -2 2 2 2 env default/" \
+		green.scene >two.scene &&
+	reflect-gbuffer -x 1 -y 1 two.scene | reflect-info >info &&
+	test_grep "PROBE_ENV=capture:two.scene#1$" info &&
+	test_grep "PROBE2_ENV=default$" info &&
+	printf "probe box -1 -1 -1 1 1 1\n" >dark.scene &&
+	reflect-gbuffer -x 1 -y 1 dark.scene | reflect-info >info &&
+	test_grep "PROBE_ENV=default$" info &&
+	printf "probe box -1 -1 -1 1 1 1\nwindow +x min 0 0 max 1 1 radiance 1 1 1\n" >late.scene &&
+	reflect-gbuffer -x 1 -y 1 late.scene | reflect-info >info &&
+	test_grep "PROBE_ENV=capture:late.scene#1$" info &&
+	cat green.scene | reflect-gbuffer -x 1 -y 1 | reflect-project >piped.rfl &&
+	test_expect_code 1 reflect-shade piped.rfl >/dev/null 2>err &&
+	test_grep "the scene came from standard input and cannot be read again" err
+'
+
 test_expect_success 'bad emission lines are refused with where and why' '
 	for bad in "wall +q pattern 1 1 1:expected a wall (+x, -x, +y, -y, +z or -z" \
 		"wall +x:expected emission R G B, pattern R G B or image FILE on this line" \

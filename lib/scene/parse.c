@@ -28,6 +28,11 @@ struct parser {
 	size_t nattrs;
 	size_t camera_line, name_line, room_line, pattern_line;
 	size_t wall_line[RF__FACES];
+	/* the probes that name no env: see envless_probes() */
+	struct envless {
+		size_t probe, line, col;
+	} *envless;
+	size_t nenvless;
 };
 
 #define fail_at(p, ...) rf__lexer_fail(&(p)->lx, __VA_ARGS__)
@@ -463,10 +468,10 @@ box_check(struct parser *p, const struct rf__token *at, const double *mn,
 	return 0;
 }
 
-/* "env capture": the environment is this probe of this scene file,
- * baked by whoever reads it (reflect-shade), as capture:FILE#K. */
+/* "env capture": the environment is probe k (from 0) of this scene
+ * file, baked by whoever reads it (reflect-shade), as capture:FILE#K. */
 static int
-capture_env(struct parser *p, const char **env)
+capture_env(struct parser *p, size_t k, const char **env)
 {
 	const char *file = !strcmp(p->name, "<default>") ? "default" : p->name;
 	size_t n = strlen(file) + 40;
@@ -474,9 +479,27 @@ capture_env(struct parser *p, const char **env)
 
 	if (!s)
 		return RF_ENOMEM;
-	snprintf(s, n, "capture:%s#%zu", file, p->s->nprobes + 1);
+	snprintf(s, n, "capture:%s#%zu", file, k + 1);
 	*env = s;
 	return 0;
+}
+
+/*
+ * A probe that names no env reflects the embedded room, which is the
+ * default scene's own; in a scene that emits, that room is not what
+ * the probe would see, and its reflections would be of another room
+ * without a word.  There the probe is captured from the scene, as
+ * "env capture" asks; "env default" still asks for the embedded room.
+ */
+static int
+envless_probes(struct parser *p)
+{
+	size_t i;
+	int rc = 0;
+
+	for (i = 0; i < p->nenvless && p->s->has_emission && rc == 0; i++)
+		rc = capture_env(p, p->envless[i].probe, &p->s->probes[p->envless[i].probe].env);
+	return rc;
 }
 
 static int
@@ -519,7 +542,7 @@ parse_probe(struct parser *p, const struct rf__token *kw)
 			free((char *)pr.env);
 			pr.env = NULL;
 			if (tok_is(t, "capture"))
-				rc = capture_env(p, &pr.env);
+				rc = capture_env(p, p->s->nprobes, &pr.env);
 			else if (!tok_is(t, "default"))
 				rc = resolve_path(p, t, (char **)&pr.env);
 		} else {
@@ -549,6 +572,18 @@ parse_probe(struct parser *p, const struct rf__token *kw)
 			              pr.center[1], pr.center[2], "XYZ"[i], pr.box_min[i],
 			              pr.box_max[i]);
 		}
+	if (rc >= 0 && !seen(p, "env")) {
+		struct envless *e = realloc(p->envless, (p->nenvless + 1) * sizeof(*e));
+
+		if (!e)
+			rc = RF_ENOMEM;
+		else {
+			p->envless = e;
+			e[p->nenvless].probe = p->s->nprobes;
+			e[p->nenvless].line = kw->line;
+			e[p->nenvless++].col = kw->col;
+		}
+	}
 	if (rc >= 0) {
 		probes = realloc(p->s->probes, (p->s->nprobes + 1) * sizeof(*probes));
 		if (!probes)
@@ -1106,6 +1141,9 @@ rf_scene_parse(rf_scene **sp, const char *text, size_t len, const char *name,
 	while ((rc = next_statement(&p)) > 0)
 		if ((rc = statement(&p)) < 0)
 			break;
+	if (rc == 0)
+		rc = envless_probes(&p);
+	free(p.envless);
 	rf__lexer_destroy(&p.lx);
 	free(p.dir);
 	if (rc == 0 && !p.s->nprobes)
