@@ -8,7 +8,7 @@
 rf_scene *
 cli_load_scene(const char *path)
 {
-	char err[1024];
+	char err[4096 + 1024]; /* a path, and what is wrong at its line */
 	rf_scene *s;
 	FILE *fp;
 	int rc;

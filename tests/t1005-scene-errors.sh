@@ -168,4 +168,36 @@ test_expect_success 'a scene of many quoted words is parsed in its own size' '
 	test_grep "quotes.scene:2:26: expected the end of the line after the name" err
 '
 
+# What a scene puts in the stream's header (its name, a probe's env) must
+# fit a header line and hold no control byte: refused at the scene's line,
+# not later by the writer with no line to name.
+test_expect_success 'header values too long or with control bytes name the line' '
+	long=$(awk "BEGIN { for (i = 0; i < 2100; i++) printf \"a\" }") &&
+	printf "probe box -1 -1 -1 1 1 1\nprobe box -1 -1 -1 1 1 1 env %s.exr\n" "$long" \
+		>long.scene &&
+	test_expect_code 1 reflect-gbuffer -x 1 -y 1 long.scene >out 2>err &&
+	test ! -s out &&
+	test_one_line_message reflect-gbuffer err &&
+	test_grep "long.scene:2:30: expected an environment path of at most 2028 bytes, since the stream.s header carries it; it is 2104" err &&
+	printf "probe box -1 -1 -1 1 1 1\nname \"a\033]0;x\"\n" >ctl.scene &&
+	test_expect_code 1 reflect-gbuffer -x 1 -y 1 ctl.scene >out 2>err &&
+	test_grep "ctl.scene:2:6: expected a name without control characters (byte 2 is 0x1b)" err &&
+	printf "probe box -1 -1 -1 1 1 1 env \"a\001b.exr\"\n" >ctl2.scene &&
+	test_expect_code 1 reflect-gbuffer -x 1 -y 1 ctl2.scene >out 2>err &&
+	test_grep "ctl2.scene:1:30: expected an environment path without control characters (byte 2 is 0x01)" err &&
+	name=$(awk "BEGIN { for (i = 0; i < 2100; i++) printf \"n\" }") &&
+	printf "probe box -1 -1 -1 1 1 1\nname %s\n" "$name" >longname.scene &&
+	test_expect_code 1 reflect-gbuffer -x 1 -y 1 longname.scene >out 2>err &&
+	test_grep "longname.scene:2:6: expected a name of at most 2028 bytes" err
+'
+
+test_expect_success 'a long scene path in a capture names the probe line' '
+	dir=$(awk "BEGIN { for (i = 0; i < 9; i++) printf \"%0250d/\", i }") &&
+	mkdir -p "$dir" &&
+	printf "probe box -1 -1 -1 1 1 1\nroom emission 1 1 1\n" >"$dir/x.scene" &&
+	test_expect_code 1 reflect-gbuffer -x 1 -y 1 "$dir/x.scene" >out 2>err &&
+	test ! -s out &&
+	test_grep "x.scene:1:1: expected the capture of this scene (the probe names no env, and the scene emits) of at most 2028 bytes" err
+'
+
 test_done

@@ -468,6 +468,32 @@ box_check(struct parser *p, const struct rf__token *at, const double *mn,
 	return 0;
 }
 
+/*
+ * A value that the stream's header carries (the scene's name, a probe's
+ * env): a header line holds RF_HEADER_LINE_MAX bytes with its key, and
+ * no control byte.  Refused here, at its line, since the writer that
+ * would refuse it later has no line to name.
+ */
+#define HEADER_VALUE_MAX (RF_HEADER_LINE_MAX + 1 - sizeof("PROBE4294967295_ENV="))
+
+static int
+header_value(struct parser *p, size_t line, size_t col, const char *what, const char *v,
+             size_t n)
+{
+	size_t i;
+
+	if (n > HEADER_VALUE_MAX)
+		return fail_at(p, line, col, "expected %s of at most %zu bytes, since the "
+		               "stream's header carries it; it is %zu", what,
+		               (size_t)HEADER_VALUE_MAX, n);
+	for (i = 0; i < n; i++)
+		if ((unsigned char)v[i] < 0x20 || v[i] == 0x7f)
+			return fail_at(p, line, col, "expected %s without control characters "
+			               "(byte %zu is 0x%02x), since the stream's header carries it",
+			               what, i + 1, (unsigned char)v[i]);
+	return 0;
+}
+
 /* "env capture": the environment is probe k (from 0) of this scene
  * file, baked by whoever reads it (reflect-shade), as capture:FILE#K. */
 static int
@@ -497,8 +523,15 @@ envless_probes(struct parser *p)
 	size_t i;
 	int rc = 0;
 
-	for (i = 0; i < p->nenvless && p->s->has_emission && rc == 0; i++)
-		rc = capture_env(p, p->envless[i].probe, &p->s->probes[p->envless[i].probe].env);
+	for (i = 0; i < p->nenvless && p->s->has_emission && rc == 0; i++) {
+		const struct envless *e = &p->envless[i];
+		const char **env = &p->s->probes[e->probe].env;
+
+		if ((rc = capture_env(p, e->probe, env)) == 0)
+			rc = header_value(p, e->line, e->col, "the capture of this scene (the "
+			                  "probe names no env, and the scene emits)", *env,
+			                  strlen(*env));
+	}
 	return rc;
 }
 
@@ -545,6 +578,10 @@ parse_probe(struct parser *p, const struct rf__token *kw)
 				rc = capture_env(p, p->s->nprobes, &pr.env);
 			else if (!tok_is(t, "default"))
 				rc = resolve_path(p, t, (char **)&pr.env);
+			if (rc >= 0 && pr.env)
+				rc = header_value(p, t->line, t->col, tok_is(t, "capture")
+				                  ? "the capture of this scene file" : "an environment path",
+				                  pr.env, strlen(pr.env));
 		} else {
 			rc = unknown_attribute(p, key, "probe",
 			                       "center, box, env, blend, importance or projection");
@@ -629,18 +666,15 @@ parse_name(struct parser *p, const struct rf__token *kw)
 {
 	const struct rf__token *t;
 	char *name;
-	size_t i;
 	int rc;
 
 	if (p->name_line)
 		return FAIL_TOK(p, kw, "expected one 'name' line, the first is line %zu",
 		                p->name_line);
 	p->name_line = kw->line;
-	if ((rc = word(p, "a scene name", &t)) < 0)
+	if ((rc = word(p, "a scene name", &t)) < 0 ||
+	    (rc = header_value(p, t->line, t->col, "a name", t->text, t->len)) < 0)
 		return rc;
-	for (i = 0; i < t->len; i++)
-		if ((unsigned char)t->text[i] < 0x20)
-			return FAIL_TOK(p, t, "expected a name of printable characters");
 	if (p->pos < p->lx.ntok)
 		return FAIL_TOK(p, &p->lx.tok[p->pos], "expected the end of the line after "
 		                "the name (quote a name with spaces)");
@@ -1099,7 +1133,7 @@ static int
 name_from_file(rf_scene *s, const char *file)
 {
 	const char *base = strrchr(file, '/') ? strrchr(file, '/') + 1 : file;
-	size_t n = strcspn(base, ".");
+	size_t n = strcspn(base, "."), i;
 
 	if (!n || !strcmp(file, "-") || base[0] == '<') {
 		base = "scene";
@@ -1107,7 +1141,9 @@ name_from_file(rf_scene *s, const char *file)
 	}
 	if (!(s->name = malloc(n + 1)))
 		return RF_ENOMEM;
-	memcpy(s->name, base, n);
+	/* into the header, which takes no control byte */
+	for (i = 0; i < n; i++)
+		s->name[i] = (unsigned char)base[i] < 0x20 || base[i] == 0x7f ? '?' : base[i];
 	s->name[n] = '\0';
 	return 0;
 }
