@@ -138,6 +138,9 @@ const char *cli_input_or_default(const char *operand);
  * "default" for the embedded default; death with the parser's message. */
 struct rf_scene;
 struct rf_scene *cli_load_scene(const char *path);
+/* The same, the error returned with its message in err (RF_ENOTFOUND:
+ * the file cannot be opened). */
+int cli_read_scene(struct rf_scene **s, const char *path, char *err, size_t errlen);
 
 /* --box, --center, --box-projection as given (NULL: not given), for
  * rf_probe_resolve. */

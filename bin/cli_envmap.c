@@ -1,5 +1,6 @@
 /* The environment options every tool shares, and the library's loader
  * behind them. */
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -74,6 +75,30 @@ envmap_opts_parse(struct envmap_opts *o, const char *name, const char *arg)
 	return 1;
 }
 
+/*
+ * A scene named by a stream's header (PROBE_ENV=capture:FILE#K) is a
+ * file the stream chose, not the user: a parser's message quotes the
+ * words it stumbled on, and would print a part of any file a stream
+ * names.  Only where it stumbled is kept: "FILE:LINE:COLUMN".
+ */
+static void
+without_content(char *err, size_t errlen, const char *file)
+{
+	char where[1024];
+	size_t n = strlen(file);
+	const char *p;
+
+	if (strncmp(err, file, n) || err[n] != ':' || !isdigit((unsigned char)err[n + 1]))
+		return; /* not the parser's: it quotes nothing of the file */
+	p = err + n + 1 + strspn(err + n + 1, "0123456789");
+	if (*p == ':' && isdigit((unsigned char)p[1]))
+		p += 1 + strspn(p + 1, "0123456789");
+	snprintf(where, sizeof(where), "%.*s", (int)(p - err), err);
+	snprintf(err, errlen, "'%s' (named by the stream's header) is not a scene reflect "
+	         "reads: %s; its words are not shown, since the stream, not you, named it",
+	         file, where);
+}
+
 /* capture:SCENE[#K] (a probe's "env capture"): probe K (from 1) of the
  * scene file, or of the embedded scene for "default", baked as
  * reflect-capture bakes it by default: a raw environment to prefilter. */
@@ -82,7 +107,7 @@ capture_load(const char *spec, const struct envmap_opts *o, struct rf_chain_info
 {
 	struct rf_capture_options co;
 	const char *hash = strrchr(spec, '#');
-	char file[4096], err[1024], *end;
+	char file[4096], err[4096 + 1024], *end;
 	unsigned long k = 1;
 	rf_cubemap *c;
 	rf_scene *s;
@@ -96,7 +121,11 @@ capture_load(const char *spec, const struct envmap_opts *o, struct rf_chain_info
 	if (!strcmp(file, "<stdin>") || !strcmp(file, "-"))
 		die("'capture:%s': the scene came from standard input and cannot be read "
 		    "again; bake the probe with reflect-capture and give it with --env", spec);
-	s = cli_load_scene(file);
+	if ((rc = cli_read_scene(&s, file, err, sizeof(err))) < 0) {
+		if (o->load.from_header)
+			without_content(err, sizeof(err), file);
+		die_status(rc, err);
+	}
 	rf_capture_options_init(&co);
 	co.nthreads = o->load.nthreads > 0 ? o->load.nthreads : 1;
 	if ((rc = rf_scene_capture(s, (size_t)k - 1, &co, &c, err, sizeof(err))) < 0) {

@@ -148,6 +148,25 @@ test_expect_success 'env capture: reflect-shade bakes the probe itself' '
 	test_grep "is not a probe number" err
 '
 
+# A stream names the scene of its capture; a message about that file
+# tells where the parser stopped, never what it read there, or a stream
+# could have reflect-shade print any file the user can read.
+test_expect_success 'a scene named by a header: its words never shown' '
+	printf "root:x:0:0:SECRET-WORD:/root:/bin/sh\nline two\n" >secret.txt &&
+	sed "s|^PROBE_ENV=capture:baked.scene#1$|PROBE_ENV=capture:secret.txt#1|" g.rfl >evil.rfl &&
+	reflect-info evil.rfl >info &&
+	test_grep "PROBE_ENV=capture:secret.txt#1$" info &&
+	test_expect_code 1 reflect-shade evil.rfl >out 2>err &&
+	test ! -s out &&
+	! test_grep SECRET err &&
+	! test_grep root err &&
+	test_grep "secret.txt:1:1" err &&
+	test_grep "named by the stream.s header" err &&
+	# named by the user, the parser says all it has to say
+	test_expect_code 1 reflect-shade --env=capture:secret.txt g.rfl >out 2>err &&
+	test_grep "unknown keyword .root:x:0:0:SECRET-WORD" err
+'
+
 test_expect_success 'bad options and probes are refused with the fix' '
 	test_expect_code 1 reflect-capture -p 2 >/dev/null 2>err &&
 	test_grep "p 2: the default scene has 1 probe" err &&
