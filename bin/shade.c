@@ -605,6 +605,10 @@ main(int argc, char **argv)
 	o.nthreads = cli_threads(threads);
 	o.env.load.nthreads = o.nthreads;
 	mode_load(&o.mode, RF_KIND_SHADE, o.spec, o.verbose);
+	/* Loaded before the first frame: a sky that cannot be read is
+	 * refused even where every frame has one probe and reads none. */
+	if (o.fallback == RF_BLEND_SKY)
+		load_environment(&o, o.sky, 0, &env[RF_PROBES_MAX]);
 	so.final = o.final;
 	if (!diffuse_given)
 		so.diffuse = 1; /* with --final, the probe's diffuse light too */

@@ -96,6 +96,23 @@ test_expect_success '--fallback=sky:FILE: what no probe covers comes from the sk
 	test_grep "nothere.rfl" err
 '
 
+# A sky that cannot be read is refused before any frame, also when every
+# frame has one probe and no pixel would read it: never a silent pass.
+test_expect_success '--fallback=sky:FILE: a missing sky is refused with one probe too' '
+	reflect-gbuffer -x 4 -y 2 </dev/null | reflect-project >one.rfl &&
+	reflect-info one.rfl >info &&
+	! test_grep PROBE2_ info &&
+	test_expect_code 1 reflect-shade -m none --fallback=sky:nothere.rfl one.rfl \
+		>out 2>err &&
+	test ! -s out &&
+	test_grep "cannot open .nothere.rfl." err &&
+	printf "not a stream" >bad.rfl &&
+	test_expect_code 1 reflect-shade -m none --fallback=sky:bad.rfl one.rfl \
+		>out 2>err &&
+	test ! -s out &&
+	test_grep "bad.rfl" err
+'
+
 # The raytraced mode traces each probe's rays through that probe's box
 # and environment, a stage a probe: in these uniform rooms every ray
 # reads its probe's radiance, so spec is the same blend, to the noise of
