@@ -70,7 +70,7 @@ test_expect_success '-l lists parameters with default, help and range' '
 
 test_expect_success '-l warns about every broken plugin and lists the rest' '
 	REFLECT_PLUGIN_PATH="$P:$B" reflect-project -l >out 2>err &&
-	for p in bad_major bad_minor bad_size no_entry bad_name \
+	for p in bad_major bad_minor bad_size bad_name \
 		bad_param_flags bad_flags no_summary radiance_projection flags_abi_1_0 \
 		radiance_no_spec shade_no_roughness bad_optional accumulate_channels \
 		bad_param_range bad_param_name shade_both
@@ -78,10 +78,46 @@ test_expect_success '-l warns about every broken plugin and lists the rest' '
 		test_grep "^reflect-project: ignoring plugin .$P/$p\.so.: " err ||
 		return 1
 	done &&
-	test_line_count 18 err &&
+	test_line_count 17 err &&
+	! grep "no_entry\|not_plugin" err &&
 	test_grep "^box$tab" out &&
 	test_grep "^infinite$tab" out &&
 	test_grep "^echo_params$tab" out
+'
+
+test_expect_success '-l passes over a library that is no plugin, never loading it' '
+	mkdir lib &&
+	cp "$B/box.so" "$REFLECT_TEST_PLUGINS/not_plugin.so" lib/ &&
+	cp "$REFLECT_TEST_PLUGINS/not_plugin.so" lib/infinite.so &&
+	REFLECT_PLUGIN_PATH="$PWD/lib" REFLECT_PLUGIN_SYSTEM_PATH= reflect-project -l >out 2>err &&
+	test_line_count 0 err &&
+	grep "^[a-z_]*$tab" out >names &&
+	test_line_count 1 names &&
+	test_grep "^box$tab" out &&
+	! grep "not_plugin\|infinite" out
+'
+
+test_expect_success '-m passes over a library of its name for a plugin after it' '
+	REFLECT_PLUGIN_PATH="$PWD/lib:$B" reflect-project -v -m infinite <gbuf >/dev/null 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: mode .infinite. from .$B/infinite\.so.$" err &&
+	test_expect_code 1 env REFLECT_PLUGIN_PATH="$PWD/lib" REFLECT_PLUGIN_SYSTEM_PATH= \
+		reflect-project -m infinite <gbuf >out 2>err &&
+	test_line_count 0 out &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: plugin .$PWD/lib/infinite\.so.: not a reflect plugin, it exports no rf_plugin_entry()" err
+'
+
+test_expect_success '-l warns about a truncated plugin, lists the rest, exit 0' '
+	mkdir cut &&
+	size=$(wc -c <"$B/infinite.so") &&
+	head -c $((size / 2)) "$B/infinite.so" >cut/infinite.so &&
+	cp "$B/box.so" cut/ &&
+	REFLECT_PLUGIN_PATH="$PWD/cut" REFLECT_PLUGIN_SYSTEM_PATH= reflect-project -l >out 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: ignoring plugin .$PWD/cut/infinite\.so.: not a whole shared object: $((size / 2)) bytes, its headers need [0-9]* " err &&
+	test_grep "^box$tab" out &&
+	! grep "^infinite$tab" out
 '
 
 test_expect_success '-l: modes of another kind are left out silently' '

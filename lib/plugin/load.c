@@ -8,6 +8,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "plugin/plugin-internal.h"
 #include "util/util.h"
 #include "reflect/plugin.h"
 
@@ -501,6 +502,7 @@ rf_module_load_file(rf_module **mp, const char *path, unsigned kind, char *err,
 	rf_plugin_entry_fn entry;
 	rf_module *m;
 	struct stat st;
+	char why[512];
 	void *sym;
 	int rc;
 
@@ -515,19 +517,25 @@ rf_module_load_file(rf_module **mp, const char *path, unsigned kind, char *err,
 		           "path of a .so file", path);
 		return RF_EPLUGIN;
 	}
+	/* Read as data first: dlopen would fault on a file cut short and
+	 * run the constructors of a library that is no plugin. */
+	if (rf__elf_check(path, why, sizeof(why)) != 0) {
+		rf__format(err, errlen, "plugin '%s': %s", path, why);
+		return RF_EPLUGIN;
+	}
 	if (!(m = calloc(1, sizeof(*m))) || !(m->path = strdup(path))) {
 		free(m);
 		rf__format(err, errlen, "plugin '%s': %s", path, rf_strerror(RF_ENOMEM));
 		return RF_ENOMEM;
 	}
 	if (!(m->handle = dlopen(path, RTLD_NOW | RTLD_LOCAL))) {
-		const char *why = dlerror();
+		const char *dl = dlerror();
 
 		/* dlopen says "cannot open shared object file" for a library the
 		 * plugin needs and cannot find: only then is ldd the way on */
 		rf__format(err, errlen, "plugin '%s': cannot load it: %s%s", path,
-		           why ? why : "unknown error",
-		           why && strstr(why, "cannot open shared object")
+		           dl ? dl : "unknown error",
+		           dl && strstr(dl, "cannot open shared object")
 		               ? "; ldd(1) on the plugin shows which library is missing" : "");
 		rc = RF_EPLUGIN;
 		goto fail;
@@ -632,7 +640,7 @@ int
 rf_module_load(rf_module **mp, const char *name, unsigned kind, char *err,
                size_t errlen)
 {
-	char path[4096];
+	char path[4096], why[512], not_plugin[1024] = "";
 	const char *dirs, *p;
 	struct stat st;
 	size_t n;
@@ -647,19 +655,34 @@ rf_module_load(rf_module **mp, const char *name, unsigned kind, char *err,
 	}
 	dirs = rf_plugin_search_path();
 	for (p = dirs; *p; p += n + (p[n] == ':')) {
+		int k;
+
 		n = strcspn(p, ":");
 		if (!n)
 			continue;
 		/* KIND-NAME.so first: a name another kind has too */
-		if (kind && rf_plugin_kind_name(kind)) {
-			rf__format(path, sizeof(path), "%.*s/%s-%s.so", (int)n, p,
-			           rf_plugin_kind_name(kind), name);
-			if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
-				return rf_module_load_file(mp, path, kind, err, errlen);
-		}
-		rf__format(path, sizeof(path), "%.*s/%s.so", (int)n, p, name);
-		if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
+		for (k = kind && rf_plugin_kind_name(kind) ? 0 : 1; k < 2; k++) {
+			if (k == 0)
+				rf__format(path, sizeof(path), "%.*s/%s-%s.so", (int)n, p,
+				           rf_plugin_kind_name(kind), name);
+			else
+				rf__format(path, sizeof(path), "%.*s/%s.so", (int)n, p, name);
+			if (stat(path, &st) < 0 || !S_ISREG(st.st_mode))
+				continue;
+			/* A library that is no plugin is passed over, as -l passes
+			 * it; the first is named should no plugin follow. */
+			if (rf__elf_check(path, why, sizeof(why)) == RF__ELF_NOT_PLUGIN) {
+				if (!*not_plugin)
+					rf__format(not_plugin, sizeof(not_plugin), "plugin '%s': %s",
+					           path, why);
+				continue;
+			}
 			return rf_module_load_file(mp, path, kind, err, errlen);
+		}
+	}
+	if (*not_plugin) {
+		rf__format(err, errlen, "%s", not_plugin);
+		return RF_EPLUGIN;
 	}
 	n = strlen(name);
 	rf__format(err, errlen, "unknown %s mode '%s': no %s.so in %s%s%s%s%s (-l "
@@ -726,13 +749,17 @@ rf_plugin_scan(rf_plugin_visit_fn fn, void *arg)
 		closedir(d);
 		qsort(files, nfiles, sizeof(*files), cmp_str);
 		for (i = 0; i < nfiles; i++) {
-			char path[4096];
+			char path[4096], why[512];
 			struct stat st;
 			int shadowed = 0;
 			char **grown;
 
 			rf__format(path, sizeof(path), "%s/%s", dir, files[i]);
 			if (stat(path, &st) < 0 || !S_ISREG(st.st_mode))
+				continue;
+			/* Only plugins are visited: a library beside them is not
+			 * loaded (its constructors would run), and hides nothing. */
+			if (rf__elf_check(path, why, sizeof(why)) == RF__ELF_NOT_PLUGIN)
 				continue;
 			for (j = 0; j < nseen; j++)
 				if (!strcmp(seen[j], files[i]))

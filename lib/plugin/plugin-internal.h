@@ -42,4 +42,13 @@ struct rf_host;
 uint32_t rf__host_filter_passes(const struct rf_host *table, uint32_t *radius);
 void rf__host_filter_reset(const struct rf_host *table);
 
+/* Whether the file at path may be dlopen'ed as a plugin: 0 for a whole
+ * ELF shared object of this machine whose dynamic symbols export
+ * RF_PLUGIN_ENTRY; RF__ELF_NOT_PLUGIN for a file that is no plugin (not
+ * ELF, no entry: a library beside the plugins), RF__ELF_BROKEN for one
+ * that cannot be loaded (cut short, another machine's); why says what,
+ * without the path.  It never maps or loads the file. */
+enum { RF__ELF_NOT_PLUGIN = 1, RF__ELF_BROKEN = 2 };
+int rf__elf_check(const char *path, char *why, size_t len);
+
 #endif
