@@ -58,6 +58,10 @@ enum rf_format parse_format(const char *arg);
 /* Parses n comma-separated finite numbers for option `what`. */
 void parse_floats(const char *arg, const char *what, float *out, int n);
 
+/* Where the stream goes: stdout, or once a mode is loaded the descriptor
+ * that standard output was (mode_load). */
+FILE *cli_stdout(void);
+
 /* Stream options every stream tool takes: -f a|f, -h, -H -x -y -c. */
 struct cli_io {
 	enum rf_format format;
@@ -157,6 +161,10 @@ struct cli_mode {
 	double *values;
 };
 CLI_NORETURN void mode_list(unsigned kind);
+/* Loads a mode: its file found and checked, its parameters parsed (dies
+ * with the reason).  Plugin code may print: from the first load on,
+ * standard output (fd 1) leads to standard error, and the stream goes
+ * out through a descriptor of its own, cli_stdout(). */
 void mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose);
 void mode_unload(struct cli_mode *m);
 

@@ -145,7 +145,7 @@ cli_io_open(struct cli_io *io, const char *path)
 	struct rf_writer_options wopt = { io->format, io->no_header };
 	int rc;
 
-	cli_widen_pipe(STDOUT_FILENO);
+	cli_widen_pipe(fileno(cli_stdout()));
 	if (!path || !strcmp(path, "-")) {
 		io->input = stdin;
 		io->input_name = "<stdin>";
@@ -174,7 +174,7 @@ cli_io_open(struct cli_io *io, const char *path)
 	}
 	if (rc < 0)
 		die_status(rc, NULL);
-	if ((rc = rf_writer_open(&io->writer, stdout, "<stdout>", &wopt)) < 0)
+	if ((rc = rf_writer_open(&io->writer, cli_stdout(), "<stdout>", &wopt)) < 0)
 		die_status(rc, NULL);
 }
 
@@ -268,5 +268,5 @@ cli_io_close(struct cli_io *io)
 	if (io->input && io->input != stdin)
 		fclose(io->input);
 	free(io->image_buf);
-	fshut(stdout, "<stdout>");
+	fshut(cli_stdout(), "<stdout>");
 }

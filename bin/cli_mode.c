@@ -1,6 +1,9 @@
 /* -l and -m: listing and selecting the modes (plugins) of a tool. */
+#include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli.h"
 
@@ -155,6 +158,48 @@ mode_list(unsigned kind)
 	exit(l.count ? 0 : EXIT_BAD_INPUT);
 }
 
+/* The stream once plugin code may run: its own descriptor. */
+static FILE *stream_out;
+
+FILE *
+cli_stdout(void)
+{
+	return stream_out ? stream_out : stdout;
+}
+
+/*
+ * A plugin that prints (a printf left in while debugging, a library that
+ * logs) would write into the stream, and the next tool would read its
+ * text as pixels, or refuse the stream, after this one exited 0.  So the
+ * stream keeps standard output's descriptor under another number, and
+ * fd 1 leads to standard error for whatever else writes to it, plugin
+ * code and its constructors alike.  A closed fd 1 is left closed.
+ */
+static void
+keep_stdout_from_plugins(void)
+{
+	int fd;
+
+	if (stream_out)
+		return;
+	fflush(stdout);
+	if ((fd = fcntl(STDOUT_FILENO, F_DUPFD_CLOEXEC, 3)) < 0) {
+		if (errno == EBADF)
+			return;
+		die_sys("cannot keep standard output from the plugins:");
+	}
+	if (!(stream_out = fdopen(fd, "wb")))
+		die_sys("cannot keep standard output from the plugins:");
+	if (dup2(STDERR_FILENO, STDOUT_FILENO) < 0) {
+		/* no standard error: what plugins print goes nowhere */
+		int null = open("/dev/null", O_WRONLY | O_CLOEXEC);
+
+		if (null < 0 || dup2(null, STDOUT_FILENO) < 0)
+			die_sys("cannot keep standard output from the plugins:");
+		close(null);
+	}
+}
+
 void
 mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose)
 {
@@ -162,6 +207,8 @@ mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose)
 	const char *params = "";
 	char *colon;
 	int rc;
+
+	keep_stdout_from_plugins();
 
 	/* A path may hold ':' only before its last '/'. */
 	colon = strchr(strrchr(name, '/') ? strrchr(name, '/') : name, ':');
