@@ -55,7 +55,7 @@ static atomic_flag mapped_told = ATOMIC_FLAG_INIT;
 static void
 on_sigbus(int sig)
 {
-	(void)sig;
+	cli_plugin_crash(sig); /* a mode's own bus error: said so */
 	if (atomic_flag_test_and_set(&mapped_told))
 		for (;;)
 			pause();

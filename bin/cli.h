@@ -58,6 +58,14 @@ enum rf_format parse_format(const char *arg);
 /* Parses n comma-separated finite numbers for option `what`. */
 void parse_floats(const char *arg, const char *what, float *out, int n);
 
+/* A mode that crashes (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT): the
+ * tool says which mode, file, call, frame and rows, and dies of the
+ * signal.  cli_guard_plugins installs the handler (mode_load does);
+ * cli_plugin_crash is its part for another handler of the signal to
+ * call first: it returns only when no plugin code was running. */
+void cli_guard_plugins(void);
+void cli_plugin_crash(int sig);
+
 /* Where the stream goes: stdout, or once a mode is loaded the descriptor
  * that standard output was (mode_load). */
 FILE *cli_stdout(void);

@@ -209,6 +209,7 @@ mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose)
 	int rc;
 
 	keep_stdout_from_plugins();
+	cli_guard_plugins();
 
 	/* A path may hold ':' only before its last '/'. */
 	colon = strchr(strrchr(name, '/') ? strrchr(name, '/') : name, ':');

@@ -271,6 +271,21 @@ RF_EXTERN const char *rf_plugin_search_path(void);
 typedef void (*rf_plugin_visit_fn)(void *arg, const char *path, int shadowed);
 RF_EXTERN int rf_plugin_scan(rf_plugin_visit_fn fn, void *arg);
 
+/* The plugin code the calling thread is running, for a crash handler
+ * (a mode that faults takes the process with it): NULL when none, else
+ * the mode (NULL while its file loads), its file (NULL when unknown),
+ * which call ("load", "create", "run", "destroy"), and for run() the
+ * frame (counted from 1) and the rows.  Async-signal-safe: it only reads
+ * the thread's own record, which the library sets around every call. */
+struct rf_plugin_call {
+	const char *mode;
+	const char *file;
+	const char *what;
+	size_t frame;
+	size_t row_first, nrows; /* the first row from 0, and how many */
+};
+RF_EXTERN const struct rf_plugin_call *rf_plugin_current_call(void);
+
 /* Parses "key=value:key=value" against the plugin's parameter table into
  * values[nparams] (defaults first).  err names the key and the range. */
 struct rf_param;

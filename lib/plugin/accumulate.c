@@ -28,6 +28,7 @@ struct worker {
 
 struct rf_accumulator {
 	const struct rf_plugin *p;
+	struct rf__call_site site; /* for a crash report */
 	const struct rf_host *host;
 	int nthreads;
 	struct worker *workers;
@@ -84,6 +85,7 @@ rf_accumulator_create(rf_accumulator **ap, const struct rf_plugin *p,
 	if (!(a = calloc(1, sizeof(*a))))
 		return RF_ENOMEM;
 	a->p = p;
+	rf__call_site_init(&a->site, p);
 	a->host = host;
 	a->nthreads = nthreads;
 	a->nslots = list_length(p->outputs);
@@ -97,7 +99,7 @@ rf_accumulator_create(rf_accumulator **ap, const struct rf_plugin *p,
 		return RF_ENOMEM;
 	}
 	for (i = 0; i < nthreads; i++)
-		if (rf__plugin_instance(p, host, values, &a->workers[i].state, err,
+		if (rf__plugin_instance(p, &a->site, host, values, &a->workers[i].state, err,
 		                        errlen) < 0) {
 			rf_accumulator_destroy(a);
 			return RF_EPLUGIN;
@@ -116,7 +118,7 @@ rf_accumulator_destroy(rf_accumulator *a)
 	rf__pool_destroy(a->pool);
 	for (i = 0; a->workers && i < a->nthreads; i++) {
 		if (a->workers[i].state)
-			a->p->destroy(a->workers[i].state);
+			rf__plugin_destroy(a->p, &a->site, a->workers[i].state);
 		free(a->workers[i].values);
 	}
 	free(a->workers);
@@ -127,6 +129,7 @@ rf_accumulator_destroy(rf_accumulator *a)
 	rf_header_destroy(a->out_h);
 	free(a->state);
 	free(a->kept);
+	rf__call_site_fini(&a->site);
 	free(a);
 }
 
@@ -341,8 +344,11 @@ run_row(void *arg, size_t task, int thread)
 		span.out = state;
 		span.nvalues = (uint32_t)a->nvalues;
 		span.count = a->count;
-		if (a->ncols)
+		if (a->ncols) {
+			rf__call_enter(&a->site, "run", a->frames, y, 1);
 			a->p->run(w->state, &span);
+			rf__call_leave();
+		}
 		if (a->kept) {
 			float *k = a->kept + y * a->ncols * a->out_ncomp;
 

@@ -38,6 +38,7 @@ struct level {
 
 struct rf_filter {
 	const struct rf_plugin *p;
+	struct rf__call_site site; /* for a crash report */
 	const struct rf_host *host;
 	int nthreads;
 	struct worker *workers;
@@ -114,6 +115,7 @@ rf_filter_create(rf_filter **fp, const struct rf_plugin *p, const double *values
 	if (!(f = calloc(1, sizeof(*f))))
 		return RF_ENOMEM;
 	f->p = p;
+	rf__call_site_init(&f->site, p);
 	f->host = host;
 	f->nthreads = nthreads;
 	f->ninputs = list_length(p->inputs);
@@ -126,7 +128,7 @@ rf_filter_create(rf_filter **fp, const struct rf_plugin *p, const double *values
 	}
 	rf__host_filter_reset(host);
 	for (t = 0; t < nthreads; t++)
-		if (rf__plugin_instance(p, host, values, &f->workers[t].state, err,
+		if (rf__plugin_instance(p, &f->site, host, values, &f->workers[t].state, err,
 		                        errlen) < 0) {
 			rf_filter_destroy(f);
 			return RF_EPLUGIN;
@@ -153,13 +155,14 @@ rf_filter_destroy(rf_filter *f)
 	rf__pool_destroy(f->pool);
 	for (t = 0; f->workers && t < f->nthreads; t++) {
 		if (f->workers[t].state)
-			f->p->destroy(f->workers[t].state);
+			rf__plugin_destroy(f->p, &f->site, f->workers[t].state);
 		free(f->workers[t].band);
 	}
 	free(f->workers);
 	free(f->channels);
 	rf_header_destroy(f->out_h);
 	free_frame(f);
+	rf__call_site_fini(&f->site);
 	free(f);
 }
 
@@ -278,8 +281,11 @@ pass_row(void *arg, size_t task, int thread)
 	span.band = w->band;
 	span.radius = r;
 	span.pass = p;
-	if (f->ncols)
+	if (f->ncols) {
+		rf__call_enter(&f->site, "run", f->frames, y, 1);
 		f->p->run(w->state, &span);
+		rf__call_leave();
+	}
 	/* the guides' arrays as they were, before the values', for the
 	 * next pass (the result's are not read) */
 	if (p + 1 < f->npasses)

@@ -528,7 +528,12 @@ rf_module_load_file(rf_module **mp, const char *path, unsigned kind, char *err,
 		rf__format(err, errlen, "plugin '%s': %s", path, rf_strerror(RF_ENOMEM));
 		return RF_ENOMEM;
 	}
-	if (!(m->handle = dlopen(path, RTLD_NOW | RTLD_LOCAL))) {
+	/* its constructors run here, and its entry below: a crash in them is
+	 * reported with the file's name */
+	rf__call_enter_file(m->path);
+	m->handle = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+	rf__call_leave();
+	if (!m->handle) {
 		const char *dl = dlerror();
 
 		/* dlopen says "cannot open shared object file" for a library the
@@ -552,7 +557,10 @@ rf_module_load_file(rf_module **mp, const char *path, unsigned kind, char *err,
 	}
 	/* dlsym gives an object pointer; POSIX makes it callable. */
 	memcpy(&entry, &sym, sizeof(entry));
-	if (!(m->plugin = entry())) {
+	rf__call_enter_file(m->path);
+	m->plugin = entry();
+	rf__call_leave();
+	if (!m->plugin) {
 		rf__format(err, errlen, "plugin '%s': %s() returned no descriptor; "
 		           "fix the plugin and rebuild it", path, RF_PLUGIN_ENTRY);
 		rc = RF_EPLUGIN;

@@ -20,8 +20,13 @@ int rf__stage_block_end(rf_stage *s);
  * the plugin's message, on one line. */
 struct rf_host;
 struct rf_plugin;
-int rf__plugin_instance(const struct rf_plugin *p, const struct rf_host *host,
-                        const double *values, void **state, char *err, size_t errlen);
+struct rf__call_site;
+int rf__plugin_instance(const struct rf_plugin *p, const struct rf__call_site *site,
+                        const struct rf_host *host, const double *values, void **state,
+                        char *err, size_t errlen);
+/* An instance's destroy(), as a crash report names it. */
+void rf__plugin_destroy(const struct rf_plugin *p, const struct rf__call_site *site,
+                        void *state);
 
 /* The stream columns a channel-agnostic mode works on: those of list
  * ("a,b"), or by default every spec.* channel and R G B; err says what
@@ -41,6 +46,22 @@ int rf__host_take_failure(const struct rf_host *table, const char *mode, char *e
 struct rf_host;
 uint32_t rf__host_filter_passes(const struct rf_host *table, uint32_t *radius);
 void rf__host_filter_reset(const struct rf_host *table);
+
+/* A mode as a crash report names it, made when an instance is: its name
+ * and its file (found from the descriptor's address; NULL when unknown). */
+struct rf__call_site {
+	const char *mode;
+	char *file;
+};
+void rf__call_site_init(struct rf__call_site *site, const struct rf_plugin *p);
+void rf__call_site_fini(struct rf__call_site *site);
+/* Around every call into plugin code on a thread (rf_plugin_current_call):
+ * what ("create", "run", "destroy"), and for run() the frame (from 1)
+ * and rows; a file's loading (its constructors, its entry) by path. */
+void rf__call_enter(const struct rf__call_site *site, const char *what, size_t frame,
+                    size_t y, size_t nrows);
+void rf__call_enter_file(const char *file);
+void rf__call_leave(void);
 
 /* Whether the file at path may be dlopen'ed as a plugin: 0 for a whole
  * ELF shared object of this machine whose dynamic symbols export

@@ -24,6 +24,7 @@ struct worker {
 
 struct rf_stage {
 	const struct rf_plugin *p;
+	struct rf__call_site site; /* for a crash report */
 	const struct rf_host *host; /* for a run() that failed (fail()) */
 	int nthreads;
 	struct worker *workers;
@@ -81,12 +82,17 @@ one_line(char *msg, size_t size)
 }
 
 int
-rf__plugin_instance(const struct rf_plugin *p, const struct rf_host *host,
-                    const double *values, void **state, char *err, size_t errlen)
+rf__plugin_instance(const struct rf_plugin *p, const struct rf__call_site *site,
+                    const struct rf_host *host, const double *values, void **state,
+                    char *err, size_t errlen)
 {
 	char msg[400] = "";
+	int failed;
 
-	if (p->create(host, values, state, msg, sizeof(msg))) {
+	rf__call_enter(site, "create", 0, 0, 0);
+	failed = p->create(host, values, state, msg, sizeof(msg));
+	rf__call_leave();
+	if (failed) {
 		one_line(msg, sizeof(msg));
 		rf__format(err, errlen, "mode '%s': %s", p->name,
 		           *msg ? msg : "cannot create an instance");
@@ -94,6 +100,14 @@ rf__plugin_instance(const struct rf_plugin *p, const struct rf_host *host,
 		return RF_EPLUGIN;
 	}
 	return 0;
+}
+
+void
+rf__plugin_destroy(const struct rf_plugin *p, const struct rf__call_site *site, void *state)
+{
+	rf__call_enter(site, "destroy", 0, 0, 0);
+	p->destroy(state);
+	rf__call_leave();
 }
 
 int
@@ -111,6 +125,7 @@ rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
 	if (!(s = calloc(1, sizeof(*s))))
 		return RF_ENOMEM;
 	s->p = p;
+	rf__call_site_init(&s->site, p);
 	s->host = host;
 	s->nthreads = nthreads;
 	s->nrequired = list_length(p->inputs);
@@ -131,7 +146,8 @@ rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
 		return RF_ENOMEM;
 	}
 	for (i = 0; i < nthreads; i++)
-		if (rf__plugin_instance(p, host, values, &s->workers[i].state, err, errlen) < 0) {
+		if (rf__plugin_instance(p, &s->site, host, values, &s->workers[i].state, err,
+		                        errlen) < 0) {
 			rf_stage_destroy(s);
 			return RF_EPLUGIN;
 		}
@@ -149,7 +165,7 @@ rf_stage_destroy(rf_stage *s)
 	rf__pool_destroy(s->pool);
 	for (i = 0; s->workers && i < s->nthreads; i++) {
 		if (s->workers[i].state)
-			s->p->destroy(s->workers[i].state);
+			rf__plugin_destroy(s->p, &s->site, s->workers[i].state);
 		free(s->workers[i].gather);
 		free(s->workers[i].scatter);
 		free(s->workers[i].zero);
@@ -162,6 +178,7 @@ rf_stage_destroy(rf_stage *s)
 	free(s->in_runs);
 	free(s->out_runs);
 	rf_header_destroy(s->out_h);
+	rf__call_site_fini(&s->site);
 	free(s);
 }
 
@@ -479,7 +496,9 @@ rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int thread)
 			g[s->fixed_at[i]] = s->fixed_value[i];
 	}
 	zeroed = s->check.n ? check_row(s, w, in, y) : 0;
+	rf__call_enter(&s->site, "run", s->frames, y, 1);
 	s->p->run(w->state, &span);
+	rf__call_leave();
 	for (x = 0; x < s->ncols; x++) {
 		float *po = out + x * s->out_ncomp;
 		const float *q = w->scatter + x * s->nout;

@@ -7,6 +7,7 @@
  * thread is free takes the next task, so a late one costs nothing.
  */
 #include <pthread.h>
+#include <signal.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 
@@ -42,6 +43,11 @@ take_tasks(struct rf__pool *p, int thread)
 		p->fn(p->arg, task, thread);
 }
 
+/* A stack for signal handlers (sigaltstack) on each pool thread: plugin
+ * code runs here, and a tool that reports a mode's crash (SA_ONSTACK)
+ * can then report one that overflowed its stack too. */
+#define ALTSTACK_BYTES ((size_t)1 << 16)
+
 static void *
 worker(void *arg)
 {
@@ -49,8 +55,15 @@ worker(void *arg)
 	struct rf__pool *p = s->pool;
 	int index = s->index;
 	unsigned long seen = 0;
+	stack_t alt;
 
 	free(s);
+	alt.ss_flags = 0;
+	alt.ss_size = ALTSTACK_BYTES;
+	if ((alt.ss_sp = malloc(ALTSTACK_BYTES)) && sigaltstack(&alt, NULL) < 0) {
+		free(alt.ss_sp);
+		alt.ss_sp = NULL;
+	}
 	pthread_mutex_lock(&p->mu);
 	for (;;) {
 		while (p->generation == seen && !p->quitting)
@@ -65,6 +78,11 @@ worker(void *arg)
 			pthread_cond_signal(&p->done);
 	}
 	pthread_mutex_unlock(&p->mu);
+	if (alt.ss_sp) {
+		alt.ss_flags = SS_DISABLE;
+		sigaltstack(&alt, NULL);
+		free(alt.ss_sp);
+	}
 	return NULL;
 }
 
