@@ -136,13 +136,29 @@ list_one(void *arg, const char *path, int shadowed)
 	rf_module_unload(m);
 }
 
+/* The search path's directories checked: death for one anyone may write
+ * to, a warning for a relative one. */
+static void
+check_search_path(void)
+{
+	char err[1024], warning[1024];
+
+	if (rf_plugin_path_check(err, sizeof(err), warning, sizeof(warning)) < 0)
+		die("%s", err);
+	if (*warning)
+		warn("%s", warning);
+}
+
 void
 mode_list(unsigned kind)
 {
 	struct listing l = { kind, 0, NULL, 0 };
 	const char *dirs;
-	int rc = rf_plugin_scan(list_one, &l);
 	size_t i;
+	int rc;
+
+	check_search_path();
+	rc = rf_plugin_scan(list_one, &l);
 
 	if (rc < 0)
 		die_status(rc, NULL);
@@ -210,6 +226,8 @@ mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose)
 
 	keep_stdout_from_plugins();
 	cli_guard_plugins();
+	if (!strchr(spec, '/'))
+		check_search_path();
 
 	/* A path may hold ':' only before its last '/'. */
 	colon = strchr(strrchr(name, '/') ? strrchr(name, '/') : name, ':');

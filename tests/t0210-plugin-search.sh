@@ -230,6 +230,44 @@ test_expect_success 'an unknown mode: a clear message, exit 1' '
 	test_grep "^reflect-project: .no such. is not a valid mode name" err
 '
 
+test_expect_success 'a plugin directory anyone may write to is refused' '
+	mkdir open &&
+	cp "$B/box.so" open/ &&
+	chmod 777 open &&
+	test_expect_code 1 env REFLECT_PLUGIN_PATH="$PWD/open" \
+		reflect-project -m box <gbuf >out 2>err &&
+	test_line_count 0 out &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: plugin directory .$PWD/open. in REFLECT_PLUGIN_PATH is writable by every user (mode 0777): anyone could put a plugin there; chmod o-w .$PWD/open., or take it out of REFLECT_PLUGIN_PATH$" err &&
+	test_expect_code 1 env REFLECT_PLUGIN_PATH="$PWD/a" REFLECT_PLUGIN_SYSTEM_PATH="$PWD/open" \
+		reflect-project -l >out 2>err &&
+	test_line_count 0 out &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: plugin directory .$PWD/open. in REFLECT_PLUGIN_SYSTEM_PATH is writable by every user (mode 0777): " err &&
+	# a path given to -m is the user.s own choice
+	reflect-project -m "$PWD/open/box.so" <gbuf >out 2>err &&
+	test_line_count 0 err
+'
+
+test_expect_success 'a sticky directory anyone may write to is searched, like /tmp' '
+	chmod 1777 open &&
+	REFLECT_PLUGIN_PATH="$PWD/open" reflect-project -v -m box <gbuf >/dev/null 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/open/box\.so.$" err &&
+	chmod 755 open
+'
+
+test_expect_success 'a relative plugin directory is searched, with a warning' '
+	REFLECT_PLUGIN_PATH="a" reflect-project -v -m box <gbuf >/dev/null 2>err &&
+	test_line_count 2 err &&
+	test_grep "^reflect-project: relative directory .a. in REFLECT_PLUGIN_PATH is searched from the current directory; give an absolute path$" err &&
+	test_grep "^reflect-project: mode .box. from .a/box\.so.$" err &&
+	REFLECT_PLUGIN_PATH="$PWD/b" REFLECT_PLUGIN_SYSTEM_PATH="a" reflect-project -l >out 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: relative directory .a. in REFLECT_PLUGIN_SYSTEM_PATH is searched" err &&
+	test_grep "^box$tab" out
+'
+
 test_expect_success '-v names the file and the parameter values' '
 	REFLECT_PLUGIN_PATH="$P" reflect-project -v -m echo_params:shape=square:count=5 \
 		<gbuf >/dev/null 2>err &&

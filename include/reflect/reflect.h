@@ -264,6 +264,15 @@ RF_EXTERN const char *rf_module_path(const rf_module *m);
  * by the library (valid until the next call). */
 RF_EXTERN const char *rf_plugin_search_path(void);
 
+/* Checks the directories of REFLECT_PLUGIN_PATH and of
+ * REFLECT_PLUGIN_SYSTEM_PATH (or the installed one): RF_EPLUGIN, with err
+ * naming it and the fix, for one that every user may write to and that
+ * is not sticky (rf_module_load and rf_plugin_scan refuse to search
+ * such a path); else 0, with warning (when not NULL) saying which
+ * directory is relative, or "". */
+RF_EXTERN int rf_plugin_path_check(char *err, size_t errlen, char *warning,
+                                   size_t warnlen);
+
 /* Calls fn for every plugin file (*.so) in the search path, first match of
  * a name first; `shadowed` is 1 for files hidden by an earlier one.  A
  * file that is no plugin (not ELF, or exporting no rf_plugin_entry) is

@@ -633,6 +633,60 @@ rf_plugin_search_path(void)
 	return buf;
 }
 
+/*
+ * Whoever can write to a directory of the search path chooses the code
+ * every tool runs: a directory any user may write to (and not sticky,
+ * where they could also replace another's file) is refused, as ssh
+ * refuses such files.  A relative directory is searched from wherever
+ * the tool runs, which is seldom what was meant: a warning.
+ */
+static int
+check_list(const char *list, const char *var, char *err, size_t errlen, char *warning,
+           size_t warnlen)
+{
+	const char *p;
+	size_t n;
+
+	for (p = list; p && *p; p += n + (p[n] == ':')) {
+		char dir[4096];
+		struct stat st;
+
+		n = strcspn(p, ":");
+		if (!n)
+			continue;
+		rf__format(dir, sizeof(dir), "%.*s", (int)n, p);
+		if (*dir != '/' && warning && !*warning)
+			rf__format(warning, warnlen, "relative directory '%s' in %s is searched "
+			           "from the current directory; give an absolute path", dir, var);
+		if (stat(dir, &st) < 0 || !S_ISDIR(st.st_mode))
+			continue;
+		if ((st.st_mode & S_IWOTH) && !(st.st_mode & S_ISVTX)) {
+			rf__format(err, errlen, "plugin directory '%s' in %s is writable by "
+			           "every user (mode %04o): anyone could put a plugin there; "
+			           "chmod o-w '%s', or take it out of %s", dir, var,
+			           (unsigned)(st.st_mode & 07777), dir, var);
+			return RF_EPLUGIN;
+		}
+	}
+	return 0;
+}
+
+int
+rf_plugin_path_check(char *err, size_t errlen, char *warning, size_t warnlen)
+{
+	const char *sys = getenv("REFLECT_PLUGIN_SYSTEM_PATH");
+	int rc;
+
+	if (warning && warnlen)
+		*warning = '\0';
+	if ((rc = check_list(getenv("REFLECT_PLUGIN_PATH"), "REFLECT_PLUGIN_PATH", err, errlen,
+	                     warning, warnlen)) < 0)
+		return rc;
+	return check_list(sys ? sys : installed_plugindir(),
+	                  sys ? "REFLECT_PLUGIN_SYSTEM_PATH" : "the installed plugin directory",
+	                  err, errlen, warning, warnlen);
+}
+
 static int
 mode_name_valid(const char *s)
 {
@@ -661,6 +715,8 @@ rf_module_load(rf_module **mp, const char *name, unsigned kind, char *err,
 		           "digits, '_', '-' and '.'; a path needs a '/')", name);
 		return RF_EINVAL;
 	}
+	if (rf_plugin_path_check(err, errlen, NULL, 0) < 0)
+		return RF_EPLUGIN;
 	dirs = rf_plugin_search_path();
 	for (p = dirs; *p; p += n + (p[n] == ':')) {
 		int k;
@@ -712,11 +768,13 @@ cmp_str(const void *a, const void *b)
 int
 rf_plugin_scan(rf_plugin_visit_fn fn, void *arg)
 {
-	char *dirs, *dir, *save = NULL, **seen = NULL, **files = NULL;
+	char *dirs, *dir, *save = NULL, **seen = NULL, **files = NULL, why[1024];
 	size_t nseen = 0, nfiles = 0, ndirs = 0, i, j;
 	struct stat dirst[64];
 	int rc = 0;
 
+	if (rf_plugin_path_check(why, sizeof(why), NULL, 0) < 0)
+		return RF_EPLUGIN;
 	if (!(dirs = strdup(rf_plugin_search_path())))
 		return RF_ENOMEM;
 	for (dir = strtok_r(dirs, ":", &save); dir; dir = strtok_r(NULL, ":", &save)) {
@@ -757,7 +815,7 @@ rf_plugin_scan(rf_plugin_visit_fn fn, void *arg)
 		closedir(d);
 		qsort(files, nfiles, sizeof(*files), cmp_str);
 		for (i = 0; i < nfiles; i++) {
-			char path[4096], why[512];
+			char path[4096];
 			struct stat st;
 			int shadowed = 0;
 			char **grown;
