@@ -175,5 +175,8 @@ CLI_NORETURN void mode_list(unsigned kind);
  * out through a descriptor of its own, cli_stdout(). */
 void mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose);
 void mode_unload(struct cli_mode *m);
+/* Says, once a frame, how many pixels' outputs of the mode were clamped
+ * or zeroed (--invalid; rf_stage_invalid_output_count). */
+void mode_invalid_note(struct cli_io *io, size_t count);
 
 #endif

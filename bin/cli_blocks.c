@@ -282,6 +282,7 @@ cli_stage_rows(struct cli_io *io, rf_stage *stage, const rf_header *in, const rf
 	if (sb.failed || sb.gave_up)
 		snprintf(err, sizeof(err), "%s", rf_stage_error(stage));
 	cli_io_invalid_note(io, rf_stage_invalid_count(stage));
+	mode_invalid_note(io, rf_stage_invalid_output_count(stage));
 	rf_stage_destroy(stage);
 	if (sb.gave_up)
 		cli_io_plugin_failed(io, err);

@@ -286,3 +286,12 @@ mode_unload(struct cli_mode *m)
 	rf_module_unload(m->module);
 	m->module = NULL;
 }
+
+void
+mode_invalid_note(struct cli_io *io, size_t count)
+{
+	if (count)
+		warn("'%s': frame %zu: %zu pixel%s where the mode broke its output contract %s",
+		     io->input_name, io->frames, count, count == 1 ? "" : "s",
+		     io->invalid == RF_INVALID_CLAMP ? "clamped (or zeroed)" : "zeroed");
+}

@@ -125,7 +125,7 @@ test_expect_success '-l: modes of another kind are left out silently' '
 	! grep shade_kind out &&
 	! grep shade_kind err &&
 	grep -c "^[a-z_]*$tab" out >count &&
-	echo 9 >expect &&
+	echo 10 >expect &&
 	diff expect count
 '
 

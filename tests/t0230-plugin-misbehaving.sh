@@ -86,4 +86,87 @@ test_expect_success 'a mode that does not crash runs as before' '
 	test_grep "NROWS=24" info
 '
 
+# The mirror's pixels (mask 1) of the G-buffer: row 21, pixel 4 is one,
+# row 6, pixel 4 a wall.
+test_expect_success 'setup: a shaded stream, and which pixels are walls' '
+	reflect-shade <gbuf >shaded 2>/dev/null &&
+	reflect-project -fa <gbuf |
+	awk "body && (++n == 20 * 16 + 4 || n == 5 * 16 + 4) { print \$18 } /^\$/ { body = 1 }" >mask &&
+	printf "0\n1\n" >expect &&
+	diff -u expect mask
+'
+
+# wrote TOOL INPUT MODE WHAT: TOOL stops, exit 1, naming the frame, row
+# 21, pixel 4, the mode and what it wrote (a regex).
+wrote () {
+	test_expect_code 1 $1 -m "$P/$3:x=3:y=20" <$2 >out 2>err &&
+	test_grep "^$1: .<stdin>.: frame 1, row 21, pixel 4: mode .bad_[a-z]*. broke its output contract: $4" err &&
+	! grep -v "prefiltering" err | grep -v "broke its output contract"
+}
+
+test_expect_success 'a projection mode that writes NaN: stopped, named' '
+	wrote reflect-project gbuf "projection-bad_out.so" "channel .R\.X. is nan (--invalid=clamp or --invalid=zero goes on)$" &&
+	wrote reflect-project gbuf "projection-bad_out.so:out=6" "channel .hit\.dist. is nan, not a distance" &&
+	wrote reflect-project gbuf "projection-bad_out.so:out=4:value=inf" "channel .D\.Y. is inf (--invalid"
+'
+
+test_expect_success 'an infinite distance is a distance; a wall is not checked' '
+	reflect-project -m "$P/projection-bad_out.so:x=3:y=20:out=6:value=inf" <gbuf >out 2>err &&
+	test_line_count 0 err &&
+	reflect-project -m "$P/projection-bad_out.so:x=3:y=5" <gbuf >out 2>err &&
+	test_line_count 0 err
+'
+
+test_expect_success 'a shade mode: roughness.eff outside [0, 1], a radiance below 0 or NaN' '
+	wrote reflect-shade gbuf "shade-bad_out.so:value=2" "channel .roughness\.eff. is 2, outside \[0, 1\]" &&
+	wrote reflect-shade gbuf "shade-bad_out.so" "channel .roughness\.eff. is nan, outside \[0, 1\]" &&
+	wrote reflect-shade gbuf "shade-bad_spec.so:value=-1" "channel .spec\.R. is -1, not a radiance (finite, not negative)" &&
+	wrote reflect-shade gbuf "shade-bad_spec.so:out=2:value=inf" "channel .spec\.B. is inf, not a radiance"
+'
+
+test_expect_success 'an occlusion mode: a factor outside [0, 1]' '
+	wrote reflect-occlude shaded "occlusion-bad_out.so:value=-1" "channel .occlusion. is -1, outside \[0, 1\]"
+'
+
+test_expect_success 'an accumulate mode: a value not finite, a variance below 0' '
+	wrote reflect-accumulate shaded "accumulate-bad_out.so" "the value of channel .spec\.R. is nan$" &&
+	wrote reflect-accumulate shaded "accumulate-bad_out.so:value=-inf" "the value of channel .spec\.R. is -inf$" &&
+	wrote reflect-accumulate shaded "accumulate-bad_out.so:out=1:value=-1" "the variance of channel .spec\.R. is negative$" &&
+	reflect-accumulate -m "$P/accumulate-bad_out.so:x=3:y=20:out=1:value=inf" <shaded >out 2>err &&
+	test_line_count 0 err
+'
+
+test_expect_success 'a filter mode: a filtered value not finite' '
+	wrote reflect-filter shaded "filter-bad_out.so" "pass 1 wrote channel .spec\.R. as nan$" &&
+	wrote reflect-filter shaded "filter-bad_out.so:out=2:value=inf" "pass 1 wrote channel .spec\.B. as inf$"
+'
+
+# field ROW PIXEL CHANNEL: the value of CHANNEL at that pixel (counted
+# from 1) of the ascii stream out, whose data follow the empty line.
+field () {
+	awk -v want="$3" -v at=$((($1 - 1) * 16 + $2)) "
+		/^CHANNELS=/ { sub(/^CHANNELS=/, \"\"); for (i = 1; i <= NF; i++) if (\$i == want) col = i }
+		body && ++n == at { print \$col }
+		/^\$/ { body = 1 }" out
+}
+
+test_expect_success '--invalid=clamp repairs and counts what a mode wrote' '
+	reflect-project -fa --invalid=clamp -m "$P/projection-bad_out.so:x=3:y=20" <gbuf >out 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: .<stdin>.: frame 1: 1 pixel where the mode broke its output contract clamped (or zeroed)$" err &&
+	test "$(field 21 4 R.X)" = 0 &&
+	reflect-shade -fa --invalid=clamp -m "$P/shade-bad_spec.so:x=3:y=20:value=inf" <gbuf >out 2>err &&
+	test_grep "^reflect-shade: .<stdin>.: frame 1: 1 pixel where the mode broke its output contract clamped (or zeroed)$" err &&
+	test "$(field 21 4 spec.R)" = 3.40282347e+38
+'
+
+test_expect_success '--invalid=zero writes the pixel.s outputs 0 and counts it' '
+	reflect-project -fa --invalid=zero -m "$P/projection-bad_out.so:x=3:y=20:out=7" <gbuf >out 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: .<stdin>.: frame 1: 1 pixel where the mode broke its output contract zeroed$" err &&
+	test "$(field 21 4 R.X)" = 0 &&
+	test "$(field 21 4 probe.dist)" = 0 &&
+	test "$(field 21 5 probe.dist)" = inf
+'
+
 test_done

@@ -371,6 +371,15 @@ RF_EXTERN void rf_stage_set_invalid(rf_stage *s, enum rf_invalid policy);
 RF_EXTERN const char *rf_stage_error(const rf_stage *s);
 /* Pixels of the current frame clamped or zeroed so far. */
 RF_EXTERN size_t rf_stage_invalid_count(const rf_stage *s);
+/* What the plugin writes is checked too: of its outputs, those that are
+ * channels of the rules above keep them (a projection's R.*, D.* finite,
+ * hit.dist and probe.dist not NaN), roughness.eff and occlusion lie in
+ * [0, 1], spec.* are radiances (finite, not negative), and no other
+ * output is NaN; but where the stream's mask is 0.  A pixel that breaks
+ * one is handled under the same policy, its message "row R, pixel X:
+ * mode 'm' broke its output contract: channel 'c' is ..."; these are
+ * the pixels of the frame whose outputs were clamped or zeroed so far. */
+RF_EXTERN size_t rf_stage_invalid_output_count(const rf_stage *s);
 
 /*
  * An accumulator runs an accumulate mode (plugin.h) over the frames of a

@@ -24,6 +24,11 @@ struct worker {
 	size_t bad_row, bad_col;
 	int bad_value;
 	float bad;
+	/* The first value whose state run() left broken, by row: out_row
+	 * SIZE_MAX for none; out_slot 0 the value, 1 its variance. */
+	size_t out_row, out_col, out_value;
+	int out_slot;
+	float out_bad;
 };
 
 struct rf_accumulator {
@@ -287,6 +292,40 @@ rf_accumulator_begin_frame(rf_accumulator *a, const rf_header *in, rf_header **o
 	return 0;
 }
 
+/* What run() left in a row's state: the value finite, its variance not
+ * NaN and not negative (+inf: not known yet), as plugin.h has them, or
+ * a mode's bug would be a silent wrong image.  One pass of adds, a
+ * search only on a failure. */
+static void
+check_state_row(const rf_accumulator *a, struct worker *w, const float *state, size_t y)
+{
+	const size_t n = a->ncols * a->nvalues;
+	float finite = 0.0f;
+	int negative = 0;
+	size_t k;
+
+	for (k = 0; k < n; k++) {
+		const float *s = state + k * a->nslots;
+
+		finite += s[0] * 0.0f;
+		negative |= !(s[1] >= 0.0f);
+	}
+	if ((finite == 0.0f && !negative) || y >= w->out_row)
+		return;
+	for (k = 0; k < n; k++) {
+		const float *s = state + k * a->nslots;
+
+		if (!isfinite(s[0]) || !(s[1] >= 0.0f)) {
+			w->out_row = y;
+			w->out_col = k / a->nvalues;
+			w->out_value = k % a->nvalues;
+			w->out_slot = isfinite(s[0]) ? 1 : 0;
+			w->out_bad = s[w->out_slot];
+			return;
+		}
+	}
+}
+
 /* One output row: the input row's channels (in_ncomp of every stride
  * floats), the values and their standard errors from the state. */
 static void
@@ -348,6 +387,7 @@ run_row(void *arg, size_t task, int thread)
 			rf__call_enter(&a->site, "run", a->frames, y, 1);
 			a->p->run(w->state, &span);
 			rf__call_leave();
+			check_state_row(a, w, state, y);
 		}
 		if (a->kept) {
 			float *k = a->kept + y * a->ncols * a->out_ncomp;
@@ -379,8 +419,10 @@ run_rows(rf_accumulator *a, const float *in, float *out, size_t y, size_t nrows,
 	a->y = y;
 	a->result_only = result_only;
 	a->error[0] = '\0';
-	for (i = 0; i < (size_t)a->nthreads; i++)
+	for (i = 0; i < (size_t)a->nthreads; i++) {
 		a->workers[i].bad_value = -1;
+		a->workers[i].out_row = SIZE_MAX;
+	}
 	rf__pool_run(a->pool, nrows, run_row, a);
 	if (rf__host_take_failure(a->host, a->p->name, a->error, sizeof(a->error)))
 		return RF_EPLUGIN;
@@ -399,6 +441,25 @@ run_rows(rf_accumulator *a, const float *in, float *out, size_t y, size_t nrows,
 		           "%s", w->bad_row + 1, w->bad_col + 1,
 		           rf_header_channel(a->first, (size_t)a->value_col[w->bad_value]),
 		           isnan(w->bad) ? "nan" : w->bad > 0 ? "inf" : "-inf");
+		return RF_EINVAL;
+	}
+	for (i = 0; i < (size_t)a->nthreads; i++) {
+		const struct worker *w = &a->workers[i];
+
+		if (w->out_row != SIZE_MAX && (wb < 0 || w->out_row < best)) {
+			best = w->out_row;
+			wb = (int)i;
+		}
+	}
+	if (wb >= 0) {
+		const struct worker *w = &a->workers[wb];
+		const float v = w->out_bad;
+
+		rf__format(a->error, sizeof(a->error), "row %zu, pixel %zu: mode '%s' broke "
+		           "its output contract: the %s of channel '%s' is %s", w->out_row + 1,
+		           w->out_col + 1, a->p->name, w->out_slot ? "variance" : "value",
+		           rf_header_channel(a->first, (size_t)a->value_col[w->out_value]),
+		           isnan(v) ? "nan" : isinf(v) ? (v > 0 ? "inf" : "-inf") : "negative");
 		return RF_EINVAL;
 	}
 	return 0;

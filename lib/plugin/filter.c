@@ -27,6 +27,11 @@
 struct worker {
 	void *state;        /* the mode's instance */
 	const float **band; /* 2 radius + 1 row pointers */
+	/* The first value of the step that run() wrote not finite, by row:
+	 * bad_y SIZE_MAX for none. */
+	size_t bad_y, bad_x, bad_value;
+	uint32_t bad_pass;
+	float bad;
 };
 
 struct level {
@@ -243,6 +248,53 @@ full_row(const rf_filter *f, size_t y)
 	return f->full + (y % f->full_cap) * f->ncols * f->ncomp;
 }
 
+/* What run() wrote for a row of pass p (planar values): a filtered
+ * value must be finite, as its input was, or a mode's bug would be a
+ * silent wrong image.  One pass of adds, a search only on a failure. */
+static void
+check_pass_row(const rf_filter *f, struct worker *w, const float *out, size_t y, uint32_t p)
+{
+	const size_t n = f->nv * f->ncols;
+	float sum = 0.0f;
+	size_t i;
+
+	for (i = 0; i < n; i++)
+		sum += out[i] * 0.0f;
+	if (sum == 0.0f || y >= w->bad_y)
+		return;
+	for (i = 0; i < n && isfinite(out[i]); i++)
+		;
+	w->bad_y = y;
+	w->bad_x = i % f->ncols;
+	w->bad_value = i / f->ncols;
+	w->bad_pass = p;
+	w->bad = out[i];
+}
+
+/* After a step: RF_EINVAL with f->error for the first value run() wrote
+ * that is not finite, else 0. */
+static int
+pass_failure(rf_filter *f)
+{
+	const struct worker *b = NULL;
+	int t;
+
+	for (t = 0; t < f->nthreads; t++) {
+		const struct worker *w = &f->workers[t];
+
+		if (w->bad_y != SIZE_MAX && (!b || w->bad_y < b->bad_y))
+			b = w;
+	}
+	if (!b)
+		return 0;
+	rf__format(f->error, sizeof(f->error), "row %zu, pixel %zu: mode '%s' broke its "
+	           "output contract: pass %u wrote channel '%s' as %s", b->bad_y + 1,
+	           b->bad_x + 1, f->p->name, b->bad_pass + 1,
+	           rf_header_channel(f->out_h, (size_t)f->value_col[b->bad_value]),
+	           isnan(b->bad) ? "nan" : b->bad > 0 ? "inf" : "-inf");
+	return RF_EINVAL;
+}
+
 /* A task of the step: a row of one pass, from level pass into level
  * pass + 1. */
 static void
@@ -285,6 +337,7 @@ pass_row(void *arg, size_t task, int thread)
 		rf__call_enter(&f->site, "run", f->frames, y, 1);
 		f->p->run(w->state, &span);
 		rf__call_leave();
+		check_pass_row(f, w, span.out, y, p);
 	}
 	/* the guides' arrays as they were, before the values', for the
 	 * next pass (the result's are not read) */
@@ -387,9 +440,15 @@ rf_filter_frame(rf_filter *f, rf_filter_read_fn *read_rows, rf_filter_write_fn *
 			f->task_start[p + 1] = f->task_start[p] + (last - l->done);
 		}
 		if (f->task_start[f->npasses]) {
+			int t;
+
+			for (t = 0; t < f->nthreads; t++)
+				f->workers[t].bad_y = SIZE_MAX;
 			rf__pool_run(f->pool, f->task_start[f->npasses], pass_row, f);
 			if (rf__host_take_failure(f->host, f->p->name, f->error, sizeof(f->error)))
 				return RF_EPLUGIN;
+			if ((rc = pass_failure(f)) < 0)
+				return rc;
 			progress += f->task_start[f->npasses];
 			for (p = 0; p < f->npasses; p++) {
 				size_t made = f->task_start[p + 1] - f->task_start[p];

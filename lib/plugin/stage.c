@@ -18,7 +18,7 @@ struct worker {
 	unsigned char *zero; /* pixels of the row written as 0 */
 	/* Invalid input the worker met in the block: how many pixels were
 	 * fixed, and the first under RF_INVALID_ERROR. */
-	size_t fixed;
+	size_t fixed, fixed_out;
 	struct rf__first_invalid first;
 };
 
@@ -47,6 +47,7 @@ struct rf_stage {
 	size_t block_y;
 	enum rf_invalid invalid;
 	struct rf__check check; /* on the plugin's inputs, as gathered */
+	struct rf__check out_check; /* on its outputs, as it wrote them */
 	int mask_col;           /* the stream's mask, or -1 */
 	/* An occlusion mode's factor: its output column, the input's own
 	 * occlusion (-1: none) and the channels it multiplies. */
@@ -55,6 +56,7 @@ struct rf_stage {
 	size_t nfixed, fixed_at[4];
 	float fixed_value[4];
 	size_t fixed;           /* pixels of the frame clamped or zeroed */
+	size_t fixed_out;       /* those for the plugin's outputs */
 	char error[320];
 };
 
@@ -270,6 +272,7 @@ rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
 		s->out_map[i] = c;
 	}
 	rf__check_plan(&s->check, s->in_names, s->nin);
+	rf__check_plan_outputs(&s->out_check, s->p->outputs, s->nout);
 	s->mask_col = rf_header_find_channel(in, "mask");
 	s->nocc_targets = 0;
 	s->occ_col = s->occ_prev = -1;
@@ -289,7 +292,7 @@ rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
 				return RF_ECHANNEL;
 			}
 	}
-	s->fixed = 0;
+	s->fixed = s->fixed_out = 0;
 	s->error[0] = '\0';
 	s->nin_runs = gather_runs(s);
 	s->nout_runs = rf__channel_runs(s->out_map, s->nout, 1, s->out_runs);
@@ -372,13 +375,48 @@ check_row(rf_stage *s, struct worker *w, const float *in, size_t y)
 	return any;
 }
 
+/*
+ * What the plugin wrote, checked as its inputs are (rf__check_plan_outputs
+ * says the rules): a mode's bug is never a silent wrong image.  The row
+ * is tested in one pass first (a few adds a value), pixel by pixel only
+ * when something broke a rule.  Walls (mask 0) reflect nothing and the
+ * pass does not read what a mode wrote there; pixels already zeroed for
+ * their input are left so.  Whether any pixel is now to be zeroed.
+ */
+static int
+check_outputs(rf_stage *s, struct worker *w, const float *in, size_t y, int zeroed)
+{
+	size_t x;
+	int any = 0, r;
+
+	if (!zeroed)
+		memset(w->zero, 0, s->ncols);
+	for (x = 0; x < s->ncols; x++) {
+		char why[200];
+
+		if (w->zero[x] ||
+		    (s->mask_col >= 0 && in[x * s->in_ncomp + (size_t)s->mask_col] == 0.0f))
+			continue;
+		r = rf__check_pixel(&s->out_check, w->scatter + x * s->nout, 0, s->invalid, why,
+		                    sizeof(why));
+		w->zero[x] = r == 2;
+		any |= r == 2;
+		if (r > 0)
+			w->fixed_out++;
+		if (r < 0)
+			rf__first_invalid_keep(&w->first, y * s->ncols + x, "mode '%s' broke its "
+			                       "output contract: %s", s->p->name, why);
+	}
+	return zeroed | any;
+}
+
 void
 rf__stage_block_begin(rf_stage *s)
 {
 	int t;
 
 	for (t = 0; t < s->nthreads; t++) {
-		s->workers[t].fixed = 0;
+		s->workers[t].fixed = s->workers[t].fixed_out = 0;
 		rf__first_invalid_clear(&s->workers[t].first);
 	}
 }
@@ -388,8 +426,10 @@ rf__stage_block_end(rf_stage *s)
 {
 	int t;
 
-	for (t = 0; t < s->nthreads; t++)
+	for (t = 0; t < s->nthreads; t++) {
 		s->fixed += s->workers[t].fixed;
+		s->fixed_out += s->workers[t].fixed_out;
+	}
 	if (rf__host_take_failure(s->host, s->p->name, s->error, sizeof(s->error)))
 		return RF_EPLUGIN;
 	return rf__first_invalid_report(&s->workers[0].first, (size_t)s->nthreads,
@@ -442,6 +482,12 @@ size_t
 rf_stage_invalid_count(const rf_stage *s)
 {
 	return s->fixed;
+}
+
+size_t
+rf_stage_invalid_output_count(const rf_stage *s)
+{
+	return s->fixed_out;
 }
 
 /* One row (row y of the frame) on thread `thread`: its input passed
@@ -499,6 +545,8 @@ rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int thread)
 	rf__call_enter(&s->site, "run", s->frames, y, 1);
 	s->p->run(w->state, &span);
 	rf__call_leave();
+	if (s->out_check.n && !rf__check_row(&s->out_check, w->scatter, s->nout, s->ncols))
+		zeroed = check_outputs(s, w, in, y, zeroed);
 	for (x = 0; x < s->ncols; x++) {
 		float *po = out + x * s->out_ncomp;
 		const float *q = w->scatter + x * s->nout;

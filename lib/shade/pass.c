@@ -896,8 +896,12 @@ rf_shade_run_stage(rf_shade *s, rf_stage *stage, const float *in, float *out, si
 	if ((rc = rf__stage_block_end(stage)) < 0)
 		return rc;
 	for (k = 1; s->blending && s->mode_radiance && k < s->blend.nprobes; k++)
-		if (s->blend_stage[k] && (rc = rf__stage_block_end(s->blend_stage[k])) < 0)
+		if (s->blend_stage[k] && (rc = rf__stage_block_end(s->blend_stage[k])) < 0) {
+			/* the tool reads the pass's message for a stage of its own */
+			rf__format(s->error, sizeof(s->error), "%s",
+			           rf_stage_error(s->blend_stage[k]));
 			return rc;
+		}
 	return block_end(s);
 }
 

@@ -130,6 +130,42 @@ rf__check_plan(struct rf__check *c, const char *const *names, size_t n)
 	}
 }
 
+static int
+planned(const struct rf__check *c, int col)
+{
+	size_t i;
+	int k;
+
+	for (i = 0; i < c->n; i++)
+		for (k = 0; k < (c->item[i].kind == RF__CHECK_DIRECTION ? 3 : 1); k++)
+			if (c->item[i].at[k] == col)
+				return 1;
+	return 0;
+}
+
+void
+rf__check_plan_outputs(struct rf__check *c, const char *const *names, size_t n)
+{
+	size_t i;
+
+	rf__check_plan(c, names, n);
+	for (i = 0; i < n && c->n < RF__CHECK_MAX; i++) {
+		struct rf__check_item *it = &c->item[c->n];
+
+		if (planned(c, (int)i))
+			continue;
+		if (!strcmp(names[i], "roughness.eff") || !strcmp(names[i], "occlusion"))
+			it->kind = RF__CHECK_UNIT;
+		else if (!strncmp(names[i], "spec.", 5))
+			it->kind = RF__CHECK_RADIANCE;
+		else
+			it->kind = RF__CHECK_NUMBER;
+		it->name = names[i];
+		it->at[0] = (int)i;
+		c->n++;
+	}
+}
+
 /*
  * The common case: every pixel valid, walls' directions included.  One
  * rule at a time down the row, adding up instead of branching: v * 0 is
@@ -155,8 +191,18 @@ rf__check_row(const struct rf__check *c, const float *px, size_t stride, size_t 
 				finite += v[x * stride] * 0.0f;
 			break;
 		case RF__CHECK_DISTANCE:
+		case RF__CHECK_NUMBER:
 			for (x = 0; x < n; x++)
 				nan |= v[x * stride] != v[x * stride];
+			break;
+		case RF__CHECK_RADIANCE:
+			/* t - a is -a below 0, NaN for NaN; a * 0 NaN for +-inf */
+			for (x = 0; x < n; x++) {
+				float a = v[x * stride], t = a > 0.0f ? a : 0.0f;
+
+				outside += t - a;
+				finite += a * 0.0f;
+			}
 			break;
 		case RF__CHECK_UNIT:
 			for (x = 0; x < n; x++) {
@@ -231,6 +277,19 @@ rf__check_pixel(const struct rf__check *c, float *px, int wall, enum rf_invalid 
 			                it->name, (double)*v)))
 				return r;
 			*v = *v > 0.0f ? (*v < 1.0f ? *v : 1.0f) : 0.0f;
+		} else if (it->kind == RF__CHECK_NUMBER) {
+			if (!isnan(*v))
+				continue;
+			if ((r = broken(policy, why, whylen, "channel '%s' is nan", it->name)))
+				return r;
+			*v = 0.0f;
+		} else if (it->kind == RF__CHECK_RADIANCE) {
+			if (isfinite(*v) && *v >= 0.0f)
+				continue;
+			if ((r = broken(policy, why, whylen, "channel '%s' is %g, not a radiance "
+			                "(finite, not negative)", it->name, (double)*v)))
+				return r;
+			*v = *v > 0.0f ? FLT_MAX : 0.0f; /* NaN and below 0: 0 */
 		} else if (it->kind == RF__CHECK_FINITE) {
 			if (isfinite(*v))
 				continue;

@@ -8,8 +8,15 @@
 
 #include "util/util.h"
 
-enum { RF__CHECK_FINITE, RF__CHECK_DISTANCE, RF__CHECK_UNIT, RF__CHECK_DIRECTION };
-#define RF__CHECK_MAX 32
+enum {
+	RF__CHECK_FINITE,
+	RF__CHECK_DISTANCE,
+	RF__CHECK_UNIT,
+	RF__CHECK_DIRECTION,
+	RF__CHECK_RADIANCE, /* an output: finite, not negative */
+	RF__CHECK_NUMBER    /* an output of no rule of its own: not NaN */
+};
+#define RF__CHECK_MAX 64
 
 struct rf__check_item {
 	int kind;
@@ -25,6 +32,11 @@ struct rf__check {
 /* The rules that apply to a pixel laid out as names[0..n-1]; names must
  * outlive the plan. */
 void rf__check_plan(struct rf__check *c, const char *const *names, size_t n);
+/* The rules a plugin's outputs laid out as names[0..n-1] must keep: those
+ * of the same channels as inputs (a projection's R, D and distances are
+ * the next tool's inputs), roughness.eff and occlusion in [0, 1], spec.*
+ * a radiance, and any other channel not NaN. */
+void rf__check_plan_outputs(struct rf__check *c, const char *const *names, size_t n);
 /* 1 when every one of n pixels (stride floats apart) keeps every rule,
  * directions included: the fast test of a row, before rf__check_pixel. */
 int rf__check_row(const struct rf__check *c, const float *px, size_t stride, size_t n);
