@@ -129,7 +129,18 @@ test_expect_success 'reflect-prefilter keeps the coefficients with the chain, an
 	column z.txt diffuse.R | sort -u >got && echo 0 >expect && diff expect got &&
 	sed "s/^IRRADIANCE_SH9=.*/IRRADIANCE_SH9=1 2 x/" room.rfl >bad.rfl &&
 	test_expect_code 1 reflect-shade -m none --final --diffuse=on --env=bad.rfl px.txt >/dev/null 2>err &&
-	test_grep "IRRADIANCE_SH9.*needs 27 finite numbers" err
+	test_grep "IRRADIANCE_SH9.*needs 27 finite float numbers" err
+'
+
+# 1e39 is a finite double and an infinite float: the diffuse light was
+# inf with exit 0.
+test_expect_success 'IRRADIANCE_SH9 past the float range is refused' '
+	big=$(printf "1e39 %.0s" $(seq 27)) &&
+	sed "s/^IRRADIANCE_SH9=.*/IRRADIANCE_SH9=$big/" room.rfl >big.rfl &&
+	test_expect_code 1 reflect-shade -m none --final --diffuse=on --env=big.rfl px.txt \
+		>out.rfl 2>err &&
+	test_one_line_message reflect-shade err &&
+	test_grep "IRRADIANCE_SH9.*needs 27 finite float numbers" err
 '
 
 test_expect_success 'the diffuse light is the same bytes at 1 and 2 threads' '

@@ -152,7 +152,7 @@ rf_chain_read_file(rf_cubemap **cp, struct rf_chain_info *info, int *is_reflect,
 		if ((v = rf_image_attribute(img, "reflect:irradianceSH9"))) {
 			if (rf__scan_floats(v, info->sh9, 27) < 0) {
 				rf__format(err, errlen, "'%s': attribute reflect:irradianceSH9 "
-				           "needs 27 finite numbers", path);
+				           "needs 27 finite float numbers", path);
 				rc = RF_EFORMAT;
 				rf_image_destroy(img);
 				return rc;

@@ -587,8 +587,8 @@ read_keys(struct ktx *k, struct rf_chain_info *info, int *ours)
 			memcpy(value, nul + 1, vlen);
 			value[vlen] = 0;
 			if (reflect_key(key, value, &got, &levels, &mine) < 0) {
-				rf__format(k->err, k->errlen, "'%s': key %s needs 27 finite numbers",
-				           k->path, key);
+				rf__format(k->err, k->errlen, "'%s': key %s needs 27 finite float "
+				           "numbers", k->path, key);
 				free(kv);
 				return RF_EFORMAT;
 			}

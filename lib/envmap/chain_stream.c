@@ -192,7 +192,7 @@ rf_chain_read_stream(rf_cubemap **cp, struct rf_chain_info *info, rf_reader *r,
 	if ((v = rf_header_get(h, "IRRADIANCE_SH9"))) {
 		if (rf__scan_floats(v, info->sh9, 27) < 0) {
 			rf__format(err, errlen, "header key IRRADIANCE_SH9: '%.60s' needs 27 "
-			           "finite numbers", v);
+			           "finite float numbers", v);
 			return RF_EFORMAT;
 		}
 		info->has_sh9 = 1;

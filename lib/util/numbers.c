@@ -1,5 +1,6 @@
 /* Numbers in text: header values and option arguments. */
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -33,6 +34,10 @@ rf__scan_floats(const char *s, float *out, int n)
 
 	if (n > 32 || rf__scan_doubles(s, v, n) < 0)
 		return -1;
+	/* finite as a double, infinite as a float (1e39) is no number here */
+	for (i = 0; i < n; i++)
+		if (fabs(v[i]) > FLT_MAX)
+			return -1;
 	for (i = 0; i < n; i++)
 		out[i] = (float)v[i];
 	return 0;

@@ -29,7 +29,8 @@ void *rf__alloc_big(size_t bytes, int zero);
  * why decoders see only files). */
 int rf__regular_file(const char *path, char *err, size_t errlen);
 /* n finite numbers separated by spaces (or commas after the first) and
- * nothing else (n at most 32 for floats); 0, or -1. */
+ * nothing else (n at most 32 for floats, each finite as a float too:
+ * within +-FLT_MAX); 0, or -1. */
 int rf__scan_doubles(const char *s, double *out, int n);
 int rf__scan_floats(const char *s, float *out, int n);
 /* What a file of this st_mode is, for messages: "a directory", "a FIFO"... */

@@ -1435,7 +1435,7 @@ TEST(reflect_keys)
 	fx.kv[2] = "reflect:irradianceSH9";
 	fx.kv[3] = "1 2 3";
 	ASSERT_EQ(refused(&fx, RF_EFORMAT, "'%s': key reflect:irradianceSH9 needs 27 finite "
-	                  "numbers"), 0);
+	                  "float numbers"), 0);
 	fx.kv[0] = "someone:else";
 	fx.kv[1] = "x";
 	fx.kv[2] = NULL;
