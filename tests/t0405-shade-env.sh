@@ -2,6 +2,7 @@
 test_description='reflect-shade: the environment it picks, threads, listing'
 . "$srcdir/tests/lib.sh"
 . "$srcdir/tests/shade-lib.sh"
+SQ="'"
 
 test_expect_success 'setup: a small scene, projected, and a small prefiltered room' '
 	reflect-gbuffer -x 40 -y 24 -n 2 | reflect-project >scene.rfl &&
@@ -76,6 +77,46 @@ test_expect_success 'a prefiltered chain is used as it is: no prefiltering, its 
 	reflect-shade -fa -m none --env=chain.rfl scene.rfl >out 2>err &&
 	! test -s err &&
 	test_grep "^ENV_STEPS=3$" out
+'
+
+# A DDS or KTX cube without mips is an environment, as a cube image is:
+# it is prefiltered, so that a rough surface reads it blurred.  Taken as a
+# chain of one level, every roughness read the sharp level 0.  Face f of
+# the files holds (f, 1, 2) everywhere, as does the EXR cube made here.
+test_expect_success 'a DDS or KTX cube of one level is prefiltered as an EXR cube is' '
+	"$builddir/tests/mkdds" one.dds 16 1 &&
+	"$builddir/tests/mkktx" one.ktx2 ktx2-rgba32f 16 1 &&
+	awk "BEGIN {
+		printf \"#?REFLECT1\nNCOLS=16\nNROWS=96\nNCOMP=3\nCHANNELS=R G B\nFORMAT=ascii\n\n\"
+		for (i = 0; i < 16 * 96; i++) printf \"%d\t1\t2\n\", int(i / 256)
+	}" >one.txt &&
+	reflect-export -c all -o one.exr one.txt &&
+	reflect-shade -h -m hdrp --final --env=one.exr scene.rfl >exr.raw 2>err &&
+	test_grep "prefiltering the environment ${SQ}one.exr${SQ} (16x16 per face, 5 levels)" err &&
+	for f in one.dds one.ktx2
+	do
+		reflect-shade -h -m hdrp --final --no-cache --env=$f scene.rfl >got.raw 2>err &&
+		test_grep "prefiltering the environment ${SQ}$f${SQ}" err &&
+		cmp exr.raw got.raw &&
+		# as a scene names it (PROBE_ENV), and as reflect-prefilter reads it
+		sed "s/^PROBE_ENV=default$/PROBE_ENV=$f/" scene.rfl >named.rfl &&
+		reflect-shade -h -m hdrp --final named.rfl >got.raw 2>/dev/null &&
+		cmp exr.raw got.raw &&
+		reflect-prefilter -fa -s 4 $f >chain.txt 2>err &&
+		! test_grep already err &&
+		test "$(grep "^LEVELS=" chain.txt | sort -u)" = "LEVELS=5" &&
+		test "$(grep "^PREFILTER=" chain.txt | sort -u)" = "PREFILTER=ggx" || return 1
+	done
+'
+
+# --prefiltered takes the file's levels as they are: its one level is
+# read at every roughness, as asked.
+test_expect_success '--prefiltered takes a cube of one level as it is' '
+	reflect-shade -h -m hdrp --final --prefiltered --env=one.dds scene.rfl >got.raw 2>err &&
+	! test_grep prefiltering err &&
+	! cmp -s exr.raw got.raw &&
+	reflect-shade -h -m hdrp --final --prefiltered --env=one.exr scene.rfl >exr1.raw &&
+	cmp exr1.raw got.raw
 '
 
 test_expect_success 'PROBE_ENV names the environment when --env is absent' '

@@ -234,7 +234,9 @@ RF_EXTERN void rf_envmap_options_init(struct rf_envmap_options *o);
  * (or with --prefiltered one file per level), else a stream, DDS,
  * MIP-mapped OpenEXR chain or image in any layout.  A raw environment
  * is level 0 of a one-level cube (info->prefiltered 0), a chain all its
- * levels.  *nonfinite (may be NULL) counts the NaN and Inf texel values
+ * levels; a cube of one level is always raw (a DDS or KTX cube without
+ * mips, a one-level stream whatever its PREFILTER key), unless
+ * o->prefiltered takes it as a chain of one level.  *nonfinite (may be NULL) counts the NaN and Inf texel values
  * replaced by 0.  RF_ENOTFOUND when the file cannot be opened. */
 RF_EXTERN int rf_envmap_load(rf_cubemap **c, struct rf_chain_info *info, const char *path,
                              const struct rf_envmap_options *o, size_t *nonfinite,
@@ -270,7 +272,8 @@ RF_EXTERN int rf_chain_read_file(rf_cubemap **c, struct rf_chain_info *info,
                                  size_t errlen);
 /* Reads a DDS cube map (all six faces) with its mip levels as a
  * prefiltered chain (mapping unity, steps = levels - 1): the levels while
- * the size halves evenly, as rf_cubemap_create counts them.  Float, half,
+ * the size halves evenly, as rf_cubemap_create counts them; a cube of one
+ * level is a raw environment (info->prefiltered 0).  Float, half,
  * R11G11B10, RGB9E5 and 8-bit RGBA/BGRA (sRGB decoded) texels; alpha is
  * ignored, block-compressed formats are refused.  Faces are mirrored
  * from Direct3D's orientation to OpenEXR's, so a direction reads what

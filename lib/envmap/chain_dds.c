@@ -448,7 +448,8 @@ rf_chain_read_dds(rf_cubemap **cp, struct rf_chain_info *info, size_t *nonfinite
 		return rc;
 	}
 	fclose(fp);
-	info->prefiltered = 1;
+	/* a cube without mips is an environment, not a chain of one level */
+	info->prefiltered = l.levels > 1;
 	info->mapping = RF_MAPPING_UNITY;
 	info->steps = (float)(l.levels - 1);
 	return 0;

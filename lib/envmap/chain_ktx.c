@@ -795,8 +795,11 @@ rf_chain_read_ktx(rf_cubemap **cp, struct rf_chain_info *info, int *is_reflect,
 		info->base_copied = 1;
 		return rc;
 	}
-	if (!ours)
+	if (!ours) {
+		/* as a DDS: without mips, an environment */
+		info->prefiltered = k.levels > 1;
 		info->steps = (float)(k.levels - 1);
+	}
 	if (is_reflect)
 		*is_reflect = ours;
 	return 0;

@@ -337,10 +337,13 @@ load_dds(struct load *ld, const char *path, rf_cubemap **c, struct rf_chain_info
 		return image_status(rc);
 	if ((rc = count_nonfinite(ld, path, bad)) < 0 ||
 	    ld->o->prefiltered || rf_cubemap_levels(chain) == 1) {
+		/* one level is raw (rf_envmap_load), not a chain */
 		if (rc < 0)
 			rf_cubemap_destroy(chain);
 		else
 			*c = chain;
+		if (ld->o->prefiltered)
+			info->prefiltered = 1;
 		return rc;
 	}
 	if ((rc = cube_new(ld, c, rf_cubemap_size(chain), 1)) == 0)
@@ -510,6 +513,12 @@ rf_envmap_load(rf_cubemap **c, struct rf_chain_info *info, const char *path,
 	if (errlen)
 		*err = '\0';
 	rc = load_path(&ld, path, c, info);
+	/* A cube of one level is the environment itself, whatever its file
+	 * says (a DDS or KTX is a chain by its format): sampled as a chain,
+	 * every roughness would read the sharp level 0.  It is raw, and is
+	 * prefiltered, unless --prefiltered asks to take its level as it is. */
+	if (rc == 0 && rf_cubemap_levels(*c) == 1 && !o->prefiltered)
+		info->prefiltered = 0;
 	if (nonfinite)
 		*nonfinite = ld.nonfinite;
 	if (rc < 0 && *c) {
