@@ -63,6 +63,13 @@ envmap_opts_parse(struct envmap_opts *o, const char *name, const char *arg)
 		o->load.decode.rgbm = 1;
 		o->load.decode.multiplier = v[0];
 		o->load.decode.exponent = v[1];
+	} else if (!strcmp(name, "nonfinite")) {
+		if (!strcmp(arg, "error"))
+			o->load.strict = 1;
+		else if (!strcmp(arg, "zero"))
+			o->load.strict = 0;
+		else
+			die("--nonfinite: '%s' is not error or zero", arg);
 	} else if (!strcmp(name, "intensity")) {
 		o->load.decode.intensity = parse_positive(name, arg);
 	} else if (!strcmp(name, "size")) {

@@ -1,5 +1,5 @@
 /* Loading environments: the options reflect-prefilter and reflect-shade
- * share (--env, --layout, --prefiltered, --rgbm, ...). */
+ * share (--env, --layout, --prefiltered, --rgbm, --nonfinite, ...). */
 #ifndef REFLECT_CLI_ENVMAP_H
 #define REFLECT_CLI_ENVMAP_H
 

@@ -15,7 +15,8 @@ usage(void)
 	        "[--levels=N] [--min-size=N] [--mapping=unity|linear|exact] "
 	        "[--steps=N] [--method=filtered|brute] [--plain] [--lod-bias=B] "
 	        "[--layout=L] [--size=N] [--srgb=auto|on|off] [--rgbm=M[,E]] "
-	        "[--intensity=X] [--dump=latlong|cube|vcross|hcross] "
+	        "[--intensity=X] [--nonfinite=error|zero] "
+	        "[--dump=latlong|cube|vcross|hcross] "
 	        "[--edge-fixup=none|average] [--irradiance=FILE] "
 	        "[--ktx-texel=half|float] [--zstd[=LEVEL]] [-f a|f] [-h] "
 	        "[ENV]\n", argv0);
@@ -156,6 +157,7 @@ main(int argc, char **argv)
 		{ "intensity", required_argument, NULL, 0 },
 		{ "size", required_argument, NULL, 0 },
 		{ "prefiltered", no_argument, NULL, 0 },
+		{ "nonfinite", required_argument, NULL, 0 },
 		{ "levels", required_argument, NULL, 'L' },
 		{ "min-size", required_argument, NULL, 'M' },
 		{ "mapping", required_argument, NULL, 'P' },
@@ -249,7 +251,9 @@ main(int argc, char **argv)
 			       "  --dump=latlong|cube|vcross|hcross  each level to levelK-LAYOUT.exr\n"
 			       "  --edge-fixup=none|average  equal edge texels for per-face readers\n"
 			       "  --irradiance=FILE  also a 32-texel cube of E / pi (diffuse light)\n"
-			       "  -j N threads  -S refuse NaN/Inf  -v  -V\n", argv0);
+			       "  --nonfinite=error|zero  a NaN or Inf texel refused (error, as -S)\n"
+			       "          or replaced with 0\n"
+			       "  -j N threads  -v  -V\n", argv0);
 			fshut(stdout, "<stdout>");
 			return 0;
 		default: usage();

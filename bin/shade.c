@@ -13,7 +13,7 @@ usage(void)
 {
 	fprintf(stderr, "usage: %s [-lvV] [-m MODE[:KEY=VALUE...]] [-j THREADS] "
 	        "[--env=FILE] [--layout=L] [--prefiltered] [--srgb=auto|on|off] "
-	        "[--rgbm=M[,E]] [--intensity=X] [--size=N] "
+	        "[--rgbm=M[,E]] [--intensity=X] [--size=N] [--nonfinite=error|zero] "
 	        "[--mapping=unity|linear|exact] [--steps=N] [--samples=N] "
 	        "[--final[=split-sum|unity|hdrp]] [--diffuse=on|off] "
 	        "[--diffuse-projection=off|box] "
@@ -42,6 +42,7 @@ static const struct option long_options[] = {
 	{ "rgbm", required_argument, NULL, OPT_ENVMAP },
 	{ "intensity", required_argument, NULL, OPT_ENVMAP },
 	{ "size", required_argument, NULL, OPT_ENVMAP },
+	{ "nonfinite", required_argument, NULL, OPT_ENVMAP },
 	{ "mapping", required_argument, NULL, OPT_MAPPING },
 	{ "steps", required_argument, NULL, OPT_STEPS },
 	{ "samples", required_argument, NULL, OPT_SAMPLES },
@@ -579,6 +580,7 @@ main(int argc, char **argv)
 			       "      raw ones are prefiltered on the fly (--samples=N) and kept in\n"
 			       "      $XDG_CACHE_HOME/reflect for the next run (--no-cache: not)\n"
 			       "  --prefiltered --layout=L --srgb= --rgbm= --intensity= --size=N\n"
+			       "  --nonfinite=error|zero  a NaN or Inf texel refused (error) or 0\n"
 			       "  --mapping=unity|linear|exact --steps=N  roughness to lod\n"
 			       "  --final[=split-sum|unity|hdrp]  also R G B: spec x the split sum's\n"
 			       "      F0 A + B, Unity Standard's or HDRP's term\n"

@@ -189,18 +189,67 @@ test_expect_success 'REFLECT_MAX_CUBE_MB sets the limit' '
 	REFLECT_MAX_CUBE_MB=1 reflect-prefilter --size=64 >/dev/null
 '
 
-test_expect_success 'NaN and Inf texels are counted and zeroed, or refused with -S' '
+test_expect_success 'NaN and Inf texels are refused, or zeroed with --nonfinite=zero' '
 	awk "BEGIN {
 		printf \"#?REFLECT1\nNCOLS=2\nNROWS=12\nNCOMP=3\nCHANNELS=R G B\nFORMAT=ascii\n\n\"
 		for (i = 0; i < 24; i++) printf \"%s\t1\t1\n\", (i == 5 ? \"nan\" : (i == 9 ? \"inf\" : \"0.5\"))
 	}" >nan.txt &&
 	reflect-export -c all -o nan.exr nan.txt &&
-	reflect-prefilter --plain --levels=2 -fa nan.exr >out.txt 2>err &&
+	for opt in "" -S --nonfinite=error
+	do
+		test_expect_code 1 reflect-prefilter $opt --plain --levels=2 nan.exr >/dev/null 2>err &&
+		test_one_line_message reflect-prefilter err &&
+		test_grep "^reflect-prefilter: ${SQ}nan.exr${SQ}: pixel (1, 2): R is nan (2 NaN or infinite values in all; --nonfinite=zero replaces them with 0)$" err || return 1
+	done &&
+	reflect-prefilter --nonfinite=zero --plain --levels=2 -fa nan.exr >out.txt 2>err &&
 	test_grep "replaced 2 NaN or infinite texel values with 0" err &&
 	level0 out.txt >data && test_line_count 24 data && ! grep -E "nan|inf" data &&
-	test_expect_code 1 reflect-prefilter -S --plain --levels=2 nan.exr >/dev/null 2>err &&
-	test_one_line_message reflect-prefilter err &&
-	test_grep "2 texel values are NaN or infinite" err
+	test_expect_code 1 reflect-prefilter --nonfinite=maybe nan.exr 2>err &&
+	test_grep "^reflect-prefilter: --nonfinite: ${SQ}maybe${SQ} is not error or zero$" err
+'
+
+# A stream was read as it was: its NaN went through the prefilter into
+# every texel its lobes reached, and reflect-shade wrote NaN with exit 0
+# (-S did not apply to it).  Face +Y, texel (3, 5) is NaN here; in the
+# chain, texel (1, 0) of level 2 of face -Z is inf.
+test_expect_success 'a stream environment with a NaN or Inf texel is refused, or repaired' '
+	awk "BEGIN {
+		printf \"#?REFLECT1\nNCOLS=8\nNROWS=48\nNCOMP=3\nCHANNELS=R G B\nENVMAP=CUBE\nFORMAT=ascii\n\n\"
+		for (i = 0; i < 8 * 48; i++) printf \"%s\t1\t1\n\", (i == (2 * 8 + 5) * 8 + 3 ? \"nan\" : \"0.5\")
+	}" >raw-nan.txt &&
+	reflect-gbuffer -x 16 -y 9 | reflect-project >g.rfl &&
+	for opt in "" -S
+	do
+		test_expect_code 1 reflect-prefilter $opt -s 4 raw-nan.txt >/dev/null 2>err &&
+		test_one_line_message reflect-prefilter err &&
+		test_grep "^reflect-prefilter: ${SQ}raw-nan.txt${SQ}: level 0, face +Y, texel (3, 5): R is nan (1 NaN or infinite value in all; --nonfinite=zero replaces them with 0)$" err || return 1
+	done &&
+	test_expect_code 1 reflect-shade -m hdrp --final --env=raw-nan.txt g.rfl >out.rfl 2>err &&
+	test_grep "^reflect-shade: ${SQ}raw-nan.txt${SQ}: level 0, face +Y, texel (3, 5): R is nan" err &&
+	sed "s/^PROBE_ENV=default$/PROBE_ENV=raw-nan.txt/" g.rfl >named.rfl &&
+	test_expect_code 1 reflect-shade -m hdrp --final named.rfl >out.rfl 2>err &&
+	test_grep "texel (3, 5): R is nan" err &&
+	reflect-shade -m hdrp --final --nonfinite=zero --env=raw-nan.txt g.rfl >out.rfl 2>err &&
+	test_grep "^reflect-shade: ${SQ}raw-nan.txt${SQ}: replaced 1 NaN or infinite texel values with 0$" err &&
+	reflect-info -s out.rfl >stats &&
+	awk "\$1 ~ /^(spec\.[RGB]|R|G|B)\$/ { n++; if (\$5 != 0 || \$6 != 0) bad = 1 }
+		END { exit bad || n != 6 }" stats &&
+	# a chain: level 2 of face -Z, its texel (1, 0)
+	reflect-prefilter --size=8 -s 4 -fa >chain.txt &&
+	awk "BEGIN { l = -1 } /^#\?REFLECT1/ { l++; d = 0 } d && l == 2 { if (++k == (5 * 2 + 0) * 2 + 1 + 1) \$2 = \"inf\" }
+		{ print } /^\$/ { d = 1 }" chain.txt >chain-inf.txt &&
+	test_expect_code 1 reflect-shade -m hdrp --env=chain-inf.txt g.rfl >out.rfl 2>err &&
+	test_grep "${SQ}chain-inf.txt${SQ}: level 2, face -Z, texel (1, 0): G is inf" err
+'
+
+# DDS, KTX and EXR readers made such values 0 with only a warning.
+test_expect_success 'a DDS with a NaN texel is refused, naming its face and texel' '
+	"$builddir/tests/mkdds" nan.dds 4 2 &&
+	printf "\000\000\300\177" | dd of=nan.dds bs=1 seek=$((128 + 16 * (4 * 1 + 2))) conv=notrunc 2>/dev/null &&
+	test_expect_code 1 reflect-prefilter --prefiltered nan.dds >/dev/null 2>err &&
+	test_grep "^reflect-prefilter: ${SQ}nan.dds${SQ}: level 0, face +X, texel (2, 1): R is nan" err &&
+	reflect-prefilter --prefiltered --nonfinite=zero -fa nan.dds >out.txt 2>err &&
+	test_grep "replaced 1 NaN or infinite texel values with 0" err
 '
 
 test_expect_success 'bad input: each a one-line message and exit 1' '

@@ -192,7 +192,8 @@ RF_EXTERN void rf_prefilter_defaults(struct rf_prefilter_options *o);
 /* Convolves every level k >= 1 of `out` from level 0 of `src` with the
  * GGX lobe of the roughness the mapping gives level k (V = N, N.L
  * weighted, normalised); level 0 of out is a copy of src's level 0 when
- * the sizes match, else a box-filtered copy. */
+ * the sizes match, else a box-filtered copy.  RF_EINVAL for a NaN or
+ * infinite texel in src's level 0, which would spread over the levels. */
 RF_EXTERN int rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
                            const struct rf_prefilter_options *o, char *err,
                            size_t errlen);
@@ -222,7 +223,9 @@ struct rf_envmap_options {
 	int prefiltered;        /* take the file's levels as convolved */
 	int srgb;               /* 1, 0, or -1: from the file's colour space */
 	struct rf_decode decode; /* its srgb is set from the field above */
-	int strict;             /* refuse NaN and Inf texels, not replace them */
+	int strict;             /* refuse NaN and Inf texels (1, the default
+	                           of rf_envmap_options_init), or 0: replace
+	                           them with 0, counted */
 	size_t size;            /* face size of level 0 (0: the file's) */
 	int nthreads;           /* for rendering the embedded room */
 	int from_header;        /* the path came from a stream (PROBE_ENV): a
@@ -236,8 +239,11 @@ RF_EXTERN void rf_envmap_options_init(struct rf_envmap_options *o);
  * is level 0 of a one-level cube (info->prefiltered 0), a chain all its
  * levels; a cube of one level is always raw (a DDS or KTX cube without
  * mips, a one-level stream whatever its PREFILTER key), unless
- * o->prefiltered takes it as a chain of one level.  *nonfinite (may be NULL) counts the NaN and Inf texel values
- * replaced by 0.  RF_ENOTFOUND when the file cannot be opened. */
+ * o->prefiltered takes it as a chain of one level.  A NaN or infinite
+ * value is refused (RF_EINVAL, the message naming the file and the first:
+ * level, face and texel, or an image's pixel) unless o->strict is 0;
+ * then *nonfinite (may be NULL) counts the values replaced by 0.
+ * RF_ENOTFOUND when the file cannot be opened. */
 RF_EXTERN int rf_envmap_load(rf_cubemap **c, struct rf_chain_info *info, const char *path,
                              const struct rf_envmap_options *o, size_t *nonfinite,
                              char *err, size_t errlen);
@@ -254,7 +260,9 @@ RF_EXTERN int rf_chain_write_stream(const rf_cubemap *c, const struct rf_chain_i
                                     rf_writer *w, const rf_header *base, char *err,
                                     size_t errlen);
 /* Reads a chain from a stream: frames with ENVMAP=CUBE, one per level
- * (LEVEL 0, 1, ...), or one frame of a raw environment. */
+ * (LEVEL 0, 1, ...), or one frame of a raw environment.  A NaN or
+ * infinite texel is refused (RF_EINVAL, the message naming its level,
+ * face, texel and channel). */
 RF_EXTERN int rf_chain_read_stream(rf_cubemap **c, struct rf_chain_info *info,
                                    rf_reader *r, char *err, size_t errlen);
 
@@ -266,7 +274,8 @@ RF_EXTERN int rf_chain_write_file(const rf_cubemap *c, const struct rf_chain_inf
                                   const char *path, char *err, size_t errlen);
 /* Reads a MIP-mapped OpenEXR cube: its cube levels (N x 6N) as a chain,
  * the non-cube tail ignored.  *is_reflect is 1 for files this library
- * wrote (then info is filled from their attributes). */
+ * wrote (then info is filled from their attributes).  NaN and infinite
+ * texels become 0 (rf_envmap_load refuses them). */
 RF_EXTERN int rf_chain_read_file(rf_cubemap **c, struct rf_chain_info *info,
                                  int *is_reflect, const char *path, char *err,
                                  size_t errlen);

@@ -357,9 +357,9 @@ check_length(const char *path, const struct dds_layout *l, uint64_t file_size,
 
 static int
 read_levels(FILE *fp, const char *path, const struct dds_layout *l, rf_cubemap *c,
-            size_t *nonfinite, char *err, size_t errlen)
+            struct rf__nonfinite *nf, char *err, size_t errlen)
 {
-	size_t row_bytes = (size_t)l->size * l->fmt.bytes, bad = 0, k, j;
+	size_t row_bytes = (size_t)l->size * l->fmt.bytes, k, j;
 	unsigned char *row = malloc(row_bytes);
 	uint64_t off;
 	int f;
@@ -378,7 +378,7 @@ read_levels(FILE *fp, const char *path, const struct dds_layout *l, rf_cubemap *
 			for (j = 0; j < n; j++) {
 				if (fread(row, l->fmt.bytes, n, fp) != n)
 					goto io;
-				bad += rf__texel_store_gl_row(c, k, f, j, row, &l->fmt);
+				rf__texel_store_gl_row(c, k, f, j, row, &l->fmt, nf);
 			}
 			off += level_bytes(l, (uint32_t)k);
 		}
@@ -386,8 +386,6 @@ read_levels(FILE *fp, const char *path, const struct dds_layout *l, rf_cubemap *
 	free(row);
 	for (k = 0; k < l->levels; k++)
 		rf_cubemap_seal_level(c, k);
-	if (nonfinite)
-		*nonfinite = bad;
 	return 0;
 io:
 	rf__format(err, errlen, "cannot read '%s': %s", path,
@@ -400,6 +398,18 @@ int
 rf_chain_read_dds(rf_cubemap **cp, struct rf_chain_info *info, size_t *nonfinite,
                   const char *path, char *err, size_t errlen)
 {
+	struct rf__nonfinite nf = { 0 };
+	int rc = rf__chain_read_dds(cp, info, &nf, path, err, errlen);
+
+	if (nonfinite)
+		*nonfinite = nf.count;
+	return rc;
+}
+
+int
+rf__chain_read_dds(rf_cubemap **cp, struct rf_chain_info *info, struct rf__nonfinite *nf,
+                   const char *path, char *err, size_t errlen)
+{
 	unsigned char h[4 + DDS_HEADER_SIZE + DDS_DX10_SIZE];
 	char msg[256];
 	struct dds_layout l;
@@ -409,8 +419,6 @@ rf_chain_read_dds(rf_cubemap **cp, struct rf_chain_info *info, size_t *nonfinite
 	int rc;
 
 	*cp = NULL;
-	if (nonfinite)
-		*nonfinite = 0;
 	memset(info, 0, sizeof(*info));
 	info->mapping = RF_MAPPING_DEFAULT;
 	info->base_copied = 1;
@@ -441,7 +449,7 @@ rf_chain_read_dds(rf_cubemap **cp, struct rf_chain_info *info, size_t *nonfinite
 		fclose(fp);
 		return rc;
 	}
-	if ((rc = read_levels(fp, path, &l, *cp, nonfinite, err, errlen)) < 0) {
+	if ((rc = read_levels(fp, path, &l, *cp, nf, err, errlen)) < 0) {
 		rf_cubemap_destroy(*cp);
 		*cp = NULL;
 		fclose(fp);

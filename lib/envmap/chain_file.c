@@ -107,6 +107,13 @@ int
 rf_chain_read_file(rf_cubemap **cp, struct rf_chain_info *info, int *is_reflect,
                    const char *path, char *err, size_t errlen)
 {
+	return rf__chain_read_file(cp, info, is_reflect, NULL, path, err, errlen);
+}
+
+int
+rf__chain_read_file(rf_cubemap **cp, struct rf_chain_info *info, int *is_reflect,
+                    struct rf__nonfinite *nf, const char *path, char *err, size_t errlen)
+{
 	size_t nlevels, levels = 0, n, k;
 	rf_image *img = NULL;
 	const char *v;
@@ -164,8 +171,6 @@ rf_chain_read_file(rf_cubemap **cp, struct rf_chain_info *info, int *is_reflect,
 	    (rc = rf_cubemap_create(cp, n, levels)) < 0)
 		goto fail;
 	for (k = 0; k < levels; k++) {
-		size_t got;
-
 		if (k && (rc = rf_image_read_level(&img, path, k, err, errlen)) < 0)
 			goto fail;
 		if (rf_image_nchannels(img) < 3) {
@@ -176,7 +181,7 @@ rf_chain_read_file(rf_cubemap **cp, struct rf_chain_info *info, int *is_reflect,
 		}
 		rc = rf__cube_level_from_pixels(*cp, k, rf_image_pixels(img),
 		                                 rf_image_width(img), rf_image_height(img),
-		                                 rf_image_nchannels(img), &got, err, errlen);
+		                                 rf_image_nchannels(img), nf, err, errlen);
 		rf_image_destroy(img);
 		img = NULL;
 		if (rc < 0)

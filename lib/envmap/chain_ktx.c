@@ -624,7 +624,7 @@ swap_units(unsigned char *p, size_t n, unsigned unit)
 /* One level's six faces from memory (an inflated level) or the file. */
 static int
 read_level(struct ktx *k, size_t l, const unsigned char *mem, unsigned char *row,
-           rf_cubemap *c, size_t *bad)
+           rf_cubemap *c, struct rf__nonfinite *nf)
 {
 	size_t n = k->size >> l, j;
 	int f, rc;
@@ -641,7 +641,7 @@ read_level(struct ktx *k, size_t l, const unsigned char *mem, unsigned char *row
 				return rc;
 			else if (k->swap && k->unit > 1)
 				swap_units(row, n * k->fmt.bytes, k->unit);
-			*bad += rf__texel_store_gl_row(c, l, f, j, p, &k->fmt);
+			rf__texel_store_gl_row(c, l, f, j, p, &k->fmt, nf);
 		}
 	return 0;
 }
@@ -697,10 +697,10 @@ inflate_level(struct ktx *k, size_t l, unsigned char **out)
 #endif
 
 static int
-read_levels(struct ktx *k, rf_cubemap *c, size_t *nonfinite)
+read_levels(struct ktx *k, rf_cubemap *c, struct rf__nonfinite *nf)
 {
 	unsigned char *row = malloc((size_t)k->row_stride[0]), *mem = NULL;
-	size_t bad = 0, l;
+	size_t l;
 	int rc = 0;
 
 	if (!row)
@@ -710,7 +710,7 @@ read_levels(struct ktx *k, rf_cubemap *c, size_t *nonfinite)
 		if (k->scheme == 2 && (rc = inflate_level(k, l, &mem)) < 0)
 			break;
 #endif
-		rc = read_level(k, l, mem, row, c, &bad);
+		rc = read_level(k, l, mem, row, c, nf);
 		free(mem);
 		mem = NULL;
 	}
@@ -719,14 +719,24 @@ read_levels(struct ktx *k, rf_cubemap *c, size_t *nonfinite)
 		return rc;
 	for (l = 0; l < k->levels; l++)
 		rf_cubemap_seal_level(c, l);
-	if (nonfinite)
-		*nonfinite = bad;
 	return 0;
 }
 
 int
 rf_chain_read_ktx(rf_cubemap **cp, struct rf_chain_info *info, int *is_reflect,
                   size_t *nonfinite, const char *path, char *err, size_t errlen)
+{
+	struct rf__nonfinite nf = { 0 };
+	int rc = rf__chain_read_ktx(cp, info, is_reflect, &nf, path, err, errlen);
+
+	if (nonfinite)
+		*nonfinite = nf.count;
+	return rc;
+}
+
+int
+rf__chain_read_ktx(rf_cubemap **cp, struct rf_chain_info *info, int *is_reflect,
+                   struct rf__nonfinite *nf, const char *path, char *err, size_t errlen)
 {
 	unsigned char h[KTX2_HEADER];
 	struct ktx k;
@@ -736,8 +746,6 @@ rf_chain_read_ktx(rf_cubemap **cp, struct rf_chain_info *info, int *is_reflect,
 	int rc, ours = 0;
 
 	*cp = NULL;
-	if (nonfinite)
-		*nonfinite = 0;
 	if (is_reflect)
 		*is_reflect = 0;
 	memset(info, 0, sizeof(*info));
@@ -780,7 +788,7 @@ rf_chain_read_ktx(rf_cubemap **cp, struct rf_chain_info *info, int *is_reflect,
 		rf__format(err, errlen, "'%s': %s", path, msg);
 	} else if (rc == 0 && (rc = rf_cubemap_create(cp, k.size, k.levels)) < 0) {
 		rf__format(err, errlen, "'%s': %s", path, rf_strerror(rc));
-	} else if (rc == 0 && (rc = read_levels(&k, *cp, nonfinite)) < 0) {
+	} else if (rc == 0 && (rc = read_levels(&k, *cp, nf)) < 0) {
 		if (rc == RF_ENOMEM)
 			rf__format(err, errlen, "'%s': %s", path, rf_strerror(rc));
 		rf_cubemap_destroy(*cp);

@@ -100,10 +100,11 @@ key_number(const rf_header *h, const char *key, double lo, double hi, double *ou
 	return 0;
 }
 
-/* Reads one ENVMAP=CUBE frame's texels into level k of c. */
+/* Reads one ENVMAP=CUBE frame's texels into level k of c; a NaN or
+ * infinite one is refused, or without nf made 0 and noted in nf. */
 static int
-read_level(rf_reader *r, rf_cubemap *c, size_t k, const rf_header *h, char *err,
-           size_t errlen)
+read_level(rf_reader *r, rf_cubemap *c, size_t k, const rf_header *h,
+           struct rf__nonfinite *nf, char *err, size_t errlen)
 {
 	size_t n = rf_cubemap_level_size(c, k), f, j, i, nch = rf_header_nchannels(h);
 	int ch[3], rc, q;
@@ -142,11 +143,22 @@ read_level(rf_reader *r, rf_cubemap *c, size_t k, const rf_header *h, char *err,
 				free(row);
 				return rc;
 			}
-			for (i = 0; i < n; i++, t += 3, p += nch) {
-				t[0] = p[ch[0]];
-				t[1] = p[ch[1]];
-				t[2] = p[ch[2]];
-			}
+			for (i = 0; i < n; i++, t += 3, p += nch)
+				for (q = 0; q < 3; q++) {
+					t[q] = p[ch[q]];
+					if (isfinite(t[q]))
+						continue;
+					if (!nf) {
+						struct rf__nonfinite one = { 0 };
+
+						rf__nonfinite_note(&one, k, (int)f, i, j, q, t[q]);
+						rf__nonfinite_where(&one, err, errlen);
+						free(row);
+						return RF_EINVAL;
+					}
+					rf__nonfinite_note(nf, k, (int)f, i, j, q, t[q]);
+					t[q] = 0.0f;
+				}
 		}
 	free(row);
 	rf_cubemap_seal_level(c, k);
@@ -157,7 +169,15 @@ int
 rf_chain_read_stream(rf_cubemap **cp, struct rf_chain_info *info, rf_reader *r,
                      char *err, size_t errlen)
 {
-	const rf_header *h;
+	return rf__chain_read_stream(cp, info, r, NULL, NULL, err, errlen);
+}
+
+int
+rf__chain_read_stream(rf_cubemap **cp, struct rf_chain_info *info, rf_reader *r,
+                      const rf_header *first, struct rf__nonfinite *nf, char *err,
+                      size_t errlen)
+{
+	const rf_header *h = first;
 	double levels = 1, level = 0, steps = 0, samples = 0;
 	const char *v;
 	size_t n, k;
@@ -165,7 +185,7 @@ rf_chain_read_stream(rf_cubemap **cp, struct rf_chain_info *info, rf_reader *r,
 
 	*cp = NULL;
 	memset(info, 0, sizeof(*info));
-	if ((rc = rf_reader_next_frame(r, &h)) <= 0) {
+	if (!h && (rc = rf_reader_next_frame(r, &h)) <= 0) {
 		rf__format(err, errlen, "%s", rc < 0 ? rf_reader_error(r)
 		           : "no environment in the stream");
 		return rc < 0 ? rc : RF_EFORMAT;
@@ -205,7 +225,7 @@ rf_chain_read_stream(rf_cubemap **cp, struct rf_chain_info *info, rf_reader *r,
 		return rc;
 	}
 	for (k = 0;; k++) {
-		if ((rc = read_level(r, *cp, k, h, err, errlen)) < 0)
+		if ((rc = read_level(r, *cp, k, h, nf, err, errlen)) < 0)
 			goto fail;
 		if (k + 1 == (size_t)levels)
 			break;

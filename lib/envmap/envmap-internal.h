@@ -6,12 +6,47 @@
 #include "util/util.h"
 #include "reflect/envmap.h"
 
+/* The NaN and infinite values a reader met, each made 0, and the first:
+ * a cube's level, face and texel (column x, row y of the face as the file
+ * stores it), or for an image (face -1) its pixel. */
+struct rf__nonfinite {
+	size_t count;
+	size_t level, x, y;
+	int face, channel; /* channel 0..3: R G B A */
+	float value;
+};
+/* Counts a value (nf may be NULL: nothing kept). */
+void rf__nonfinite_note(struct rf__nonfinite *nf, size_t level, int face, size_t x,
+                        size_t y, int channel, float value);
+/* The first as "level 0, face +X, texel (3, 5): G is nan" (or "pixel
+ * (3, 5): ..."). */
+void rf__nonfinite_where(const struct rf__nonfinite *nf, char *buf, size_t len);
+
 /* Fills level k of a cube from an N x 6N image of that level's size,
  * texel for texel (first 3 channels; non-finite values become 0 and are
- * counted). */
+ * noted in nf). */
 int rf__cube_level_from_pixels(rf_cubemap *c, size_t level, const float *px,
-                               size_t w, size_t h, size_t nch, size_t *nonfinite,
+                               size_t w, size_t h, size_t nch, struct rf__nonfinite *nf,
                                char *err, size_t errlen);
+/* The readers of envmap.h with the non-finite values noted in nf (the
+ * public ones count them, rf_chain_read_stream refuses them); a stream's
+ * first frame may have been read already (first, else NULL). */
+int rf__chain_read_stream(rf_cubemap **c, struct rf_chain_info *info, rf_reader *r,
+                          const rf_header *first, struct rf__nonfinite *nf, char *err,
+                          size_t errlen);
+int rf__chain_read_file(rf_cubemap **c, struct rf_chain_info *info, int *is_reflect,
+                        struct rf__nonfinite *nf, const char *path, char *err,
+                        size_t errlen);
+int rf__chain_read_dds(rf_cubemap **c, struct rf_chain_info *info,
+                       struct rf__nonfinite *nf, const char *path, char *err,
+                       size_t errlen);
+int rf__chain_read_ktx(rf_cubemap **c, struct rf_chain_info *info, int *is_reflect,
+                       struct rf__nonfinite *nf, const char *path, char *err,
+                       size_t errlen);
+int rf__envmap_from_pixels(rf_cubemap *c, const float *pixels, size_t w, size_t h,
+                           size_t nch, enum rf_layout layout,
+                           const struct rf_decode *decode, struct rf__nonfinite *nf,
+                           char *err, size_t errlen);
 /* A face of a cube level with its one-texel border: (n + 2)^2 RGB
  * texels, rows top first, starting at border texel (-1, -1). */
 const float *rf__cubemap_padded_face(const rf_cubemap *c, size_t level, int face);

@@ -163,13 +163,14 @@ rf_layout_check(enum rf_layout layout, size_t w, size_t h, size_t *face, char *e
 	return 0;
 }
 
-/* Radiance of every pixel: RGB floats, decoded, non-finite made 0. */
+/* Radiance of every pixel: RGB floats, decoded, non-finite made 0 (and
+ * noted, as is a value that decoding took past the float range). */
 static float *
 decode_pixels(const float *px, size_t w, size_t h, size_t nch,
-              const struct rf_decode *dc, size_t *nonfinite)
+              const struct rf_decode *dc, struct rf__nonfinite *nf)
 {
 	float *out = malloc(w * h * 3 * sizeof(float));
-	size_t i, bad = 0;
+	size_t i;
 	int c;
 
 	if (!out)
@@ -181,13 +182,13 @@ decode_pixels(const float *px, size_t w, size_t h, size_t nch,
 		for (c = 0; c < 3; c++) {
 			v[c] = nch >= 3 ? p[c] : p[0];
 			if (!isfinite(v[c])) {
+				rf__nonfinite_note(nf, 0, -1, i % w, i / w, c, v[c]);
 				v[c] = 0.0f;
-				bad++;
 			}
 		}
 		if (!isfinite(a)) {
+			rf__nonfinite_note(nf, 0, -1, i % w, i / w, 3, a);
 			a = 0.0f;
-			bad++;
 		}
 		if (dc->srgb)
 			for (c = 0; c < 3; c++)
@@ -197,10 +198,13 @@ decode_pixels(const float *px, size_t w, size_t h, size_t nch,
 		for (c = 0; c < 3; c++) {
 			float x = v[c] * scale;
 
-			out[3 * i + (size_t)c] = isfinite(x) ? x : 0.0f;
+			if (!isfinite(x)) {
+				rf__nonfinite_note(nf, 0, -1, i % w, i / w, c, x);
+				x = 0.0f;
+			}
+			out[3 * i + (size_t)c] = x;
 		}
 	}
-	*nonfinite = bad;
 	return out;
 }
 
@@ -346,6 +350,18 @@ rf_envmap_from_pixels(rf_cubemap *c, const float *px, size_t w, size_t h, size_t
                       enum rf_layout layout, const struct rf_decode *decode,
                       size_t *nonfinite, char *err, size_t errlen)
 {
+	struct rf__nonfinite nf = { 0 };
+	int rc = rf__envmap_from_pixels(c, px, w, h, nch, layout, decode, &nf, err, errlen);
+
+	*nonfinite = nf.count;
+	return rc;
+}
+
+int
+rf__envmap_from_pixels(rf_cubemap *c, const float *px, size_t w, size_t h, size_t nch,
+                       enum rf_layout layout, const struct rf_decode *decode,
+                       struct rf__nonfinite *nf, char *err, size_t errlen)
+{
 	struct rf_decode plain = { 0, 0, 1.0f, 1.0f, 1.0f };
 	size_t n = rf_cubemap_level_size(c, 0), m, i, j, k;
 	const struct slot *slots;
@@ -353,7 +369,6 @@ rf_envmap_from_pixels(rf_cubemap *c, const float *px, size_t w, size_t h, size_t
 	float *img;
 	int rc, f;
 
-	*nonfinite = 0;
 	if (nch != 1 && nch != 3 && nch != 4) {
 		rf__format(err, errlen, "an environment has 1, 3 or 4 channels, not %zu",
 		           nch);
@@ -364,7 +379,7 @@ rf_envmap_from_pixels(rf_cubemap *c, const float *px, size_t w, size_t h, size_t
 		return rc;
 	if ((rc = rf_layout_check(layout, w, h, &m, err, errlen)) < 0)
 		return rc;
-	if (!(img = decode_pixels(px, w, h, nch, decode ? decode : &plain, nonfinite)))
+	if (!(img = decode_pixels(px, w, h, nch, decode ? decode : &plain, nf)))
 		return RF_ENOMEM;
 	if (layout == RF_LAYOUT_LATLONG || layout == RF_LAYOUT_MIRRORBALL ||
 	    layout == RF_LAYOUT_ANGULAR) {
@@ -440,10 +455,10 @@ rf_envmap_to_pixels(const rf_cubemap *c, size_t level, enum rf_layout layout,
 
 int
 rf__cube_level_from_pixels(rf_cubemap *c, size_t level, const float *px, size_t w,
-                           size_t h, size_t nch, size_t *nonfinite, char *err,
+                           size_t h, size_t nch, struct rf__nonfinite *nf, char *err,
                            size_t errlen)
 {
-	size_t n = rf_cubemap_level_size(c, level), i, j, bad = 0;
+	size_t n = rf_cubemap_level_size(c, level), i, j;
 	int f, ch;
 
 	if (w != n || h != 6 * n || nch < 3) {
@@ -458,11 +473,13 @@ rf__cube_level_from_pixels(rf_cubemap *c, size_t level, const float *px, size_t 
 				float *t = rf_cubemap_texel(c, level, (enum rf_face)f, i, j);
 
 				for (ch = 0; ch < 3; ch++) {
-					t[ch] = isfinite(p[ch]) ? p[ch] : 0.0f;
-					bad += !isfinite(p[ch]);
+					t[ch] = p[ch];
+					if (!isfinite(p[ch])) {
+						rf__nonfinite_note(nf, level, f, i, j, ch, p[ch]);
+						t[ch] = 0.0f;
+					}
 				}
 			}
-	*nonfinite = bad;
 	rf_cubemap_seal_level(c, level);
 	return 0;
 }

@@ -36,6 +36,7 @@ rf_envmap_options_init(struct rf_envmap_options *o)
 	memset(o, 0, sizeof(*o));
 	o->layout = RF_LAYOUT_AUTO;
 	o->srgb = -1;
+	o->strict = 1;
 	o->decode.multiplier = 1.0f;
 	o->decode.exponent = 1.0f;
 	o->decode.intensity = 1.0f;
@@ -56,15 +57,22 @@ cube_new(struct load *ld, rf_cubemap **c, size_t size, size_t levels)
 	return rc;
 }
 
+/* What a reader met: an environment with a NaN or infinite value is
+ * refused, naming the first, unless the options repair it (each such
+ * value 0, counted for the caller to report). */
 static int
-count_nonfinite(struct load *ld, const char *path, size_t bad)
+count_nonfinite(struct load *ld, const char *path, const struct rf__nonfinite *nf)
 {
-	if (bad && ld->o->strict) {
-		rf__format(ld->err, ld->errlen, "'%s': %zu texel values are NaN or infinite "
-		           "(strict loading refuses them)", path, bad);
+	char where[128];
+
+	if (nf->count && ld->o->strict) {
+		rf__nonfinite_where(nf, where, sizeof(where));
+		rf__format(ld->err, ld->errlen, "'%s': %s (%zu NaN or infinite value%s in "
+		           "all; --nonfinite=zero replaces them with 0)", path, where,
+		           nf->count, nf->count == 1 ? "" : "s");
 		return RF_EINVAL;
 	}
-	ld->nonfinite += bad;
+	ld->nonfinite += nf->count;
 	return 0;
 }
 
@@ -129,13 +137,16 @@ is_srgb(const struct rf_envmap_options *o, const rf_image *img)
 	return cs && !strcasecmp(cs, "sRGB");
 }
 
+/* An image in a layout; faces: the image is six face files of that many
+ * texels stacked (pattern path), and a bad value is named in its own. */
 static int
 load_pixels(struct load *ld, const char *path, const float *px, size_t w, size_t h,
-            size_t nch, enum rf_layout layout, int srgb, rf_cubemap **c)
+            size_t nch, enum rf_layout layout, int srgb, size_t faces, rf_cubemap **c)
 {
 	struct rf_decode dc = ld->o->decode;
-	char why[1024];
-	size_t face, bad = 0;
+	struct rf__nonfinite nf = { 0 };
+	char why[1024], one[4096];
+	size_t face;
 	int rc;
 
 	dc.srgb = srgb;
@@ -151,12 +162,17 @@ load_pixels(struct load *ld, const char *path, const float *px, size_t w, size_t
 		face = ld->o->size;
 	if ((rc = cube_new(ld, c, face, 1)) < 0)
 		return rc;
-	if ((rc = rf_envmap_from_pixels(*c, px, w, h, nch, layout, &dc, &bad, why,
-	                                sizeof(why))) < 0) {
+	if ((rc = rf__envmap_from_pixels(*c, px, w, h, nch, layout, &dc, &nf, why,
+	                                 sizeof(why))) < 0) {
 		rf__format(ld->err, ld->errlen, "'%s': %s", path, why);
 		rc = RF_EINVAL;
 	} else {
-		rc = count_nonfinite(ld, path, bad);
+		if (faces && nf.count && face_path(ld, one, sizeof(one), path,
+		                                   (int)(nf.y / faces)) == 0) {
+			path = one;
+			nf.y %= faces;
+		}
+		rc = count_nonfinite(ld, path, &nf);
 	}
 	if (rc < 0) {
 		rf_cubemap_destroy(*c);
@@ -172,7 +188,7 @@ load_faces(struct load *ld, const char *pattern, rf_cubemap **c)
 	rf_image *faces[6] = { 0 };
 	size_t n = 0, nch = 0, f, j;
 	float *px = NULL;
-	int rc = 0, srgb;
+	int rc = 0, srgb = 0;
 
 	for (f = 0; f < 6 && rc == 0; f++) {
 		if ((rc = face_path(ld, path, sizeof(path), pattern, (int)f)) < 0 ||
@@ -204,7 +220,7 @@ load_faces(struct load *ld, const char *pattern, rf_cubemap **c)
 	for (f = 0; f < 6; f++)
 		rf_image_destroy(faces[f]);
 	if (rc == 0)
-		rc = load_pixels(ld, pattern, px, n, 6 * n, nch, RF_LAYOUT_CUBE, srgb, c);
+		rc = load_pixels(ld, pattern, px, n, 6 * n, nch, RF_LAYOUT_CUBE, srgb, n, c);
 	free(px);
 	return rc;
 }
@@ -280,13 +296,18 @@ static int
 load_stream(struct load *ld, FILE *fp, const char *name, rf_cubemap **c,
             struct rf_chain_info *info)
 {
+	struct rf__nonfinite nf = { 0 };
 	rf_reader *r;
 	int rc;
 
 	if ((rc = rf_reader_open(&r, fp, name, NULL)) < 0)
 		return rc;
-	rc = rf_chain_read_stream(c, info, r, ld->err, ld->errlen);
+	rc = rf__chain_read_stream(c, info, r, NULL, &nf, ld->err, ld->errlen);
 	rf_reader_close(r);
+	if (rc == 0 && (rc = count_nonfinite(ld, name, &nf)) < 0) {
+		rf_cubemap_destroy(*c);
+		*c = NULL;
+	}
 	if (rc == 0 && ld->o->prefiltered)
 		info->prefiltered = 1;
 	return rc;
@@ -298,13 +319,14 @@ static int
 load_chain_file(struct load *ld, const char *path, rf_cubemap **c,
                 struct rf_chain_info *info)
 {
+	struct rf__nonfinite nf = { 0 };
 	char why[1024];
 	size_t levels;
 	int rc, ours;
 
 	if (rf_image_count_levels(path, &levels, why, sizeof(why)) < 0 || levels < 2)
 		return 1;
-	if ((rc = rf_chain_read_file(c, info, &ours, path, ld->err, ld->errlen)) < 0) {
+	if ((rc = rf__chain_read_file(c, info, &ours, &nf, path, ld->err, ld->errlen)) < 0) {
 		if (ld->o->prefiltered)
 			return image_status(rc);
 		return 1; /* not a cube chain: an ordinary image */
@@ -316,6 +338,12 @@ load_chain_file(struct load *ld, const char *path, rf_cubemap **c,
 		info->mapping = RF_MAPPING_DEFAULT;
 		info->base_copied = 1;
 		return 1;
+	}
+	/* read as an image, the same values would be refused the same way */
+	if ((rc = count_nonfinite(ld, path, &nf)) < 0) {
+		rf_cubemap_destroy(*c);
+		*c = NULL;
+		return rc;
 	}
 	if (ld->o->prefiltered)
 		info->prefiltered = 1;
@@ -329,13 +357,13 @@ load_chain_file(struct load *ld, const char *path, rf_cubemap **c,
 static int
 load_dds(struct load *ld, const char *path, rf_cubemap **c, struct rf_chain_info *info)
 {
-	size_t bad = 0;
+	struct rf__nonfinite nf = { 0 };
 	rf_cubemap *chain;
 	int rc;
 
-	if ((rc = rf_chain_read_dds(&chain, info, &bad, path, ld->err, ld->errlen)) < 0)
+	if ((rc = rf__chain_read_dds(&chain, info, &nf, path, ld->err, ld->errlen)) < 0)
 		return image_status(rc);
-	if ((rc = count_nonfinite(ld, path, bad)) < 0 ||
+	if ((rc = count_nonfinite(ld, path, &nf)) < 0 ||
 	    ld->o->prefiltered || rf_cubemap_levels(chain) == 1) {
 		/* one level is raw (rf_envmap_load), not a chain */
 		if (rc < 0)
@@ -358,14 +386,14 @@ load_dds(struct load *ld, const char *path, rf_cubemap **c, struct rf_chain_info
 static int
 load_ktx(struct load *ld, const char *path, rf_cubemap **c, struct rf_chain_info *info)
 {
-	size_t bad = 0;
+	struct rf__nonfinite nf = { 0 };
 	rf_cubemap *chain;
 	int rc, ours;
 
-	if ((rc = rf_chain_read_ktx(&chain, info, &ours, &bad, path, ld->err,
-	                            ld->errlen)) < 0)
+	if ((rc = rf__chain_read_ktx(&chain, info, &ours, &nf, path, ld->err,
+	                             ld->errlen)) < 0)
 		return image_status(rc);
-	if ((rc = count_nonfinite(ld, path, bad)) < 0) {
+	if ((rc = count_nonfinite(ld, path, &nf)) < 0) {
 		rf_cubemap_destroy(chain);
 		return rc;
 	}
@@ -446,7 +474,7 @@ load_image(struct load *ld, const char *path, rf_cubemap **c, struct rf_chain_in
 	} else {
 		rc = load_pixels(ld, path, rf_image_pixels(img), rf_image_width(img),
 		                 rf_image_height(img), rf_image_nchannels(img), layout,
-		                 is_srgb(ld->o, img), c);
+		                 is_srgb(ld->o, img), 0, c);
 	}
 	rf_image_destroy(img);
 	if (rc == 0 && ld->o->prefiltered)

@@ -322,6 +322,32 @@ rf_prefilter_level_samples(unsigned base, size_t k)
 	return n;
 }
 
+static int
+source_finite(const rf_cubemap *src, char *err, size_t errlen)
+{
+	const size_t n = rf_cubemap_size(src);
+	size_t i, j;
+	int f, ch;
+
+	for (f = 0; f < 6; f++)
+		for (j = 0; j < n; j++) {
+			const float *t = rf_cubemap_texel_const(src, 0, (enum rf_face)f, 0, j);
+
+			for (i = 0; i < 3 * n; i++)
+				if (!isfinite(t[i])) {
+					struct rf__nonfinite nf = { 0 };
+					char where[128];
+
+					ch = (int)(i % 3);
+					rf__nonfinite_note(&nf, 0, f, i / 3, j, ch, t[i]);
+					rf__nonfinite_where(&nf, where, sizeof(where));
+					rf__format(err, errlen, "the source's %s", where);
+					return RF_EINVAL;
+				}
+		}
+	return 0;
+}
+
 int
 rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
              const struct rf_prefilter_options *o, char *err, size_t errlen)
@@ -359,6 +385,11 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 		           "size %zu", nout, n0);
 		return RF_EINVAL;
 	}
+	/* One NaN would spread over every lobe that reaches it, and an
+	 * infinity over whole levels: the loaders refuse both, and so does
+	 * the prefilter for a cube made some other way. */
+	if ((rc = source_finite(src, err, errlen)) < 0)
+		return rc;
 	/* The source as a full box chain, read by filtered samples. */
 	if ((rc = rf_cubemap_create(&chain, n0, 0)) < 0)
 		return rc;

@@ -6,6 +6,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "envmap/envmap-internal.h"
 #include "envmap/texel.h"
 #include "reflect/reflect.h"
 
@@ -118,11 +119,12 @@ rf__float_to_half(float v)
 	return sign | (unsigned)h;
 }
 
-size_t
+void
 rf__texel_store_gl_row(rf_cubemap *c, size_t level, int f, size_t j,
-                       const unsigned char *row, const struct rf__texel_format *fmt)
+                       const unsigned char *row, const struct rf__texel_format *fmt,
+                       struct rf__nonfinite *nf)
 {
-	size_t n = rf_cubemap_level_size(c, level), bad = 0, i, ri, rj;
+	size_t n = rf_cubemap_level_size(c, level), i, ri, rj;
 	int ch;
 
 	for (i = 0; i < n; i++) {
@@ -133,9 +135,8 @@ rf__texel_store_gl_row(rf_cubemap *c, size_t level, int f, size_t j,
 		rf__texel_decode(fmt, row + i * fmt->bytes, t);
 		for (ch = 0; ch < 3; ch++)
 			if (!isfinite(t[ch])) {
+				rf__nonfinite_note(nf, level, f, i, j, ch, t[ch]);
 				t[ch] = 0.0f;
-				bad++;
 			}
 	}
-	return bad;
 }

@@ -48,10 +48,13 @@ rf__gl_texel(int f, size_t n, size_t i, size_t j, size_t *ri, size_t *rj)
 	*rj = y ? n - 1 - j : j;
 }
 
+struct rf__nonfinite;
+
 /* Decodes row j of GL face f at a level (n texels of fmt) into reflect's
- * cube; NaN and Inf become 0.  The count of those replaced. */
-size_t rf__texel_store_gl_row(rf_cubemap *c, size_t level, int f, size_t j,
-                              const unsigned char *row,
-                              const struct rf__texel_format *fmt);
+ * cube; NaN and Inf become 0, noted in nf (may be NULL) at their place in
+ * the file. */
+void rf__texel_store_gl_row(rf_cubemap *c, size_t level, int f, size_t j,
+                            const unsigned char *row, const struct rf__texel_format *fmt,
+                            struct rf__nonfinite *nf);
 
 #endif

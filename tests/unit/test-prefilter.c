@@ -310,6 +310,35 @@ TEST(bad_parameters_refused)
 	rf_cubemap_destroy(src);
 }
 
+/* A NaN in the source reached every texel whose lobe read it, and an
+ * infinity whole levels: the source is refused, naming the texel, and
+ * out is left alone. */
+TEST(non_finite_source_refused)
+{
+	rf_cubemap *src = default_room(8), *out;
+	struct rf_prefilter_options o;
+	char err[256] = "";
+	const float nan = NAN;
+	int method;
+
+	ASSERT(src);
+	ASSERT_EQ(rf_cubemap_create(&out, 8, 3), 0);
+	rf_prefilter_defaults(&o);
+	rf_cubemap_texel(src, 0, RF_FACE_NEG_Z, 6, 1)[2] = nan;
+	rf_cubemap_seal_level(src, 0);
+	for (method = 0; method < 2; method++) {
+		o.method = (enum rf_prefilter_method)method;
+		err[0] = '\0';
+		ASSERT_EQ(rf_prefilter(src, out, &o, err, sizeof(err)), RF_EINVAL);
+		ASSERT_STR_EQ(err, "the source's level 0, face -Z, texel (6, 1): B is nan");
+	}
+	rf_cubemap_texel(src, 0, RF_FACE_NEG_Z, 6, 1)[2] = INFINITY;
+	ASSERT_EQ(rf_prefilter(src, out, &o, err, sizeof(err)), RF_EINVAL);
+	ASSERT_STR_EQ(err, "the source's level 0, face -Z, texel (6, 1): B is inf");
+	rf_cubemap_destroy(out);
+	rf_cubemap_destroy(src);
+}
+
 /* A sharp lobe at a face centre reads the texels around it: brute force
  * of a tiny roughness returns the source there. */
 TEST(brute_force_limits)
@@ -334,6 +363,7 @@ main(void)
 	RUN(deterministic_across_threads);
 	RUN(vector_kernel_matches_scalar);
 	RUN(bad_parameters_refused);
+	RUN(non_finite_source_refused);
 	RUN(brute_force_limits);
 	TAP_DONE();
 }
