@@ -112,6 +112,15 @@ progress(void *arg, double done, double total)
 		fputc('\n', stderr);
 }
 
+/* A damaged cache entry: worth a line whenever it happens (a disk or a
+ * hand that wrote into the cache), since it costs a prefilter. */
+static void
+note(void *arg, const char *msg)
+{
+	(void)arg;
+	warn("%s", msg);
+}
+
 /* $XDG_CACHE_HOME/reflect, else ~/.cache/reflect; NULL with --no-cache or
  * no home. */
 static const char *
@@ -177,6 +186,7 @@ load_environment(const struct shade_opts *o, const char *name, int from_header,
 	so.progress = progress;
 	so.progress_arg = line;
 	so.cache_dir = cache_dir(o);
+	so.note = note;
 	/* REFLECT_CACHE_MB=0 keeps nothing: a byte holds no entry */
 	if (getenv("REFLECT_CACHE_MB"))
 		so.cache_bytes = ((size_t)strtoul(getenv("REFLECT_CACHE_MB"), NULL, 10) << 20) + 1;

@@ -130,6 +130,11 @@ struct rf_shade_env_options {
 	 * parameters, at most cache_bytes (0: 256 MB), oldest out first. */
 	const char *cache_dir;
 	size_t cache_bytes;
+	/* Called with a line when an entry of the cache is found damaged
+	 * (cut short, a NaN, texels that do not match its checksum, not this
+	 * environment's), before it is made again; may be NULL. */
+	void (*note)(void *arg, const char *msg);
+	void *note_arg;
 };
 /* Takes what rf_envmap_load gave (loaded, info; named `name` in
  * messages, NULL for the embedded room) and makes the chain a shading

@@ -53,17 +53,25 @@ prefilter(rf_cubemap **env, float *steps, const rf_cubemap *src, const char *nam
 	if ((rc = rf_cubemap_check_size(size, levels, err, errlen)) < 0)
 		return rc;
 	if (o->cache_dir) {
-		struct rf_chain_info got;
+		struct rf_chain_info want;
+		char why[1024], note[1200];
 
+		memset(&want, 0, sizeof(want));
+		want.mapping = mapping;
+		want.steps = pf.steps;
+		want.samples = pf.samples;
 		key = rf__env_cache_key(src, mapping, pf.steps, pf.samples, levels);
-		if (rf__env_cache_get(o->cache_dir, key, env, &got) == 0) {
-			if (rf_cubemap_size(*env) == size && rf_cubemap_levels(*env) == levels &&
-			    got.mapping == mapping && got.steps == pf.steps) {
-				*steps = pf.steps;
-				return 0;
-			}
-			rf_cubemap_destroy(*env);
-			*env = NULL;
+		rc = rf__env_cache_get(o->cache_dir, key, src, levels, &want, env, why,
+		                       sizeof(why));
+		if (rc == 0) {
+			*steps = pf.steps;
+			return 0;
+		}
+		/* made again below, and written over the bad one */
+		if (rc == RF_EINVAL && o->note) {
+			rf__format(note, sizeof(note), "cache entry %s; prefiltering%s again",
+			           why, what);
+			o->note(o->note_arg, note);
 		}
 	}
 	if ((rc = rf_cubemap_create(env, size, levels)) < 0)
