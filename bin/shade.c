@@ -455,7 +455,7 @@ shade_frame(struct cli_io *io, const struct shade_opts *o, struct environment *e
 	if (sb.failed || sb.gave_up)
 		snprintf(why, sizeof(why), "%s", *rf_stage_error(stage) ? rf_stage_error(stage)
 		                                                       : rf_shade_error(shade));
-	cli_io_invalid_note(io, rf_stage_invalid_count(stage));
+	cli_io_invalid_note(io, rf_stage_invalid_count(stage) + rf_shade_invalid_count(shade));
 	mode_invalid_note(io, rf_stage_invalid_output_count(stage));
 	rf_stage_destroy(stage);
 	for (kb = 1; kb < RF_PROBES_MAX; kb++) {

@@ -118,6 +118,92 @@ test_expect_success 'reflect-shade --invalid=clamp: roughness 1.5 reads as 1' '
 	cmp_numbers want got 1e-6
 '
 
+# What a pixel emits (a scene that emits, reflect-gbuffer's emission.R G
+# B) is what a wall shows and, with --final, what a mirror adds: it went
+# out as it came, NaN, inf and -5 included, under every mode and every
+# --invalid.  Pixels 1 and 2 are walls, pixel 3 a mirror whose emission
+# only --final reads.
+SH="P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z roughness mask D.X D.Y D.Z hit.dist probe.dist"
+floor="1 0 0.5 0 1 0 -0.760532 0.405617 -0.507021 0.3"
+mirror="0.760532 0.405617 0.507021 1 2"
+
+test_expect_success 'reflect-shade refuses emission that is no radiance, in every mode' '
+	printf "%s\n" "$floor 0 $mirror nan 1 1" "$floor 0 $mirror 1 -5 1" \
+		"$floor 1 $mirror 1 1 inf" |
+	stream e.txt 3 1 "$SH emission.R emission.G emission.B" "$PROBE" "$CENTER" &&
+	level_chain chain.rfl 8 4 linear &&
+	for m in none approx hdrp godot footprint raytraced
+	do
+		for final in "" --final
+		do
+			test_expect_code 1 reflect-shade -m $m $final --env=chain.rfl e.txt \
+				>/dev/null 2>err &&
+			test_one_line_message reflect-shade err &&
+			test_grep "${SQ}e.txt${SQ}: frame 1, row 1, pixel 1: channel ${SQ}emission.R${SQ} is nan, not a radiance (finite, not negative)" err ||
+			return 1
+		done || return 1
+	done
+'
+
+test_expect_success '--invalid=clamp: NaN and -5 emit 0, inf the largest float' '
+	for m in none approx hdrp godot footprint raytraced
+	do
+		reflect-shade -fa -m $m --invalid=clamp --env=chain.rfl e.txt >c.out 2>err &&
+		test_grep "frame 1: 2 pixels with invalid input clamped" err &&
+		column c.out spec.R spec.G spec.B | sed -n 1,2p >got &&
+		printf "0 1 1\n1 0 1\n" >want &&
+		cmp_numbers want got 0 &&
+		reflect-shade -fa -m $m --final --invalid=clamp --env=chain.rfl e.txt >c.out 2>err &&
+		test_grep "frame 1: 3 pixels with invalid input clamped" err &&
+		column c.out R G B >got &&
+		sed -n 1,2p got >wall && cmp_numbers want wall 0 &&
+		awk "NR == 3 && !(\$1 >= 1 && \$1 < 100 && \$3 > 3.40282e38 && \$3 < 3.40283e38) { exit 1 }" got ||
+		return 1
+	done
+'
+
+test_expect_success '--invalid=zero: the pixel with a bad emission is 0' '
+	for m in none approx hdrp godot footprint raytraced
+	do
+		reflect-shade -fa -m $m --invalid=zero --env=chain.rfl e.txt >z.out 2>err &&
+		column z.out spec.R spec.G spec.B | sed -n 1,2p >got &&
+		printf "0 0 0\n0 0 0\n" >want &&
+		cmp_numbers want got 0 &&
+		reflect-shade -fa -m $m --final --invalid=zero --env=chain.rfl e.txt >z.out 2>err &&
+		test_grep "frame 1: 3 pixels with invalid input zeroed" err &&
+		column z.out spec.R spec.G spec.B R G B >got &&
+		printf "0 0 0 0 0 0\n0 0 0 0 0 0\n0 0 0 0 0 0\n" >want &&
+		cmp_numbers want got 0 || return 1
+	done
+'
+
+# The final colour reads the material itself: metallic and albedo out of
+# [0, 1] were clamped without a word, and N and V taken at their length,
+# so that a normal 4 long read the grazing term of n.v = 4.
+test_expect_success 'reflect-shade --final holds its material to the rules' '
+	MAT="$SH metallic albedo.R albedo.G albedo.B" &&
+	printf "%s\n" "$floor 1 $mirror 0.5 0.9 0.8 0.7" "$floor 1 $mirror 2 0.9 0.8 0.7" \
+		"$floor 1 $mirror 0.5 0.9 nan 0.7" |
+	stream f.txt 3 1 "$MAT" "$PROBE" "$CENTER" &&
+	test_expect_code 1 reflect-shade -m none --final --env=chain.rfl f.txt >/dev/null 2>err &&
+	test_grep "row 1, pixel 2: channel ${SQ}metallic${SQ} is 2, outside \[0, 1\]" err &&
+	reflect-shade -fa -m none --final --invalid=clamp --env=chain.rfl f.txt >f.out 2>/dev/null &&
+	column f.out R G B | sed -n 2p >got &&
+	printf "%s\n" "$floor 1 $mirror 1 0.9 0.8 0.7" | stream one.txt 1 1 "$MAT" "$PROBE" "$CENTER" &&
+	reflect-shade -fa -m none --final --env=chain.rfl one.txt | column - R G B >want &&
+	cmp_numbers want got 1e-6 &&
+	printf "%s\n" "1 0 0.5 0 4 0 -0.760532 0.405617 -0.507021 0.3 1 $mirror 0.5 0.9 0.8 0.7" |
+	stream long.txt 1 1 "$MAT" "$PROBE" "$CENTER" &&
+	printf "%s\n" "$floor 1 $mirror 0.5 0.9 0.8 0.7" | stream unit.txt 1 1 "$MAT" "$PROBE" "$CENTER" &&
+	reflect-shade -fa -m none --final --env=chain.rfl long.txt | column - R G B diffuse.R >got &&
+	reflect-shade -fa -m none --final --env=chain.rfl unit.txt | column - R G B diffuse.R >want &&
+	cmp_numbers want got 1e-5 &&
+	printf "%s\n" "1 0 0.5 0 0 0 -0.760532 0.405617 -0.507021 0.3 1 $mirror 0.5 0.9 0.8 0.7" |
+	stream zeron.txt 1 1 "$MAT" "$PROBE" "$CENTER" &&
+	test_expect_code 1 reflect-shade -m none --final --env=chain.rfl zeron.txt >/dev/null 2>err &&
+	test_grep "N is (0, 0, 0), not a direction" err
+'
+
 test_expect_success 'a bad --invalid is a usage error' '
 	test_expect_code 1 reflect-project --invalid=maybe good.txt 2>err &&
 	test_grep "^reflect-project: --invalid: ${SQ}maybe${SQ} is not error, clamp or zero$" err &&

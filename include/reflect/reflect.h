@@ -352,11 +352,12 @@ RF_EXTERN int rf_stage_run(rf_stage *s, const float *in, float *out, size_t y,
  * N, Ng and V (all three components read) directions, finite and neither
  * so long nor so short that their squared length leaves float's range,
  * but where the stream's mask is 0 (a wall reflects nothing); roughness,
- * metallic and mask must lie in [0, 1].  What to do with a pixel that
+ * metallic and mask must lie in [0, 1]; emission.R G B must be a radiance,
+ * finite and not negative.  What to do with a pixel that
  * breaks a rule: stop with a message naming the frame, row, pixel and
  * channel (ERROR); clamp a scalar to its range (NaN to its low end, a
- * distance's NaN to +inf), an infinite coordinate to +-FLT_MAX, and
- * normalise a vector, in double
+ * distance's NaN to +inf, a radiance's +inf to FLT_MAX), an infinite
+ * coordinate to +-FLT_MAX, and normalise a vector, in double
  * (CLAMP); or write the plugin's outputs of that pixel as 0 (ZERO, and
  * CLAMP for a vector without any direction, such as zero).  Clamped and
  * zeroed pixels are counted.

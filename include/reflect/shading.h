@@ -247,13 +247,22 @@ RF_EXTERN int rf_shade_run(rf_shade *s, const float *in, float *out, size_t nrow
 RF_EXTERN int rf_shade_run_stage(rf_shade *s, rf_stage *stage, const float *in,
                                  float *out, size_t y, size_t nrows);
 /* Invalid input (rf_invalid in reflect.h) in what the pass reads itself:
- * D where the mirror shows, P where the wall does, and mask.  Under
- * RF_INVALID_ERROR (the default) the run returns RF_EINVAL with the
- * first such pixel in rf_shade_error (a stage's own error comes first);
- * otherwise the mask is clamped and a direction that is not finite reads
- * black. */
+ * mask (in [0, 1]); D where the mirror shows and P where the wall does
+ * (finite); emission.R G B where they show (finite, not negative); with
+ * final the material where the mirror shows (roughness, metallic and
+ * albedo in [0, 1], N and V directions); with mode_radiance the spec the
+ * mode wrote (finite, not negative).  Under RF_INVALID_ERROR (the
+ * default) the run returns RF_EINVAL with the first such pixel in
+ * rf_shade_error (a stage's own error comes first); under CLAMP each is
+ * clamped (NaN to 0, a radiance's +inf to the largest float), under ZERO
+ * the pixel's outputs are 0; under both a D or P that is not finite
+ * reads black.  Radiance that adds up past the float range is written
+ * as the largest float: the outputs are always finite. */
 RF_EXTERN void rf_shade_set_invalid(rf_shade *s, enum rf_invalid policy);
 RF_EXTERN const char *rf_shade_error(const rf_shade *s);
+/* Pixels of the frame whose input the pass clamped or zeroed (a pixel
+ * the mode's stage repaired too is counted by each). */
+RF_EXTERN size_t rf_shade_invalid_count(const rf_shade *s);
 
 #ifdef __cplusplus
 }

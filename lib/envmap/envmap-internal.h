@@ -3,6 +3,8 @@
 #ifndef REFLECT_ENVMAP_INTERNAL_H
 #define REFLECT_ENVMAP_INTERNAL_H
 
+#include <float.h>
+
 #include "util/util.h"
 #include "reflect/envmap.h"
 
@@ -78,8 +80,9 @@ rf__sh9_quadratic_eval(const float q[3][9], const float n[3], float e[3])
 		float v = k[0] + k[1] * x + k[2] * y + k[3] * z + k[4] * xy + k[5] * yz +
 		          k[6] * xz + k[7] * zz + k[8] * d;
 
-		/* ringing of the truncated series can dip below 0 */
-		e[ch] = v > 0.0f ? v : 0.0f;
+		/* ringing of the truncated series can dip below 0; coefficients
+		 * near the float range can add up past it (inf, or inf - inf) */
+		e[ch] = v > 0.0f ? (v < FLT_MAX ? v : FLT_MAX) : 0.0f;
 	}
 }
 

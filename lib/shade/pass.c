@@ -1,5 +1,6 @@
 /* The sampling pass of reflect-shade: effective roughness -> lod -> the
  * environment, per row, on several threads. */
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -105,14 +106,19 @@ struct rf_shade {
 	struct reads *reads;
 	size_t reads_cols;
 	int vector;
-	/* Invalid input (reflect.h's rules for the pass's own reads: D, mask,
-	 * and P where the wall shows): under RF_INVALID_ERROR the first is
-	 * an error; otherwise a mask is clamped and a direction that is not
-	 * finite reads black, as they always were. */
+	/* Invalid input (reflect.h's rules) in the pass's own reads: under
+	 * RF_INVALID_ERROR the first is an error; under CLAMP a value is
+	 * clamped (in a copy of the row), under ZERO the pixel's outputs are
+	 * 0; a D or P that is not finite reads black under both.  The rules
+	 * of every pixel (always), of a pixel the mirror shows (mirror: the
+	 * final colour's material, a mode's radiance), and of one the wall
+	 * shows (wall), and their union for the fast test of a row (check),
+	 * with D and P. */
 	enum rf_invalid invalid;
 	size_t rows_done;
 	char error[320];
-	struct rf__check check; /* the fast test of a row, on those reads */
+	struct rf__check check, always, mirror, wall;
+	size_t fixed; /* pixels of the frame clamped or zeroed */
 };
 
 /* One row's environment reads: directions and lods as columns, their
@@ -124,6 +130,10 @@ struct reads {
 	rf__v4 *rgb;
 	int32_t *mirror, *wall;
 	struct rf__first_invalid first; /* under RF_INVALID_ERROR */
+	float *row;          /* a row whose input breaks a rule, as repaired */
+	size_t row_cap;      /* floats */
+	unsigned char *zero; /* its pixels whose outputs are 0 */
+	size_t fixed;        /* pixels repaired in the block */
 };
 
 int
@@ -171,6 +181,8 @@ free_reads(rf_shade *s)
 		free(r->mirror);
 		free(r->wall);
 		free(r->blended);
+		free(r->row);
+		free(r->zero);
 	}
 	free(s->reads);
 	s->reads = NULL;
@@ -178,15 +190,27 @@ free_reads(rf_shade *s)
 }
 
 /* Room for two reads a pixel (the mirror and the wall behind a partial
- * mask) on every thread. */
+ * mask) on every thread, and for a row of ncomp channels. */
 static int
-alloc_reads(rf_shade *s, size_t ncols)
+alloc_reads(rf_shade *s, size_t ncols, size_t ncomp)
 {
 	size_t n = 2 * ncols;
 	int t;
 
-	if (ncols <= s->reads_cols)
+	if (ncols <= s->reads_cols) {
+		for (t = 0; t < s->nthreads; t++) {
+			struct reads *r = &s->reads[t];
+			float *grown;
+
+			if (ncols * ncomp <= r->row_cap)
+				continue;
+			if (!(grown = realloc(r->row, ncols * ncomp * sizeof(float))))
+				return RF_ENOMEM;
+			r->row = grown;
+			r->row_cap = ncols * ncomp;
+		}
 		return 0;
+	}
 	free_reads(s);
 	if (!(s->reads = calloc((size_t)s->nthreads, sizeof(*s->reads))))
 		return RF_ENOMEM;
@@ -202,8 +226,11 @@ alloc_reads(rf_shade *s, size_t ncols)
 		r->mirror = malloc(ncols * sizeof(int32_t));
 		r->wall = malloc(ncols * sizeof(int32_t));
 		r->blended = aligned_alloc(16, ncols * sizeof(rf__v4));
+		r->row = malloc(ncols * ncomp * sizeof(float));
+		r->row_cap = ncols * ncomp;
+		r->zero = malloc(ncols);
 		if (!r->mask || !r->x || !r->y || !r->z || !r->lod || !r->rgb || !r->mirror ||
-		    !r->wall || !r->blended) {
+		    !r->wall || !r->blended || !r->row || !r->zero) {
 			free_reads(s);
 			return RF_ENOMEM;
 		}
@@ -354,24 +381,60 @@ require(rf_shade *s, const rf_header *h, int first, int last, const char *why,
 	return 0;
 }
 
-/* The fast test of the pass's own reads: D finite (where the mode does
- * not give radiance), mask in [0, 1], P finite (where there is a mask). */
+/* A rule on input channel i (with i + 1 and i + 2 for a direction);
+ * nothing when the stream lacks it. */
+static void
+add_rule(const rf_shade *s, struct rf__check *c, int kind, const char *name, int i)
+{
+	struct rf__check_item *it;
+	int k;
+
+	if (s->in[i] < 0 || c->n >= RF__CHECK_MAX)
+		return;
+	it = &c->item[c->n++];
+	it->kind = kind;
+	it->name = name;
+	for (k = 0; k < (kind == RF__CHECK_DIRECTION ? 3 : 1); k++)
+		it->at[k] = s->in[i + k];
+}
+
+/* The rules of what the pass reads itself: mask in [0, 1]; D finite
+ * where the mirror shows (when the mode gives no radiance) and P where
+ * the wall shows (when the stream has a mask); the emission a radiance
+ * where it shows (walls, and with --final every pixel); with --final the
+ * material (roughness, metallic, albedo in [0, 1]; N and V directions)
+ * where the mirror shows, and so the radiance a mode wrote. */
 static void
 plan_check(rf_shade *s)
 {
 	static const int finite[6] = { IN_DX, IN_DY, IN_DZ, IN_PX, IN_PY, IN_PZ };
+	struct rf__check *const plans[3] = { &s->always, &s->mirror, &s->wall };
+	size_t j;
 	int k;
 
-	s->check.n = 0;
+	s->check.n = s->always.n = s->mirror.n = s->wall.n = 0;
 	for (k = 0; k < 6; k++)
-		if (s->in[finite[k]] >= 0 && (k < 3 ? !s->mode_radiance : s->in[IN_MASK] >= 0)) {
-			s->check.item[s->check.n].kind = RF__CHECK_FINITE;
-			s->check.item[s->check.n++].at[0] = s->in[finite[k]];
-		}
-	if (s->in[IN_MASK] >= 0) {
-		s->check.item[s->check.n].kind = RF__CHECK_UNIT;
-		s->check.item[s->check.n++].at[0] = s->in[IN_MASK];
+		if (k < 3 ? !s->mode_radiance : s->in[IN_MASK] >= 0)
+			add_rule(s, &s->check, RF__CHECK_FINITE, in_names[finite[k]], finite[k]);
+	add_rule(s, &s->always, RF__CHECK_UNIT, "mask", IN_MASK);
+	for (k = 0; k < 3 && s->emission; k++)
+		add_rule(s, s->final ? &s->always : &s->wall, RF__CHECK_RADIANCE,
+		         in_names[IN_ER + k], IN_ER + k);
+	if (s->final) {
+		add_rule(s, &s->mirror, RF__CHECK_UNIT, "roughness", IN_ROUGH);
+		add_rule(s, &s->mirror, RF__CHECK_UNIT, "metallic", IN_METAL);
+		for (k = 0; k < 3; k++)
+			add_rule(s, &s->mirror, RF__CHECK_UNIT, in_names[IN_AR + k], IN_AR + k);
+		if (s->in[IN_NY] >= 0 && s->in[IN_NZ] >= 0)
+			add_rule(s, &s->mirror, RF__CHECK_DIRECTION, "N", IN_NX);
+		if (s->in[IN_VY] >= 0 && s->in[IN_VZ] >= 0)
+			add_rule(s, &s->mirror, RF__CHECK_DIRECTION, "V", IN_VX);
 	}
+	for (k = 0; k < 3 && s->mode_radiance; k++)
+		add_rule(s, &s->mirror, RF__CHECK_RADIANCE, in_names[IN_SR + k], IN_SR + k);
+	for (k = 0; k < 3; k++)
+		for (j = 0; j < plans[k]->n && s->check.n < RF__CHECK_MAX; j++)
+			s->check.item[s->check.n++] = plans[k]->item[j];
 }
 
 int
@@ -383,6 +446,7 @@ rf_shade_begin_frame(rf_shade *s, const rf_header *in, const float center[3],
 
 	*out = NULL;
 	s->rows_done = 0;
+	s->fixed = 0;
 	s->error[0] = '\0';
 	for (i = 0; i < IN_COUNT; i++)
 		s->in[i] = rf_header_find_channel(in, in_names[i]);
@@ -489,7 +553,7 @@ rf_shade_begin_frame(rf_shade *s, const rf_header *in, const float center[3],
 		           s->out_ncomp);
 		return RF_ETOOBIG;
 	}
-	if ((rc = alloc_reads(s, s->ncols)) < 0)
+	if ((rc = alloc_reads(s, s->ncols, s->in_ncomp)) < 0)
 		return rc;
 	*out = s->out_h;
 	return 0;
@@ -522,29 +586,78 @@ add_read(struct reads *r, size_t *n, float x, float y, float z, float lod)
 	return (int32_t)(*n)++;
 }
 
-/* The pass's own reads of pixel x (row y) checked, only under ERROR. */
-static void
-check_pixel(const rf_shade *s, const float *p, size_t y, size_t x, struct reads *r)
+/* The pass's own reads of pixel x (row y, p a copy of it) checked: 0,
+ * 1 clamped in place, 2 to be written as 0, or -1 (ERROR) kept in
+ * r->first. */
+static int
+check_pixel(const rf_shade *s, float *p, size_t y, size_t x, struct reads *r)
 {
 	static const char *const names[2][6] = { { "D.X", "D.Y", "D.Z", "P.X", "P.Y", "P.Z" },
 		                                 { "R.X", "R.Y", "R.Z", "P.X", "P.Y", "P.Z" } };
 	const int at[6] = { s->in[IN_DX], s->in[IN_DY], s->in[IN_DZ],
 		            s->in[IN_PX], s->in[IN_PY], s->in[IN_PZ] };
-	float m = s->in[IN_MASK] >= 0 ? p[s->in[IN_MASK]] : 1.0f;
-	int k;
+	char why[200];
+	float m;
+	int k, q, result;
 
-	if (!(m >= 0.0f && m <= 1.0f)) {
-		rf__first_invalid_keep(&r->first, y * s->ncols + x,
-		                       "channel 'mask' is %g, outside [0, 1]", (double)m);
-		return;
+	if ((q = rf__check_pixel(&s->always, p, 0, s->invalid, why, sizeof(why))) < 0)
+		goto broken;
+	if (q == 2)
+		return 2;
+	result = q;
+	m = s->in[IN_MASK] >= 0 ? p[s->in[IN_MASK]] : 1.0f;
+	if (m > 0.0f && (q = rf__check_pixel(&s->mirror, p, 0, s->invalid, why,
+	                                     sizeof(why))) != 0) {
+		if (q < 0)
+			goto broken;
+		if (q == 2)
+			return 2;
+		result = 1;
 	}
-	for (k = 0; k < 6; k++)
+	if (m < 1.0f && (q = rf__check_pixel(&s->wall, p, 1, s->invalid, why,
+	                                     sizeof(why))) != 0) {
+		if (q < 0)
+			goto broken;
+		if (q == 2)
+			return 2;
+		result = 1;
+	}
+	/* otherwise such a direction reads black (add_read) */
+	for (k = 0; k < 6 && s->invalid == RF_INVALID_ERROR; k++)
 		if (at[k] >= 0 && ((k < 3 && m > 0.0f && !s->mode_radiance) || (k >= 3 && m < 1.0f)) &&
 		    !isfinite(p[at[k]])) {
-			rf__first_invalid_keep(&r->first, y * s->ncols + x, "channel '%s' is %g",
-			                       names[s->unprojected][k], (double)p[at[k]]);
-			return;
+			snprintf(why, sizeof(why), "channel '%s' is %g", names[s->unprojected][k],
+			         (double)p[at[k]]);
+			goto broken;
 		}
+	return result;
+broken:
+	rf__first_invalid_keep(&r->first, y * s->ncols + x, "%s", why);
+	return -1;
+}
+
+/* The row as the pass reads it: in itself when every pixel keeps the
+ * rules (the common case, one fast test), else a copy checked pixel by
+ * pixel (clamped, its pixels to be zeroed marked in r->zero), with
+ * *zeroed set when there are any. */
+static const float *
+checked_row(const rf_shade *s, const float *in, size_t in_ncomp, size_t y, struct reads *r,
+            int *zeroed)
+{
+	size_t x;
+	int q;
+
+	*zeroed = 0;
+	if (!s->check.n || rf__check_row(&s->check, in, in_ncomp, s->ncols))
+		return in;
+	memcpy(r->row, in, s->ncols * in_ncomp * sizeof(float));
+	for (x = 0; x < s->ncols; x++) {
+		q = check_pixel(s, r->row + x * in_ncomp, y, x, r);
+		r->zero[x] = q == 2;
+		*zeroed |= q == 2;
+		r->fixed += q > 0;
+	}
+	return r->row;
 }
 
 /* The reads of a row's pixels: the mirror direction at the lod of its
@@ -553,7 +666,7 @@ check_pixel(const rf_shade *s, const float *p, size_t y, size_t x, struct reads 
  * The channel numbers are held in locals: stores to the int tables
  * would otherwise make the compiler read them again for every pixel. */
 static size_t
-plan_reads(const rf_shade *s, const float *in, size_t in_ncomp, size_t y, struct reads *r)
+plan_reads(const rf_shade *s, const float *in, size_t in_ncomp, struct reads *r)
 {
 	const int cm = s->in[IN_MASK], cr = s->in[IN_REFF];
 	const int cdx = s->in[IN_DX], cdy = s->in[IN_DY], cdz = s->in[IN_DZ];
@@ -562,9 +675,6 @@ plan_reads(const rf_shade *s, const float *in, size_t in_ncomp, size_t y, struct
 	const float ox = s->center[0], oy = s->center[1], oz = s->center[2];
 	size_t x, n = 0;
 
-	if (s->invalid == RF_INVALID_ERROR && !rf__check_row(&s->check, in, in_ncomp, s->ncols))
-		for (x = 0; x < s->ncols; x++)
-			check_pixel(s, in + x * in_ncomp, y, x, r);
 	for (x = 0; x < s->ncols; x++, in += in_ncomp) {
 		float m = cm >= 0 ? sat(in[cm]) : 1.0f;
 		int32_t a = -1, b = -1;
@@ -624,8 +734,14 @@ diffuse_light(const rf_shade *s, const float *p, const float albedo[3], float me
 static void
 final_colour(const rf_shade *s, const float *p, float rgb[3], float diffuse[3])
 {
-	float nv = p[s->in[IN_NX]] * p[s->in[IN_VX]] + p[s->in[IN_NY]] * p[s->in[IN_VY]] +
-	           p[s->in[IN_NZ]] * p[s->in[IN_VZ]];
+	const float nx = p[s->in[IN_NX]], ny = p[s->in[IN_NY]], nz = p[s->in[IN_NZ]];
+	const float vx = p[s->in[IN_VX]], vy = p[s->in[IN_VY]], vz = p[s->in[IN_VZ]];
+	/* the cosine, whatever the vectors' lengths (the rules ask only that
+	 * they normalise: each square sum within the float range, and so the
+	 * dot product) */
+	const float nn = nx * nx + ny * ny + nz * nz, vv = vx * vx + vy * vy + vz * vz;
+	float nv = nn > 0.0f && vv > 0.0f
+	                   ? (nx * vx + ny * vy + nz * vz) / (sqrtf(nn) * sqrtf(vv)) : 0.0f;
 	float metal = sat(or_one(s, p, IN_METAL)), pr = sat(p[s->in[IN_ROUGH]]), a, b;
 	float albedo[3], f0[3];
 	int k;
@@ -663,6 +779,14 @@ final_colour(const rf_shade *s, const float *p, float rgb[3], float diffuse[3])
 	}
 }
 
+/* A radiance as written: past the float range it is the largest float
+ * (finite inputs can add up past it), and never NaN. */
+static inline float
+radiance_out(float v)
+{
+	return v < FLT_MAX ? (v > -FLT_MAX ? v : -FLT_MAX) : v == v ? FLT_MAX : 0.0f;
+}
+
 /* Pixel p's outputs into o (which may be p) from its reads. */
 static void
 shade_pixel(const rf_shade *s, const float *p, float *o, const struct reads *r, size_t x)
@@ -694,14 +818,14 @@ shade_pixel(const rf_shade *s, const float *p, float *o, const struct reads *r, 
 	}
 	/* Every input is read: now the outputs, which may overwrite them. */
 	for (k = 0; k < 3; k++)
-		o[s->out[OUT_SR + k]] = m * spec[k] + (1.0f - m) * wall[k];
+		o[s->out[OUT_SR + k]] = radiance_out(m * spec[k] + (1.0f - m) * wall[k]);
 	/* Walls are light sources here, not reflectors: no BRDF. */
 	if (s->final)
 		for (k = 0; k < 3; k++)
-			o[s->out[OUT_R + k]] = m * rgb[k] + (1.0f - m) * wall[k];
+			o[s->out[OUT_R + k]] = radiance_out(m * rgb[k] + (1.0f - m) * wall[k]);
 	if (s->diffuse)
 		for (k = 0; k < 3; k++)
-			o[s->out[OUT_DR + k]] = m * diffuse[k];
+			o[s->out[OUT_DR + k]] = radiance_out(m * diffuse[k]);
 }
 
 /* A row of ncols pixels: its reads gathered, made in one go (eight at a
@@ -710,9 +834,13 @@ static void
 shade_pixels(const rf_shade *s, const float *in, size_t in_ncomp, float *out, size_t y,
              struct reads *r)
 {
-	size_t x, n = plan_reads(s, in, in_ncomp, y, r);
 	const float *w = NULL;
 	uint32_t k, nw = 0;
+	size_t x, n, c;
+	int zeroed;
+
+	in = checked_row(s, in, in_ncomp, y, r, &zeroed);
+	n = plan_reads(s, in, in_ncomp, r);
 
 	rf__rgba_levels_fetch_many(&s->levels, s->vector, n, r->x, r->y, r->z, r->lod, r->rgb);
 	if (s->bp) {
@@ -732,6 +860,8 @@ shade_pixels(const rf_shade *s, const float *in, size_t in_ncomp, float *out, si
 		float *o = out + x * s->out_ncomp;
 
 		shade_pixel(s, in + x * in_ncomp, o, r, x);
+		for (c = 0; zeroed && r->zero[x] && c < s->nout; c++)
+			o[s->out[c]] = 0.0f;
 		for (k = 0; k < nw; k++)
 			o[s->out_weight[k]] = w[x * nw + k];
 	}
@@ -831,8 +961,10 @@ block_begin(rf_shade *s)
 		rf_cubemap_sh9(s->env, 0, sh);
 		rf_shade_set_irradiance(s, sh);
 	}
-	for (t = 0; t < s->nthreads; t++)
+	for (t = 0; t < s->nthreads; t++) {
 		rf__first_invalid_clear(&s->reads[t].first);
+		s->reads[t].fixed = 0;
+	}
 	return 0;
 }
 
@@ -840,9 +972,19 @@ block_begin(rf_shade *s)
 static int
 block_end(rf_shade *s)
 {
+	int t;
+
+	for (t = 0; t < s->nthreads; t++)
+		s->fixed += s->reads[t].fixed;
 	return rf__first_invalid_report(&s->reads[0].first, (size_t)s->nthreads,
 	                                sizeof(struct reads), s->ncols, s->error,
 	                                sizeof(s->error));
+}
+
+size_t
+rf_shade_invalid_count(const rf_shade *s)
+{
+	return s->fixed;
 }
 
 void

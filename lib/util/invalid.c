@@ -87,6 +87,7 @@ rf__check_plan(struct rf__check *c, const char *const *names, size_t n)
 	static const char *const finite[] = { "P", "R", "D" };
 	static const char *const unit[] = { "roughness", "metallic", "mask" };
 	static const char *const dist[] = { "hit.dist", "probe.dist" };
+	static const char *const radiance[] = { "emission.R", "emission.G", "emission.B" };
 
 	static const char *const vectors[] = { "N", "Ng", "V" };
 	static const char *const axes[] = { ".X", ".Y", ".Z" };
@@ -121,6 +122,9 @@ rf__check_plan(struct rf__check *c, const char *const *names, size_t n)
 		for (k = 0; k < 3; k++)
 			if (!strcmp(names[i], unit[k]))
 				kind = RF__CHECK_UNIT;
+		for (k = 0; k < 3; k++)
+			if (!strcmp(names[i], radiance[k]))
+				kind = RF__CHECK_RADIANCE;
 		if (kind < 0)
 			continue;
 		it->kind = kind;
