@@ -2,6 +2,7 @@
 test_description='reflect-filter: quad and atrous, bands of rows, refusals'
 . "$srcdir/tests/lib.sh"
 . "$srcdir/tests/shade-lib.sh"
+SQ="'"
 
 # A 3x3 frame, v = 10 y + x: its aligned 2x2 quads are (0,0)-(1,1),
 # mean 5.5; (2,0)-(2,1), mean (2 + 12) / 2 = 7; (0,2)-(1,2), mean 20.5;
@@ -175,6 +176,55 @@ test_expect_success 'missing guides, NaN, unknown modes and parameters: refused'
 	test_grep "blur" err &&
 	test_expect_code 1 reflect-filter -m none plain.txt 2>err &&
 	test_grep "reflect-shade" err
+'
+
+# floor FILE NY V: a 5x5 floor of one object, roughness 0.5, spec.R 1 + x,
+# whose centre pixel has the normal (0, NY, 0) and spec.R V (awk program
+# text).
+floor () {
+	awk -v ny="$2" -v v="$3" "BEGIN {
+		for (y = 0; y < 5; y++) for (x = 0; x < 5; x++)
+			print 0, (x == 2 && y == 2 ? ny : 1), 0, x * 0.1, 0, y * 0.1, 0.5, 1,
+				(x == 2 && y == 2 ? v : 1 + x)
+	}" | stream "$1" 5 5 "N.X N.Y N.Z P.X P.Y P.Z roughness objid spec.R"
+}
+
+# The normals' weight is a power of their dot product: a normal 1e20
+# long made it inf, then inf / inf, and atrous wrote NaN over the rows
+# around it with exit 0.  A normal is a direction, whatever its length.
+test_expect_success 'atrous: a huge but finite normal weighs as the unit one' '
+	floor unit.txt 1 3 &&
+	reflect-filter -fa unit.txt | column - spec.R >want &&
+	for ny in 1e20 3.4e38 4e-20
+	do
+		floor long.txt $ny 3 &&
+		reflect-filter -fa long.txt | column - spec.R >got &&
+		cmp_numbers want got 1e-6 || return 1
+	done &&
+	# no direction at all: the pixel keeps its value, and weighs nothing
+	floor zero.txt 0 3 &&
+	reflect-filter -fa zero.txt | column - spec.R >got &&
+	test "$(sed -n 13p got)" = 3 &&
+	! grep -i nan got
+'
+
+# A filter mode adds and subtracts values: 3e38 beside -3e38 made inf -
+# inf, NaN out of atrous and inf out of quad, with exit 0.
+test_expect_success 'values past a quarter of the float range are refused' '
+	floor big.txt 1 8.5e37 &&
+	for m in atrous atrous:color=1 quad
+	do
+		reflect-filter -fa -m $m big.txt >out.txt &&
+		! grep -i -E "nan|inf" out.txt || return 1
+	done &&
+	floor huge.txt 1 -3e38 &&
+	for m in atrous quad
+	do
+		test_expect_code 1 reflect-filter -m $m huge.txt >/dev/null 2>err &&
+		test_one_line_message reflect-filter err &&
+		test_grep "frame 1, row 3, pixel 3: channel .spec.R. is -3e+38, past a quarter of the float range (8.50706e+37), where a filter${SQ}s sums overflow$" err ||
+		return 1
+	done
 '
 
 test_done

@@ -15,12 +15,14 @@
  * pool's threads; a row depends only on the rows of its band, so the
  * bytes do not depend on the thread count.
  */
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "plugin/plugin-internal.h"
+#include "util/invalid.h"
 #include "util/pool.h"
 #include "reflect/plugin.h"
 
@@ -51,6 +53,12 @@ struct rf_filter {
 	char *channels;
 	size_t ninputs, ng, nv; /* required inputs; guides with the optional */
 	int guide_col[RF_CHANNELS_MAX];
+	/* The guides' rules: their directions (N, Ng, V) are made unit as
+	 * they are read, so that a mode's dot products hold whatever their
+	 * length (1e20 overflowed to NaN); one without a direction is NaN,
+	 * as a guide the stream lacks. */
+	struct rf__check rules;
+	const char *guide_names[RF_CHANNELS_MAX];
 	int value_col[RF_CHANNELS_MAX];
 	uint32_t npasses, radius[RF_FILTER_PASSES_MAX];
 	rf_header *out_h;
@@ -186,7 +194,9 @@ rf_filter_begin_frame(rf_filter *f, const rf_header *in, rf_header **out, char *
 			           "is guided by", f->frames + 1, guide_name(f, i), f->p->name);
 			return RF_ECHANNEL;
 		}
+		f->guide_names[i] = f->guide_col[i] >= 0 ? guide_name(f, i) : "";
 	}
+	rf__check_plan(&f->rules, f->guide_names, f->ng);
 	if ((rc = rf__choose_values(in, f->channels, "filter", f->value_col, &nv, err,
 	                            errlen)) < 0)
 		return rc;
@@ -345,9 +355,46 @@ pass_row(void *arg, size_t task, int thread)
 		memcpy(dst, src, f->ng * f->ncols * sizeof(float));
 }
 
+/* The directions among the guides of a gathered row made unit, in
+ * double; NaN where there is none. */
+static void
+unit_guides(const rf_filter *f, float *g)
+{
+	const size_t w = f->ncols;
+	size_t i, x;
+
+	for (i = 0; i < f->rules.n; i++) {
+		const struct rf__check_item *it = &f->rules.item[i];
+		float *a, *b, *c;
+
+		if (it->kind != RF__CHECK_DIRECTION)
+			continue;
+		a = g + (size_t)it->at[0] * w;
+		b = g + (size_t)it->at[1] * w;
+		c = g + (size_t)it->at[2] * w;
+		for (x = 0; x < w; x++) {
+			double l = sqrt((double)a[x] * a[x] + (double)b[x] * b[x] +
+			                (double)c[x] * c[x]);
+
+			if (l > 0.0 && l < HUGE_VAL) {
+				a[x] = (float)(a[x] / l);
+				b[x] = (float)(b[x] / l);
+				c[x] = (float)(c[x] / l);
+			} else {
+				a[x] = b[x] = c[x] = NAN;
+			}
+		}
+	}
+}
+
+/* The largest value filtered: a mode takes differences of values and
+ * sums of a few, with weights that add up to 1, and all must stay in
+ * float's range (3e38 beside -3e38 made inf - inf, and NaN out). */
+#define VALUE_MAX (FLT_MAX / 4)
+
 /* Copies n rows just read (f->block) into the ring of whole rows and
  * gathers them into level 0; 0, or RF_EINVAL for a value that is not
- * finite (rf_filter_error says where). */
+ * finite or past VALUE_MAX (rf_filter_error says where). */
 static int
 take_rows(rf_filter *f, size_t y, size_t n)
 {
@@ -372,9 +419,19 @@ take_rows(rf_filter *f, size_t y, size_t n)
 					           isnan(v) ? "nan" : v > 0 ? "inf" : "-inf");
 					return RF_EINVAL;
 				}
+				if (!(fabsf(v) <= VALUE_MAX)) {
+					rf__format(f->error, sizeof(f->error), "row %zu, pixel %zu: "
+					           "channel '%s' is %g, past a quarter of the float "
+					           "range (%g), where a filter's sums overflow", y + k + 1,
+					           x + 1,
+					           rf_header_channel(f->out_h, (size_t)f->value_col[i]),
+					           (double)v, (double)VALUE_MAX);
+					return RF_EINVAL;
+				}
 				g[(f->ng + i) * w + x] = v;
 			}
 		}
+		unit_guides(f, g);
 	}
 	return 0;
 }
