@@ -2,6 +2,7 @@
 test_description='reflect-occlude: box and horizon occlusion, by hand and by the spec'
 . "$srcdir/tests/lib.sh"
 . "$srcdir/tests/shade-lib.sh"
+SQ="'"
 
 # shaded FILE CHANNELS ROW...: an ascii stream of one row in the spec's room
 shaded () {
@@ -178,6 +179,33 @@ test_expect_success 'refused: no reflection, no channel, unknown mode or paramet
 	sed "/^PROBE_/d" noprobe.txt >np.txt &&
 	test_expect_code 1 reflect-occlude -m box:scale=box np.txt >/dev/null 2>err &&
 	test_grep "scale=box needs the probe box" err
+'
+
+# The reflection occlusion darkens, and the occlusion before it, were
+# read unchecked: a NaN spec.R went out as NaN, -inf as -inf, an
+# occlusion of NaN as NaN, under every --invalid.  Pixel 1 is good; in
+# pixel 2 spec.R is NaN, in 3 spec.G -inf, in 4 the occlusion NaN.  The
+# host reads them for every occlusion mode.
+test_expect_success 'the reflection and the occlusion it had keep the rules' '
+	shaded bad.txt "hit.dist spec.R spec.G spec.B R G B occlusion" \
+		"1 0.5 0.5 0.5 1 1 1 1" "1 nan 0.5 0.5 1 1 1 1" \
+		"1 0.5 -inf 0.5 1 1 1 1" "1 0.5 0.5 0.5 1 1 1 nan" &&
+	test_expect_code 1 reflect-occlude bad.txt >/dev/null 2>err &&
+	test_one_line_message reflect-occlude err &&
+	test_grep "${SQ}bad.txt${SQ}: frame 1, row 1, pixel 2: channel ${SQ}spec.R${SQ} is nan" err &&
+	shaded occ.txt "hit.dist spec.R spec.G spec.B occlusion" "1 1 1 1 1.5" &&
+	test_expect_code 1 reflect-occlude occ.txt >/dev/null 2>err &&
+	test_grep "pixel 1: channel ${SQ}occlusion${SQ} is 1.5, outside \[0, 1\]" err &&
+	reflect-occlude -fa --invalid=clamp bad.txt >c.txt 2>err &&
+	test_grep "frame 1: 3 pixels with invalid input clamped" err &&
+	column c.txt spec.R spec.G occlusion >got &&
+	printf "%s\n" "0.5 0.5 1" "0 0.5 1" "0.5 -3.40282347e+38 1" "0.5 0.5 0" >want &&
+	cmp_numbers want got 0 &&
+	reflect-occlude -fa --invalid=zero bad.txt >z.txt 2>err &&
+	test_grep "frame 1: 3 pixels with invalid input zeroed" err &&
+	column z.txt spec.R spec.G spec.B R G B occlusion >got &&
+	printf "%s\n" "0.5 0.5 0.5 1 1 1 1" "0 0 0 0 0 0 0" "0 0 0 0 0 0 0" "0 0 0 0 0 0 0" >want &&
+	cmp_numbers want got 0
 '
 
 test_expect_success 'the projection box and the occlusion box load side by side' '

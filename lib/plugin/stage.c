@@ -1,6 +1,8 @@
 /* Running a per-pixel plugin over blocks of rows, on several threads. */
 #include <errno.h>
+#include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -50,8 +52,9 @@ struct rf_stage {
 	struct rf__check out_check; /* on its outputs, as it wrote them */
 	int mask_col;           /* the stream's mask, or -1 */
 	/* An occlusion mode's factor: its output column, the input's own
-	 * occlusion (-1: none) and the channels it multiplies. */
+	 * occlusion (-1: none) and the channels it multiplies, named. */
 	int occ_col, occ_prev, occ_targets[6], nocc_targets;
+	const char *occ_names[6];
 	/* Inputs given one value for every pixel (rf_stage_set_input_value). */
 	size_t nfixed, fixed_at[4];
 	float fixed_value[4];
@@ -283,9 +286,10 @@ rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
 		s->occ_col = rf_header_find_channel(s->out_h, RF_OCCLUSION);
 		s->occ_prev = rf_header_find_channel(in, RF_OCCLUSION);
 		for (i = 0; i < 6; i++)
-			if ((c = rf_header_find_channel(in, targets[i])) >= 0)
+			if ((c = rf_header_find_channel(in, targets[i])) >= 0) {
+				s->occ_names[s->nocc_targets] = targets[i];
 				s->occ_targets[s->nocc_targets++] = c;
-			else if (i < 3) {
+			} else if (i < 3) {
 				rf__format(err, errlen, "input has no channel '%s': occlusion "
 				           "darkens a shaded reflection; run reflect-shade first",
 				           targets[i]);
@@ -490,27 +494,71 @@ rf_stage_invalid_output_count(const rf_stage *s)
 	return s->fixed_out;
 }
 
-/* One row (row y of the frame) on thread `thread`: its input passed
- * through, the plugin's inputs gathered, run, its outputs scattered. */
+/* Whether the reflection pixel po darkens, and the occlusion prev it
+ * had, keep the rules (finite; in [0, 1]): 0, or -1 with why, or (not
+ * under ERROR) 1 after clamping them (CLAMP) or zeroing the pixel's
+ * outputs (ZERO). */
+static int
+occlusion_inputs(const rf_stage *s, float *po, float *prev, char *why, size_t len)
+{
+	int k, bad = !(*prev >= 0.0f && *prev <= 1.0f);
+
+	for (k = 0; k < s->nocc_targets && !bad; k++)
+		bad = !isfinite(po[s->occ_targets[k]]);
+	if (!bad)
+		return 0;
+	if (s->invalid == RF_INVALID_ERROR) {
+		if (!(*prev >= 0.0f && *prev <= 1.0f))
+			snprintf(why, len, "channel '%s' is %g, outside [0, 1]", RF_OCCLUSION,
+			         (double)*prev);
+		else
+			snprintf(why, len, "channel '%s' is %g", s->occ_names[k - 1],
+			         (double)po[s->occ_targets[k - 1]]);
+		return -1;
+	}
+	for (k = 0; k < s->nocc_targets; k++) {
+		float *v = &po[s->occ_targets[k]];
+
+		if (s->invalid == RF_INVALID_ZERO || *v != *v)
+			*v = 0.0f;
+		else if (!isfinite(*v))
+			*v = *v > 0.0f ? FLT_MAX : -FLT_MAX;
+	}
+	*prev = *prev > 0.0f ? (*prev < 1.0f ? *prev : 1.0f) : 0.0f;
+	if (s->invalid == RF_INVALID_ZERO)
+		po[s->occ_col] = *prev = 0.0f;
+	return 1;
+}
+
 /* An occlusion mode's factor on the reflection: the channels it darkens
  * (in place: their columns are the input's, widened), and the product
- * with the input's own occlusion. */
+ * with the input's own occlusion; those inputs held to the rules as the
+ * plugin's are (a NaN spec went through as NaN). */
 static void
-apply_occlusion(const rf_stage *s, const float *in, float *out)
+apply_occlusion(const rf_stage *s, struct worker *w, const float *in, float *out, size_t y)
 {
+	char why[200];
 	size_t x;
-	int k;
+	int k, r;
 
 	for (x = 0; x < s->ncols; x++) {
 		float *po = out + x * s->out_ncomp, f = po[s->occ_col];
+		float prev = s->occ_prev >= 0 ? in[x * s->in_ncomp + (size_t)s->occ_prev] : 1.0f;
 
+		if ((r = occlusion_inputs(s, po, &prev, why, sizeof(why))) < 0)
+			rf__first_invalid_keep(&w->first, y * s->ncols + x, "%s", why);
+		else if (r > 0)
+			w->fixed++;
+		f = po[s->occ_col];
 		for (k = 0; k < s->nocc_targets; k++)
 			po[s->occ_targets[k]] *= f;
 		if (s->occ_prev >= 0)
-			po[s->occ_col] = f * in[x * s->in_ncomp + (size_t)s->occ_prev];
+			po[s->occ_col] = f * prev;
 	}
 }
 
+/* One row (row y of the frame) on thread `thread`: its input passed
+ * through, the plugin's inputs gathered, run, its outputs scattered. */
 void
 rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int thread)
 {
@@ -558,7 +606,7 @@ rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int thread)
 			             s->out_runs[i].len);
 	}
 	if (s->occ_col >= 0)
-		apply_occlusion(s, in, out);
+		apply_occlusion(s, w, in, out, y);
 }
 
 int
