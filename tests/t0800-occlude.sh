@@ -208,6 +208,17 @@ test_expect_success 'the reflection and the occlusion it had keep the rules' '
 	cmp_numbers want got 0
 '
 
+# multiplier (d / unit)^power past the float range: 0 x inf made NaN.
+test_expect_success 'box: an extreme multiplier or power stays in [0, 1]' '
+	shaded far.txt "hit.dist spec.R spec.G spec.B" "1e30 1 1 1" "0 1 1 1" &&
+	reflect-occlude -fa -m box:multiplier=0:power=2 far.txt | column - occlusion >got &&
+	printf "0\n0\n" >want &&
+	cmp_numbers want got 0 &&
+	reflect-occlude -fa -m box:multiplier=1e300 far.txt | column - occlusion >got &&
+	printf "1\n0\n" >want &&
+	cmp_numbers want got 0
+'
+
 test_expect_success 'the projection box and the occlusion box load side by side' '
 	reflect-project -v -m box g.rfl 2>err >/dev/null &&
 	test_grep "box.so" err &&

@@ -80,8 +80,11 @@ run(void *state, const struct rf_span *span)
 		if (!(d > 0.0f))
 			d = 0.0f;
 		if (d < INFINITY) {
+			/* a product past the float range is 0 x inf where one
+			 * factor is 0 (multiplier=0, or d = 0 with a multiplier too
+			 * large for a float), NaN, and so 0 as its limit is */
 			so = o->multiplier * powf(d * o->inv_unit, o->power);
-			so = so < 0.0f ? 0.0f : so > 1.0f ? 1.0f : so;
+			so = so > 0.0f ? (so < 1.0f ? so : 1.0f) : 0.0f;
 		}
 		span->out[i] = 1.0f - o->intensity * (1.0f - so);
 	}
