@@ -161,7 +161,8 @@ envmap_load(const struct envmap_opts *o, struct rf_chain_info *info)
 	if ((rc = rf_envmap_load(&c, info, o->path, &o->load, &bad, err, sizeof(err))) < 0)
 		die_status(rc, err);
 	if (bad)
-		warn("'%s': replaced %zu NaN or infinite texel values with 0", o->path, bad);
+		warn("'%s': replaced %zu NaN, infinite or out-of-range texel values with 0",
+		     o->path, bad);
 	return c;
 }
 

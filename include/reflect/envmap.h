@@ -193,7 +193,8 @@ RF_EXTERN void rf_prefilter_defaults(struct rf_prefilter_options *o);
  * GGX lobe of the roughness the mapping gives level k (V = N, N.L
  * weighted, normalised); level 0 of out is a copy of src's level 0 when
  * the sizes match, else a box-filtered copy.  RF_EINVAL for a NaN or
- * infinite texel in src's level 0, which would spread over the levels. */
+ * infinite texel in src's level 0, which would spread over the levels,
+ * or one past a quarter of the float range. */
 RF_EXTERN int rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
                            const struct rf_prefilter_options *o, char *err,
                            size_t errlen);
@@ -240,7 +241,7 @@ RF_EXTERN void rf_envmap_options_init(struct rf_envmap_options *o);
  * levels; a cube of one level is always raw (a DDS or KTX cube without
  * mips, a one-level stream whatever its PREFILTER key), unless
  * o->prefiltered takes it as a chain of one level.  A NaN or infinite
- * value is refused (RF_EINVAL, the message naming the file and the first:
+ * value, or one past a quarter of the float range, is refused (RF_EINVAL, the message naming the file and the first:
  * level, face and texel, or an image's pixel) unless o->strict is 0;
  * then *nonfinite (may be NULL) counts the values replaced by 0.
  * RF_ENOTFOUND when the file cannot be opened. */
@@ -261,8 +262,8 @@ RF_EXTERN int rf_chain_write_stream(const rf_cubemap *c, const struct rf_chain_i
                                     size_t errlen);
 /* Reads a chain from a stream: frames with ENVMAP=CUBE, one per level
  * (LEVEL 0, 1, ...), or one frame of a raw environment.  A NaN or
- * infinite texel is refused (RF_EINVAL, the message naming its level,
- * face, texel and channel). */
+ * infinite texel, or one past a quarter of the float range, is refused
+ * (RF_EINVAL, the message naming its level, face, texel and channel). */
 RF_EXTERN int rf_chain_read_stream(rf_cubemap **c, struct rf_chain_info *info,
                                    rf_reader *r, char *err, size_t errlen);
 

@@ -146,7 +146,7 @@ read_level(rf_reader *r, rf_cubemap *c, size_t k, const rf_header *h,
 			for (i = 0; i < n; i++, t += 3, p += nch)
 				for (q = 0; q < 3; q++) {
 					t[q] = p[ch[q]];
-					if (isfinite(t[q]))
+					if (rf__texel_ok(t[q]))
 						continue;
 					if (!nf) {
 						struct rf__nonfinite one = { 0 };

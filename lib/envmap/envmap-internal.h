@@ -8,7 +8,20 @@
 #include "util/util.h"
 #include "reflect/envmap.h"
 
-/* The NaN and infinite values a reader met, each made 0, and the first:
+/* The largest magnitude of a texel: a quarter of the float range, so that
+ * the weighted sums of a few texels every sampler and filter makes (with
+ * weights that add up to 1, rounded) stay finite.  3e38 is no radiance,
+ * and a texel past this is refused as an infinite one is. */
+#define RF__TEXEL_MAX (FLT_MAX / 4)
+
+static inline int
+rf__texel_ok(float v)
+{
+	return v >= -RF__TEXEL_MAX && v <= RF__TEXEL_MAX; /* and not NaN */
+}
+
+/* The values a reader met that are NaN, infinite or past RF__TEXEL_MAX,
+ * each made 0, and the first:
  * a cube's level, face and texel (column x, row y of the face as the file
  * stores it), or for an image (face -1) its pixel. */
 struct rf__nonfinite {

@@ -198,7 +198,7 @@ decode_pixels(const float *px, size_t w, size_t h, size_t nch,
 		for (c = 0; c < 3; c++) {
 			float x = v[c] * scale;
 
-			if (!isfinite(x)) {
+			if (!rf__texel_ok(x)) {
 				rf__nonfinite_note(nf, 0, -1, i % w, i / w, c, x);
 				x = 0.0f;
 			}
@@ -474,7 +474,7 @@ rf__cube_level_from_pixels(rf_cubemap *c, size_t level, const float *px, size_t 
 
 				for (ch = 0; ch < 3; ch++) {
 					t[ch] = p[ch];
-					if (!isfinite(p[ch])) {
+					if (!rf__texel_ok(p[ch])) {
 						rf__nonfinite_note(nf, level, f, i, j, ch, p[ch]);
 						t[ch] = 0.0f;
 					}

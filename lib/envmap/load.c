@@ -67,9 +67,9 @@ count_nonfinite(struct load *ld, const char *path, const struct rf__nonfinite *n
 
 	if (nf->count && ld->o->strict) {
 		rf__nonfinite_where(nf, where, sizeof(where));
-		rf__format(ld->err, ld->errlen, "'%s': %s (%zu NaN or infinite value%s in "
-		           "all; --nonfinite=zero replaces them with 0)", path, where,
-		           nf->count, nf->count == 1 ? "" : "s");
+		rf__format(ld->err, ld->errlen, "'%s': %s (%zu such value%s in all; "
+		           "--nonfinite=zero replaces them with 0)", path, where, nf->count,
+		           nf->count == 1 ? "" : "s");
 		return RF_EINVAL;
 	}
 	ld->nonfinite += nf->count;

@@ -147,6 +147,33 @@ normalize3(float v[3])
 	v[2] /= len;
 }
 
+/* The samples' directions about n (frame t, b) summed in double: the
+ * float sum of a texel's samples leaves the float range for radiance
+ * within a few orders of it. */
+static void
+filtered_texel_wide(const struct job *jb, const float n[3], const float t[3],
+                    const float b[3], float rgb[3])
+{
+	double acc[3] = { 0, 0, 0 };
+	size_t i;
+	int c;
+
+	for (i = 0; i < jb->nsamples; i++) {
+		const struct lobe_sample *s = &jb->samples[i];
+		float d[3];
+		rf__v4 v;
+
+		d[0] = s->l[0] * t[0] + s->l[1] * b[0] + s->l[2] * n[0];
+		d[1] = s->l[0] * t[1] + s->l[1] * b[1] + s->l[2] * n[1];
+		d[2] = s->l[0] * t[2] + s->l[1] * b[2] + s->l[2] * n[2];
+		v = rf__rgba_levels_fetch(d, &s->fetch);
+		for (c = 0; c < 3; c++)
+			acc[c] += v[c];
+	}
+	for (c = 0; c < 3; c++)
+		rgb[c] = (float)(acc[c] / (double)jb->nsamples);
+}
+
 static void
 filtered_texel(const struct job *jb, const float n[3], float rgb[3])
 {
@@ -167,6 +194,10 @@ filtered_texel(const struct job *jb, const float n[3], float rgb[3])
 		d[1] = s->l[0] * t[1] + s->l[1] * b[1] + s->l[2] * n[1];
 		d[2] = s->l[0] * t[2] + s->l[1] * b[2] + s->l[2] * n[2];
 		acc += rf__rgba_levels_fetch(d, &s->fetch);
+	}
+	if (!(isfinite(acc[0]) && isfinite(acc[1]) && isfinite(acc[2]))) {
+		filtered_texel_wide(jb, n, t, b, rgb);
+		return;
 	}
 	rgb[0] = acc[0] / (float)jb->nsamples;
 	rgb[1] = acc[1] / (float)jb->nsamples;
@@ -334,7 +365,7 @@ source_finite(const rf_cubemap *src, char *err, size_t errlen)
 			const float *t = rf_cubemap_texel_const(src, 0, (enum rf_face)f, 0, j);
 
 			for (i = 0; i < 3 * n; i++)
-				if (!isfinite(t[i])) {
+				if (!rf__texel_ok(t[i])) {
 					struct rf__nonfinite nf = { 0 };
 					char where[128];
 
@@ -386,8 +417,9 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 		return RF_EINVAL;
 	}
 	/* One NaN would spread over every lobe that reaches it, and an
-	 * infinity over whole levels: the loaders refuse both, and so does
-	 * the prefilter for a cube made some other way. */
+	 * infinity over whole levels: the loaders refuse both (and texels
+	 * past RF__TEXEL_MAX), and so does the prefilter for a cube made
+	 * some other way. */
 	if ((rc = source_finite(src, err, errlen)) < 0)
 		return rc;
 	/* The source as a full box chain, read by filtered samples. */

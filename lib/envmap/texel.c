@@ -134,7 +134,7 @@ rf__texel_store_gl_row(rf_cubemap *c, size_t level, int f, size_t j,
 		t = rf_cubemap_texel(c, level, (enum rf_face)f, ri, rj);
 		rf__texel_decode(fmt, row + i * fmt->bytes, t);
 		for (ch = 0; ch < 3; ch++)
-			if (!isfinite(t[ch])) {
+			if (!rf__texel_ok(t[ch])) {
 				rf__nonfinite_note(nf, level, f, i, j, ch, t[ch]);
 				t[ch] = 0.0f;
 			}

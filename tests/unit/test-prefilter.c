@@ -335,6 +335,44 @@ TEST(non_finite_source_refused)
 	rf_cubemap_texel(src, 0, RF_FACE_NEG_Z, 6, 1)[2] = INFINITY;
 	ASSERT_EQ(rf_prefilter(src, out, &o, err, sizeof(err)), RF_EINVAL);
 	ASSERT_STR_EQ(err, "the source's level 0, face -Z, texel (6, 1): B is inf");
+	rf_cubemap_texel(src, 0, RF_FACE_NEG_Z, 6, 1)[2] = 3e38f;
+	ASSERT_EQ(rf_prefilter(src, out, &o, err, sizeof(err)), RF_EINVAL);
+	ASSERT_STR_EQ(err, "the source's level 0, face -Z, texel (6, 1): B is 3e+38, past a "
+	                   "quarter of the float range");
+	rf_cubemap_destroy(out);
+	rf_cubemap_destroy(src);
+}
+
+/* Radiance near the top of what a texel may hold: a level's float sum
+ * of its samples overflowed (64 x 8e37), and the chain held inf.  It
+ * is their mean, as for any constant. */
+TEST(bright_source_stays_finite)
+{
+	const float v = 8e37f;
+	rf_cubemap *src, *out;
+	struct rf_prefilter_options o;
+	char err[256] = "";
+	size_t k, n, i, j;
+	int f, ch;
+
+	ASSERT_EQ(rf_cubemap_create(&src, 8, 1), 0);
+	for (f = 0; f < 6; f++)
+		for (j = 0; j < 8; j++)
+			for (i = 0; i < 8; i++)
+				for (ch = 0; ch < 3; ch++)
+					rf_cubemap_texel(src, 0, (enum rf_face)f, i, j)[ch] = v;
+	rf_cubemap_seal_level(src, 0);
+	ASSERT_EQ(rf_cubemap_create(&out, 8, 4), 0);
+	rf_prefilter_defaults(&o);
+	ASSERT_EQ(rf_prefilter(src, out, &o, err, sizeof(err)), 0);
+	for (k = 0; k < 4; k++) {
+		n = rf_cubemap_level_size(out, k);
+		for (f = 0; f < 6; f++)
+			for (j = 0; j < n; j++)
+				for (i = 0; i < n; i++)
+					ASSERT_NEAR(rf_cubemap_texel_const(out, k, (enum rf_face)f, i,
+					                                   j)[1] / v, 1.0, 1e-5);
+	}
 	rf_cubemap_destroy(out);
 	rf_cubemap_destroy(src);
 }
@@ -364,6 +402,7 @@ main(void)
 	RUN(vector_kernel_matches_scalar);
 	RUN(bad_parameters_refused);
 	RUN(non_finite_source_refused);
+	RUN(bright_source_stays_finite);
 	RUN(brute_force_limits);
 	TAP_DONE();
 }
