@@ -6,7 +6,7 @@ test_description='the fuzz harnesses replayed over their corpora and the bugs th
 # control byte, a header that does not come back, radiance that is not
 # finite, the vector and plain reads disagreeing) and, in the sanitizer
 # build, on any memory error or undefined behaviour.
-for t in header scene dds ktx numeric probes
+for t in header scene dds ktx numeric probes envstream cache shade
 do
 	test_expect_success "replay the $t corpus" '
 		"$builddir/tests/fuzz/replay-'$t'" "$srcdir/tests/fuzz/corpus/'$t'" >out &&
@@ -21,8 +21,17 @@ test_expect_success 'the numeric harness takes the box projection' '
 		"$builddir/tests/fuzz/replay-numeric" "$srcdir/tests/fuzz/corpus/numeric/floor"
 '
 
+# They failed on what they check before the fixes they came with: a NaN
+# texel of a stream environment, a NaN emission shaded.
+test_expect_success 'the environment and shading harnesses hold their corpora finite' '
+	"$builddir/tests/fuzz/replay-envstream" "$srcdir/tests/fuzz/corpus/envstream/raw-ascii-nan" &&
+	"$builddir/tests/fuzz/replay-shade" "$srcdir/tests/fuzz/corpus/shade/final-clamp" &&
+	TMPDIR=$PWD "$builddir/tests/fuzz/replay-cache" "$srcdir/tests/fuzz/corpus/cache/entry-nan" &&
+	! ls -d fuzz-cache-* 2>/dev/null
+'
+
 test_expect_success 'random bytes through every harness' '
-	for t in header scene dds ktx numeric probes
+	for t in header scene dds ktx numeric probes envstream cache shade
 	do
 		for seed in 1 2 3 4 5 6 7 8
 		do
