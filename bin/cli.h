@@ -86,6 +86,21 @@ struct cli_io {
 	enum rf_invalid invalid; /* --invalid, for the stages that check input */
 };
 
+/* An input's first bytes, read without taking them from it (cli_sniff.c). */
+#define CLI_SNIFF_BYTES 16
+struct cli_sniff {
+	unsigned char head[CLI_SNIFF_BYTES];
+	size_t len;  /* fewer than CLI_SNIFF_BYTES only when the input is shorter */
+	int regular; /* a regular file (else a pipe, a FIFO, a device...) */
+};
+/* Reads fd's first bytes into s and sets *fp to read fd from where it
+ * was, those bytes included: fd belongs to *fp then.  0, or -1 with
+ * errno (fd still the caller's). */
+int cli_sniff_open(int fd, struct cli_sniff *s, FILE **fp);
+enum cli_kind { CLI_KIND_STREAM, CLI_KIND_EXR, CLI_KIND_PNG, CLI_KIND_OTHER };
+/* What the first bytes say the input is. */
+enum cli_kind cli_sniff_kind(const struct cli_sniff *s);
+
 #define CLI_IO_OPTSTRING "f:hHx:y:c:"
 #define CLI_IO_USAGE "[-f a|f] [-h] [-H -x W -y H -c CHANNELS]"
 /* Makes a pipe's buffer 1 MB (see cli_io.c); anything else is left alone. */

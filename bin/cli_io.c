@@ -123,19 +123,32 @@ image_as_stream(const char *path, char **bufp)
 /* A file that does not start like a stream, and that the image layer
  * knows by its first bytes or its name. */
 static int
-is_image_file(FILE *fp, const char *path)
+is_image_file(const struct cli_sniff *s, const char *path)
 {
-	char head[16];
-	size_t n = fread(head, 1, sizeof(head), fp);
 	const char *dot = strrchr(path, '.');
 
-	rewind(fp);
-	if (n >= 9 && !memcmp(head, "#?REFLECT", 9))
-		return 0;
-	if (n >= 4 && (!memcmp(head, "\x76\x2f\x31\x01", 4) || !memcmp(head, "\x89PNG", 4)))
-		return 1;
+	switch (cli_sniff_kind(s)) {
+	case CLI_KIND_STREAM: return 0;
+	case CLI_KIND_EXR:
+	case CLI_KIND_PNG: return 1;
+	default: break;
+	}
 	return dot && rf_image_type_for_path(path) >= 0 && strcmp(dot, ".rfl") &&
 	       strcmp(dot, ".stream");
+}
+
+/* The input at path, its first bytes looked at and kept (cli_sniff.c). */
+static FILE *
+open_input(const char *path, struct cli_sniff *s)
+{
+	FILE *fp;
+	int fd;
+
+	if ((fd = open(path, O_RDONLY | O_CLOEXEC)) < 0)
+		die("cannot open '%s':", path);
+	if (cli_sniff_open(fd, s, &fp) < 0)
+		die_sys("cannot read '%s':", path);
+	return fp;
 }
 
 void
@@ -151,10 +164,11 @@ cli_io_open(struct cli_io *io, const char *path)
 		io->input_name = "<stdin>";
 		cli_widen_pipe(STDIN_FILENO);
 	} else {
-		if (!(io->input = fopen(path, "rb")))
-			die("cannot open '%s':", path);
+		struct cli_sniff sniff;
+
+		io->input = open_input(path, &sniff);
 		io->input_name = path;
-		if (!io->headerless && is_image_file(io->input, path)) {
+		if (!io->headerless && is_image_file(&sniff, path)) {
 			fclose(io->input);
 			io->input = image_as_stream(path, &io->image_buf);
 		}
