@@ -540,7 +540,10 @@ rf_image_writer_close(rf_image_writer *w, char *err, size_t errlen)
 	default:
 		rc = api->writer_close(w->u.module, err, errlen);
 	}
-	name_path(w, err, errlen);
+	/* err holds a message only after a failure: the caller's buffer
+	 * is not read otherwise. */
+	if (rc < 0)
+		name_path(w, err, errlen);
 	/* The module says so itself; an incomplete image is the first error. */
 	if (w->next_row != w->height && w->kind != WRITER_MODULE) {
 		rf__format(err, errlen, "cannot write '%s': image is incomplete", w->path);
