@@ -102,6 +102,27 @@ test_expect_success 'wrong magic' '
 		reflect-info
 '
 
+# reflect-import reads no DDS or KTX cube: the message sends those to
+# the tools that read environments, and shows that they do.
+test_expect_success 'a DDS or KTX cube where a stream goes' '
+	reflect-prefilter --size=8 -o cube.ktx &&
+	reflect-prefilter --size=8 -o cube.ktx2 &&
+	"$builddir/tests/mkdds" cube.dds 8 1 &&
+	for f in cube.dds cube.ktx cube.ktx2
+	do
+		test_expect_code 1 reflect-info $f 2>err &&
+		test_one_line_message reflect-info err &&
+		test_grep "not a reflect stream: it is a \(DDS\|KTX\|KTX 2\) image; DDS and KTX cubes are environments: reflect-prefilter reads them, and reflect-shade --env takes them$" err &&
+		test_expect_code 1 reflect-info <$f 2>err &&
+		test_grep "reflect-prefilter reads them" err &&
+		! grep reflect-import err &&
+		reflect-prefilter $f >env.rfl &&
+		reflect-gbuffer -x 4 -y 4 | reflect-project |
+			reflect-shade --env=$f >shaded.rfl &&
+		test -s env.rfl && test -s shaded.rfl || return 1
+	done
+'
+
 test_expect_success 'newer version' '
 	expect_bad newer-version \
 		"stream version 2 is newer than this reader${SQ}s (1); upgrade reflect" \

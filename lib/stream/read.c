@@ -203,23 +203,31 @@ parse_size(rf_reader *r, size_t lineno, const char *key, const char *s, size_t *
 	return 0;
 }
 
-/* The image format a file that is no stream starts like, for the hint
- * that images come in through reflect-import; NULL for none of them.
- * b holds the first n bytes of the input (n < 0: at least 8). */
+/* The image format a file that is no stream starts like, and the tools
+ * that read it, for the message; NULL for none of them.  b holds the
+ * first n bytes of the input (n < 0: at least 8). */
+#define IMAGE_HINT "; reflect-import reads images into streams, and --env takes " \
+	"environments"
+/* reflect-import reads images through OpenImageIO, which reads no KTX
+ * and no DDS cube: those are environments, which only the environment
+ * loader reads. */
+#define CUBE_HINT "; DDS and KTX cubes are environments: reflect-prefilter reads " \
+	"them, and reflect-shade --env takes them"
+
 static const char *
 image_kind(const char *b, long n)
 {
 	static const struct { const char *magic; size_t len; const char *kind; } kinds[] = {
-		{ "\x76\x2f\x31\x01", 4, "an OpenEXR image" },
-		{ "\x89PNG", 4, "a PNG image" },
-		{ "\xff\xd8\xff", 3, "a JPEG image" },
-		{ "II*\0", 4, "a TIFF image" },
-		{ "MM\0*", 4, "a TIFF image" },
-		{ "DDS ", 4, "a DDS image" },
-		{ "\xabKTX 11", 7, "a KTX image" },
-		{ "\xabKTX 20", 7, "a KTX 2 image" },
-		{ "#?RADIANCE", 10, "a Radiance HDR image" },
-		{ "#?RGBE", 6, "a Radiance HDR image" },
+		{ "\x76\x2f\x31\x01", 4, "an OpenEXR image" IMAGE_HINT },
+		{ "\x89PNG", 4, "a PNG image" IMAGE_HINT },
+		{ "\xff\xd8\xff", 3, "a JPEG image" IMAGE_HINT },
+		{ "II*\0", 4, "a TIFF image" IMAGE_HINT },
+		{ "MM\0*", 4, "a TIFF image" IMAGE_HINT },
+		{ "DDS ", 4, "a DDS image" CUBE_HINT },
+		{ "\xabKTX 11", 7, "a KTX image" CUBE_HINT },
+		{ "\xabKTX 20", 7, "a KTX 2 image" CUBE_HINT },
+		{ "#?RADIANCE", 10, "a Radiance HDR image" IMAGE_HINT },
+		{ "#?RGBE", 6, "a Radiance HDR image" IMAGE_HINT },
 	};
 	size_t i;
 
@@ -228,9 +236,6 @@ image_kind(const char *b, long n)
 			return kinds[i].kind;
 	return NULL;
 }
-
-#define IMAGE_HINT "; reflect-import reads images into streams, and --env takes " \
-	"environments"
 
 static int
 check_magic(rf_reader *r, const char *line)
@@ -245,7 +250,7 @@ check_magic(rf_reader *r, const char *line)
 		size_t i;
 
 		if (kind)
-			return fail(r, RF_EFORMAT, "not a reflect stream: it is %s" IMAGE_HINT,
+			return fail(r, RF_EFORMAT, "not a reflect stream: it is %s",
 			            kind);
 
 		for (i = 0; line[i] && i + 1 < sizeof(shown); i++)
@@ -700,7 +705,7 @@ rf_reader_next_frame(rf_reader *r, const rf_header **hp)
 	kind = len != -1 && r->frames == 1 && strncmp(line, "#?", 2)
 	           ? image_kind(line, len < 0 ? -1 : len) : NULL;
 	if (kind) {
-		rc = fail(r, RF_EFORMAT, "not a reflect stream: it is %s" IMAGE_HINT, kind);
+		rc = fail(r, RF_EFORMAT, "not a reflect stream: it is %s", kind);
 		goto bad;
 	}
 	if (len < 0 || binary || strncmp(line, "#?", 2)) {
