@@ -88,4 +88,29 @@ test_expect_success 'OpenEXR and PNG are read without the module, as the module 
 	test_grep " spec.R spec.G spec.B" names
 '
 
+# The module is C++ (OpenImageIO), the tools C: an exception that crossed
+# into them ended the process (std::terminate, status 134).  Under a limit
+# on address space, reading a TIFF threw std::system_error from a thread
+# the reader could not start, and loading the module threw from a
+# library's constructor inside dlopen.  Each limit of the ladder either
+# reads the file or refuses with one line and status 2 (system error).
+test_expect_success 'no exception leaves the module, under ulimit -v' '
+	if grep -q fsanitize "$builddir/Makefile"
+	then
+		echo "# skipped: address space limits do not mix with the sanitizers"
+		return 0
+	fi &&
+	reflect-gbuffer -x 16 -y 16 | reflect-export -c albedo.R,albedo.G,albedo.B -o a.tif &&
+	for v in 400000 430000 460000 480000 500000 540000 800000
+	do
+		got=$(ulimit -v $v && { reflect-import a.tif >out 2>err; echo $?; }) &&
+		echo "ulimit -v $v: status $got" &&
+		case $got in
+		0) test -s out ;;
+		2) test_one_line_message reflect-import err ;;
+		*) cat err && false ;;
+		esac || return 1
+	done
+'
+
 test_done

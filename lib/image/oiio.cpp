@@ -9,7 +9,9 @@
 #include <cstring>
 #include <ctime>
 #include <memory>
+#include <new>
 #include <string>
+#include <system_error>
 #include <vector>
 
 extern "C" {
@@ -100,6 +102,50 @@ set_error(char *err, size_t errlen, const char *what, const std::string &path,
 		         r.empty() ? "unknown error" : r.c_str());
 }
 
+// A message from C strings only, for a handler of an exception, where
+// a std::string could throw again.
+static void
+set_error_c(char *err, size_t errlen, const char *what, const char *path,
+            const char *reason)
+{
+	if (errlen)
+		snprintf(err, errlen, "%s '%s': %s", what, path ? path : "",
+		         reason && *reason ? reason : "unknown error");
+	for (size_t i = 0; errlen && err[i]; i++)
+		if (err[i] == '\n' || err[i] == '\r')
+			err[i] = ' ';
+}
+
+// No exception leaves the module: libreflect and the tools are C, and
+// one crossing into them ends the process (std::terminate).  OpenImageIO
+// and the standard library throw std::bad_alloc when memory runs out,
+// and std::system_error when a thread cannot be made (under ulimit -v,
+// reading a TIFF threw "Resource temporarily unavailable" and aborted).
+// Each function of the table runs its body through this, which turns an
+// exception into a status and a message.
+template <typename F>
+static int
+guarded(char *err, size_t errlen, const char *what, const char *path, F body) noexcept
+{
+	try {
+		return body();
+	} catch (const std::bad_alloc &) {
+		set_error_c(err, errlen, what, path, "out of memory");
+		return RF_ENOMEM;
+	} catch (const std::system_error &e) {
+		// Threads or memory the system would not give: a system error.
+		set_error_c(err, errlen, what, path, e.what());
+		return e.code() == std::errc::resource_unavailable_try_again ||
+		       e.code() == std::errc::not_enough_memory ? RF_ENOMEM : RF_EIO;
+	} catch (const std::exception &e) {
+		set_error_c(err, errlen, what, path, e.what());
+		return RF_EIMAGE;
+	} catch (...) {
+		set_error_c(err, errlen, what, path, "unknown error");
+		return RF_EIMAGE;
+	}
+}
+
 // When OpenImageIO cannot open a file, the reason is often the file
 // system's (no such directory, permission denied) and its own message
 // hides that.  Asks the system with the same access; returns errno, or 0
@@ -163,18 +209,11 @@ read_level(rf_image **imgp, const char *path, size_t level, char *err, size_t er
 		set_error(err, errlen, "cannot read", path, "image too large");
 		return RF_ETOOBIG;
 	}
-	rf_image *img = new (std::nothrow) rf_image;
-	if (!img)
-		return RF_ENOMEM;
+	std::unique_ptr<rf_image> img(new rf_image);
 	img->width = (size_t)spec.width;
 	img->height = (size_t)spec.height;
 	img->nchannels = (size_t)spec.nchannels;
-	try {
-		img->pixels.resize(n * img->nchannels);
-	} catch (...) {
-		delete img;
-		return RF_ENOMEM;
-	}
+	img->pixels.resize(n * img->nchannels);
 	for (int c = 0; c < spec.nchannels; c++)
 		img->names.push_back(c < (int)spec.channelnames.size()
 		                     ? spec.channelnames[c] : "c" + std::to_string(c));
@@ -184,11 +223,10 @@ read_level(rf_image **imgp, const char *path, size_t level, char *err, size_t er
 	if (!in->read_image(0, (int)level, 0, spec.nchannels, TypeFloat,
 	                    img->pixels.data())) {
 		set_error(err, errlen, "cannot read", path, in->geterror());
-		delete img;
 		return RF_EIMAGE;
 	}
 	in->close();
-	*imgp = img;
+	*imgp = img.release();
 	return 0;
 }
 
@@ -196,7 +234,9 @@ static int
 module_read_level(rf_image **imgp, const char *path, size_t level, char *err,
                     size_t errlen)
 {
-	return read_level(imgp, path, level, err, errlen);
+	*imgp = nullptr;
+	return guarded(err, errlen, "cannot read", path,
+	               [&] { return read_level(imgp, path, level, err, errlen); });
 }
 
 static void
@@ -285,7 +325,7 @@ extension(const char *path)
 }
 
 static int
-module_type_for_path(const char *path)
+type_for_path(const char *path)
 {
 	std::string ext = extension(path);
 	int type;
@@ -300,6 +340,16 @@ module_type_for_path(const char *path)
 	else
 		return -1;
 	return can_write(ext) ? type : -1;
+}
+
+static int
+module_type_for_path(const char *path)
+{
+	char err[256];
+	int rc = guarded(err, sizeof(err), "cannot write", path,
+	                 [&] { return type_for_path(path); });
+
+	return rc < 0 ? -1 : rc;
 }
 
 static std::string
@@ -318,7 +368,7 @@ fixed_date()
 }
 
 static int
-module_writer_open(rf__module_writer **wp, const char *path, size_t width,
+writer_open(rf__module_writer **wp, const char *path, size_t width,
                      size_t height, size_t nchannels, const char *const *names,
                      enum rf_pixel_type type, char *err, size_t errlen)
 {
@@ -328,9 +378,9 @@ module_writer_open(rf__module_writer **wp, const char *path, size_t width,
 		set_error(err, errlen, "cannot write", path, "bad image size");
 		return RF_EINVAL;
 	}
-	rf__module_writer *w = new (std::nothrow) rf__module_writer;
-	if (!w)
-		return RF_ENOMEM;
+	// Freed on every way out, an exception's included.
+	std::unique_ptr<rf__module_writer> own(new rf__module_writer);
+	rf__module_writer *w = own.get();
 	w->path = path;
 	w->width = width;
 	w->height = height;
@@ -346,20 +396,18 @@ module_writer_open(rf__module_writer **wp, const char *path, size_t width,
 
 		if (!fp) {
 			set_error(err, errlen, "cannot write", path, strerror(errno));
-			delete w;
 			return RF_EIO;
 		}
 		w->file.reset(new (std::nothrow) checked_file(fp));
 		if (!w->file) {
 			fclose(fp);
-			delete w;
+			set_error_c(err, errlen, "cannot write", path, "out of memory");
 			return RF_ENOMEM;
 		}
 	}
 	w->out = ImageOutput::create(path);
 	if (!w->out) {
 		set_error(err, errlen, "cannot write", path, OIIO::geterror());
-		delete w;
 		return RF_EIMAGE;
 	}
 	if (w->file && (!w->out->supports("ioproxy") ||
@@ -397,15 +445,14 @@ module_writer_open(rf__module_writer **wp, const char *path, size_t width,
 
 		// A file the system will not let us write is a system error.
 		set_error(err, errlen, "cannot write", path, e ? strerror(e) : reason);
-		delete w;
 		return e ? RF_EIO : RF_EIMAGE;
 	}
-	*wp = w;
+	*wp = own.release();
 	return 0;
 }
 
 static int
-module_writer_write_rows(rf__module_writer *w, size_t y, size_t nrows,
+writer_write_rows(rf__module_writer *w, size_t y, size_t nrows,
                            const float *pixels, char *err, size_t errlen)
 {
 	if (y != w->next_row || y + nrows > w->height) {
@@ -432,12 +479,14 @@ module_writer_write_rows(rf__module_writer *w, size_t y, size_t nrows,
 }
 
 static int
-module_writer_close(rf__module_writer *w, char *err, size_t errlen)
+writer_close(rf__module_writer *w, char *err, size_t errlen)
 {
 	int rc = 0;
 
 	if (!w)
 		return 0;
+	// Freed on every way out, an exception's included.
+	std::unique_ptr<rf__module_writer> own(w);
 	if (w->next_row != w->height) {
 		set_error(err, errlen, "cannot write", w->path, "image is incomplete");
 		rc = RF_EINVAL;
@@ -469,13 +518,12 @@ module_writer_close(rf__module_writer *w, char *err, size_t errlen)
 			rc = RF_EIO;
 		}
 	}
-	delete w;
 	return rc;
 }
 
 // MIP-mapped files (OpenEXR keeps MIP levels only in tiled files).
 static int
-module_write_levels(const char *path, size_t nlevels, const size_t *w, const size_t *h,
+write_levels(const char *path, size_t nlevels, const size_t *w, const size_t *h,
                       size_t nch, const char *const *names, const float *const *pixels,
                       const char *const *attributes, enum rf_pixel_type type,
                       char *err, size_t errlen)
@@ -522,7 +570,7 @@ module_write_levels(const char *path, size_t nlevels, const size_t *w, const siz
 }
 
 static int
-module_count_levels(const char *path, size_t *nlevels, char *err, size_t errlen)
+count_levels(const char *path, size_t *nlevels, char *err, size_t errlen)
 {
 	auto in = ImageInput::open(path);
 	size_t n = 1;
@@ -535,6 +583,60 @@ module_count_levels(const char *path, size_t *nlevels, char *err, size_t errlen)
 		n++;
 	*nlevels = n;
 	return 0;
+}
+
+static int
+module_count_levels(const char *path, size_t *nlevels, char *err, size_t errlen)
+{
+	return guarded(err, errlen, "cannot open", path,
+	               [&] { return count_levels(path, nlevels, err, errlen); });
+}
+
+static int
+module_writer_open(rf__module_writer **wp, const char *path, size_t width, size_t height,
+                   size_t nchannels, const char *const *names, enum rf_pixel_type type,
+                   char *err, size_t errlen)
+{
+	*wp = nullptr;
+	return guarded(err, errlen, "cannot write", path, [&] {
+		return writer_open(wp, path, width, height, nchannels, names, type, err,
+		                   errlen);
+	});
+}
+
+static int
+module_writer_write_rows(rf__module_writer *w, size_t y, size_t nrows,
+                         const float *pixels, char *err, size_t errlen)
+{
+	return guarded(err, errlen, "cannot write", w->path.c_str(), [&] {
+		return writer_write_rows(w, y, nrows, pixels, err, errlen);
+	});
+}
+
+// Frees the writer whatever happens: the caller forgets it.
+static int
+module_writer_close(rf__module_writer *w, char *err, size_t errlen)
+{
+	char path[4096];
+
+	if (!w)
+		return 0;
+	// Kept for a message after the writer is gone.
+	snprintf(path, sizeof(path), "%s", w->path.c_str());
+	return guarded(err, errlen, "cannot write", path,
+	               [&] { return writer_close(w, err, errlen); });
+}
+
+static int
+module_write_levels(const char *path, size_t nlevels, const size_t *w, const size_t *h,
+                    size_t nch, const char *const *names, const float *const *pixels,
+                    const char *const *attributes, enum rf_pixel_type type, char *err,
+                    size_t errlen)
+{
+	return guarded(err, errlen, "cannot write", path, [&] {
+		return write_levels(path, nlevels, w, h, nch, names, pixels, attributes,
+		                    type, err, errlen);
+	});
 }
 
 // The module's one exported symbol: its functions, for libreflect to call.
