@@ -137,7 +137,11 @@ main(int argc, char **argv)
 		switch (c) {
 		case 'V': print_version(); break;
 		case 'p': which = optarg; break;
-		case 'n': o.size = parse_count(optarg, 'n', 1, 8192); break;
+		case 'n':
+			o.size = parse_count(optarg, 'n', 1, 8192);
+			/* the cube is written as a frame of N x 6N */
+			cli_check_frame("-n (a frame of N x 6N)", o.size, 6 * o.size);
+			break;
 		case 'j': threads = optarg; break;
 		case 'o': output = optarg; break;
 		case 'f': case 'h': cli_io_option(&io, c, optarg); break;

@@ -245,6 +245,17 @@ print_version(void)
 	exit(0);
 }
 
+void
+cli_check_frame(const char *what, size_t w, size_t h)
+{
+	if (w > RF_FRAME_SIDE_MAX || h > RF_FRAME_SIDE_MAX)
+		die("%s: a frame of %zu x %zu pixels is over the limit of %zu pixels a "
+		    "side (reflect-stream(5))", what, w, h, RF_FRAME_SIDE_MAX);
+	if (w * h > RF_FRAME_PIXELS_MAX)
+		die("%s: a frame of %zu x %zu pixels is over the limit of %zu (2^28) "
+		    "pixels (reflect-stream(5))", what, w, h, RF_FRAME_PIXELS_MAX);
+}
+
 size_t
 parse_count(const char *arg, int opt, size_t min, size_t max)
 {

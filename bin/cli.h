@@ -47,6 +47,10 @@ char *estrdup(const char *s);
  * closed downstream pipe ends it quietly. */
 void fshut(FILE *fp, const char *name);
 void print_version(void);
+/* Dies unless a frame of w x h pixels is within RF_FRAME_SIDE_MAX and
+ * RF_FRAME_PIXELS_MAX (reflect-stream(5)); what names the options that
+ * made the size. */
+void cli_check_frame(const char *what, size_t w, size_t h);
 /* Parses a decimal count in [min, max] for option `opt`. */
 size_t parse_count(const char *arg, int opt, size_t min, size_t max);
 /* Parses a finite number in [lo, hi] for long option --name. */

@@ -21,10 +21,10 @@ cli_io_option(struct cli_io *io, int opt, const char *arg)
 		io->headerless = 1;
 		return 1;
 	case 'x':
-		io->x = parse_count(arg, 'x', 1, (size_t)1 << 30);
+		io->x = parse_count(arg, 'x', 1, RF_FRAME_SIDE_MAX);
 		return 1;
 	case 'y':
-		io->y = parse_count(arg, 'y', 1, (size_t)1 << 30);
+		io->y = parse_count(arg, 'y', 1, RF_FRAME_SIDE_MAX);
 		return 1;
 	case 'c':
 		io->channels = arg;
@@ -177,6 +177,7 @@ cli_io_open(struct cli_io *io, const char *path)
 	if (io->headerless) {
 		if (!io->x || !io->y || !io->channels)
 			die("headerless input (-H) needs -x WIDTH, -y HEIGHT and -c CHANNELS");
+		cli_check_frame("-H -x -y", io->x, io->y);
 		raw.ncols = io->x;
 		raw.nrows = io->y;
 		raw.channels = raw_channel_names(io->channels);

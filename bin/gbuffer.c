@@ -150,8 +150,8 @@ main(int argc, char **argv)
 		switch (c) {
 		case 'v': verbose = 1; break;
 		case 'V': print_version(); break;
-		case 'x': width = parse_count(optarg, 'x', 1, (size_t)1 << 20); break;
-		case 'y': height = parse_count(optarg, 'y', 1, (size_t)1 << 20); break;
+		case 'x': width = parse_count(optarg, 'x', 1, RF_FRAME_SIDE_MAX); break;
+		case 'y': height = parse_count(optarg, 'y', 1, RF_FRAME_SIDE_MAX); break;
 		case 'n': frames = parse_count(optarg, 'n', 1, 1000000000); break;
 		case 'j': threads = optarg; break;
 		case 'c': channels = optarg; break;
@@ -174,9 +174,8 @@ main(int argc, char **argv)
 	file = cli_input_or_default(optind < argc ? argv[optind] : NULL);
 	/* The samples of a pixel are the pixels of a frame N times larger:
 	 * their rays cross it at the centres of an N x N grid. */
-	if (width > ((size_t)1 << 20) / supersample || height > ((size_t)1 << 20) / supersample)
-		die("--supersample=%zu: a %zux%zu frame is more than %d samples across; "
-		    "lower N or the size", supersample, width, height, 1 << 20);
+	cli_check_frame(supersample > 1 ? "-x -y --supersample" : "-x -y",
+	                width * supersample, height * supersample);
 	width *= supersample;
 	height *= supersample;
 	s = cli_load_scene(file);

@@ -151,6 +151,13 @@ main(int argc, char **argv)
 		if ((rc = rf_import_create(&im, imgs, paths, nsrc, &io, err, sizeof(err))) < 0)
 			die_status(rc, err);
 	}
+	{
+		char what[4200];
+
+		snprintf(what, sizeof(what), "'%s'", src[0].path);
+		cli_check_frame(what, rf_header_ncols(rf_import_header(im)),
+		                rf_header_nrows(rf_import_header(im)));
+	}
 	if ((rc = rf_header_dup(&h, rf_import_header(im))) < 0)
 		die_status(rc, NULL);
 	cli_record_command(h);

@@ -191,7 +191,9 @@ main(int argc, char **argv)
 	cells = ecalloc(n, sizeof(*cells));
 	for (k = 0; k < n; k++)
 		load_cell(argv[optind + k], &cells[k]);
-	if ((rc = rf_montage(cells, n, &mo, &px, &width, &height)) < 0)
+	if ((rc = rf_montage(cells, n, &mo, &px, &width, &height)) == RF_ETOOBIG)
+		cli_check_frame("the montage (fewer a row: --columns)", width, height);
+	if (rc < 0)
 		die_status(rc, NULL);
 	/* the cells are display values already: 8 bits take them as they are */
 	if ((rc = rf_image_writer_open(&w, output, width, height, 3, names,

@@ -267,6 +267,9 @@ main(int argc, char **argv)
 		eo.path = argv[optind];
 	else if (!eo.path)
 		eo.path = cli_input_or_default(NULL);
+	/* the chain's first level is a frame of N x 6N */
+	if (eo.load.size)
+		cli_check_frame("--size (a frame of N x 6N)", eo.load.size, 6 * eo.load.size);
 	o.pf.nthreads = cli_threads(threads);
 	eo.load.nthreads = o.pf.nthreads;
 	if (isatty(STDERR_FILENO))

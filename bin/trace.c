@@ -79,8 +79,8 @@ main(int argc, char **argv)
 	while ((c = getopt_long(argc, argv, "Vx:y:j:f:h", long_options, NULL)) != -1) {
 		switch (c) {
 		case 'V': print_version(); break;
-		case 'x': width = parse_count(optarg, 'x', 1, (size_t)1 << 20); break;
-		case 'y': height = parse_count(optarg, 'y', 1, (size_t)1 << 20); break;
+		case 'x': width = parse_count(optarg, 'x', 1, RF_FRAME_SIDE_MAX); break;
+		case 'y': height = parse_count(optarg, 'y', 1, RF_FRAME_SIDE_MAX); break;
 		case 'j': threads = optarg; break;
 		case 'f': case 'h': cli_io_option(&io, c, optarg); break;
 		case OPT_SAMPLES: o.samples = (unsigned)parse_whole("samples", optarg, 1, 16777216); break;
@@ -106,6 +106,7 @@ main(int argc, char **argv)
 	if (o.halves && o.samples < 2)
 		die("--halves: %u sample%s cannot make two halves (2 or more for halves)",
 		    o.samples, o.samples == 1 ? "" : "s");
+	cli_check_frame("-x -y", width, height);
 	s = cli_load_scene(file);
 	o.nthreads = cli_threads(threads);
 	if ((rc = rf_tracer_create(&t, s, width, height, &o, err, sizeof(err))) < 0) {

@@ -201,8 +201,8 @@ test_expect_success 'bad sample counts and resolves are refused with the fix' '
 			>/dev/null 2>err || return 1
 		test_grep "supersample" err || return 1
 	done &&
-	test_expect_code 1 reflect-gbuffer -x 100000 --supersample=16 >/dev/null 2>err &&
-	test_grep "lower N or the size" err &&
+	test_expect_code 1 reflect-gbuffer -x 10000 --supersample=16 >/dev/null 2>err &&
+	test_grep "^reflect-gbuffer: -x -y --supersample: a frame of 160000 x 5760 pixels is over the limit of 65536 pixels a side" err &&
 	test_expect_code 1 reflect-export -c mask --downsample=3 -o x.exr two.rfl 2>err &&
 	test_grep "12x8 frame does not downsample by 3" err &&
 	test_expect_code 1 reflect-export -c mask --filter=tent -o x.exr two.rfl 2>err &&

@@ -78,6 +78,11 @@ RF_EXTERN const char *rf_version_string(void);
 #define RF_CHANNELS_MAX 1024
 #define RF_CHANNEL_NAME_MAX 63
 #define RF_ROW_BYTES_MAX ((size_t)1 << 30)
+/* The largest frame a tool makes from a size it is given (reflect-stream(5),
+ * LIMITS): a side of at most 2^16 pixels and at most 2^28 pixels (16384 x
+ * 16384), the limit on the values of an image the readers take. */
+#define RF_FRAME_SIDE_MAX ((size_t)1 << 16)
+#define RF_FRAME_PIXELS_MAX ((size_t)1 << 28)
 
 enum rf_format {
 	RF_FORMAT_FLOAT = 0,

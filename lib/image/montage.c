@@ -137,7 +137,9 @@ rf_montage(const struct rf_montage_cell *cells, size_t n,
 	rows = (n + cols - 1) / cols;
 	*width = cols * cw + (cols - 1) * RULE;
 	*height = rows * ch + (rows - 1) * RULE;
-	if (*width > 32768 || *height > 32768)
+	/* The limits of a frame (reflect-stream(5)), before any is made. */
+	if (*width > RF_FRAME_SIDE_MAX || *height > RF_FRAME_SIDE_MAX ||
+	    *width * *height > RF_FRAME_PIXELS_MAX)
 		return RF_ETOOBIG;
 	if (!(px = calloc(*width * *height * 3, sizeof(float))))
 		return RF_ENOMEM;
