@@ -162,6 +162,8 @@ main(int argc, char **argv)
 		usage();
 	file = cli_input_or_default(optind < argc ? argv[optind] : NULL);
 	/* every option checked before the scene is loaded */
+	if (!output && io.format == RF_FORMAT_FLOAT)
+		cli_refuse_terminal("a binary stream");
 	first = strcmp(which, "all") ? (size_t)parse_whole("p", which, 1, 1e6) - 1 : 0;
 	s = cli_load_scene(file);
 	o.nthreads = cli_threads(threads);

@@ -15,6 +15,9 @@ const char *argv0 = "reflect";
 /* The command line as given: getopt permutes argv while it parses. */
 static char **command_argv;
 static int command_argc;
+/* Whether standard output was a terminal when the tool started (before
+ * anything could move it). */
+static int stdout_terminal;
 
 void
 cli_init(int argc, char **argv)
@@ -33,6 +36,7 @@ cli_init(int argc, char **argv)
 		/* getopt names the program by argv[0] in its messages. */
 		argv[0] = (char *)argv0;
 	}
+	stdout_terminal = isatty(STDOUT_FILENO);
 	/* A closed downstream pipe ends us quietly, even when a parent
 	 * process left SIGPIPE ignored. */
 	signal(SIGPIPE, SIG_DFL);
@@ -82,6 +86,17 @@ cli_guard_mapped(const char *name)
 	             argv0, names);
 	mapped_len = n < 0 ? 0 : (size_t)n < sizeof(mapped_message) ? (size_t)n
 	                                                             : sizeof(mapped_message) - 1;
+}
+
+/* As gzip and zstd do: binary data would garble a terminal and be of no
+ * use there.  Text (-fa) is written. */
+void
+cli_refuse_terminal(const char *what)
+{
+	if (stdout_terminal)
+		die("%s is not written to a terminal: send standard output to a file "
+		    "or a pipe%s", what, strcmp(what, "a binary stream") ? ""
+		                                                          : " (-fa writes text)");
 }
 
 void

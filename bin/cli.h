@@ -21,6 +21,9 @@ enum { EXIT_BAD_INPUT = 1, EXIT_SYSTEM = 2 };
 extern const char *argv0;
 
 void cli_init(int argc, char **argv);
+/* Dies when standard output is a terminal: what ("a binary stream", "an
+ * image") would be written to it. */
+void cli_refuse_terminal(const char *what);
 /* Appends the command line, in the order it was given, to a header. */
 void cli_record_command(rf_header *h);
 /* A file the tool may read through a mapping: should it shrink under

@@ -251,9 +251,11 @@ cli_io_read_failed(struct cli_io *io, int rc)
 void
 cli_io_begin(struct cli_io *io, const rf_header *h)
 {
-	int rc = rf_writer_begin_frame(io->writer, h);
+	int rc;
 
-	if (rc < 0)
+	if (io->format == RF_FORMAT_FLOAT)
+		cli_refuse_terminal("a binary stream");
+	if ((rc = rf_writer_begin_frame(io->writer, h)) < 0)
 		die_status(rc, rf_writer_error(io->writer));
 }
 

@@ -511,6 +511,7 @@ main(int argc, char **argv)
 	if (!strcmp(o.output, "-") || !strcmp(o.output, "png:-") || !strcmp(o.output, "exr:-")) {
 		o.to_stdout = 1;
 		o.output = strcmp(o.output, "exr:-") ? "<stdout>.png" : "<stdout>.exr";
+		cli_refuse_terminal("an image");
 	}
 	resolve_format(&o);
 	cli_io_open(&io, optind < argc ? argv[optind] : NULL);

@@ -120,6 +120,8 @@ main(int argc, char **argv)
 	}
 	if (optind >= argc)
 		usage();
+	if (o.format == RF_FORMAT_FLOAT)
+		cli_refuse_terminal("a binary stream");
 	if (argc - optind > MAX_FILES)
 		die("more than %d input files", MAX_FILES);
 	for (; optind < argc; optind++, nsrc++) {

@@ -261,6 +261,8 @@ main(int argc, char **argv)
 	}
 	if (argc - optind > 1 || (argc - optind == 1 && eo.path))
 		usage();
+	if (o.format == RF_FORMAT_FLOAT && !o.output && !o.dump)
+		cli_refuse_terminal("a binary stream");
 	if (o.ktx.zstd && !ends_ktx2(o.output) && !ends_ktx2(o.irradiance))
 		die("--zstd: no KTX 2 file to write (-o or --irradiance ending in .ktx2)");
 	if (optind < argc)
