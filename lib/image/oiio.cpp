@@ -459,12 +459,16 @@ writer_write_rows(rf__module_writer *w, size_t y, size_t nrows,
 		set_error(err, errlen, "cannot write", w->path, "rows out of order");
 		return RF_EINVAL;
 	}
+	errno = 0;
 	if (!w->out->write_scanlines((int)y, (int)(y + nrows), 0, TypeFloat, pixels)) {
 		std::string reason = w->out->geterror();
+		// Without a proxy (TIFF) the system's reason is errno, when it
+		// is one a write gives.
+		int e = w->file ? w->file->error_ : errno == ENOSPC || errno == EDQUOT ||
+		                                    errno == EFBIG || errno == EIO ? errno : 0;
 
-		if (w->file && w->file->error_) {
-			set_error(err, errlen, "cannot write", w->path,
-			          strerror(w->file->error_));
+		if (e) {
+			set_error(err, errlen, "cannot write", w->path, strerror(e));
 			return RF_EIO;
 		}
 		set_error(err, errlen, "cannot write", w->path, reason);
@@ -528,17 +532,42 @@ write_levels(const char *path, size_t nlevels, const size_t *w, const size_t *h,
                       const char *const *attributes, enum rf_pixel_type type,
                       char *err, size_t errlen)
 {
+	// The file is written through a checked proxy, as module_writer_open
+	// writes: OpenEXR's tiled writer, told by OpenImageIO's stream that a
+	// write failed (a full disk), threw from a tile while its other
+	// threads waited on that tile's semaphore, and waited for ever
+	// (OpenEXR 3.1, TiledOutputFile::writeTiles).  The proxy takes every
+	// write and keeps the first error, which the close reports.
+	FILE *fp = fopen(path, "wb");
+	if (!fp) {
+		set_error(err, errlen, "cannot write", path, strerror(errno));
+		return RF_EIO;
+	}
+	std::unique_ptr<checked_file> file;
+	try {
+		file.reset(new checked_file(fp));
+	} catch (...) {
+		fclose(fp);
+		throw;
+	}
+	// Closed before the file: declared after it.
 	auto out = ImageOutput::create(path);
+	auto fail = [&](int rc, const std::string &reason) {
+		out.reset();
+		int e = file->error_;
+		file.reset();
+		fclose(fp);
+		set_error(err, errlen, "cannot write", path, e ? strerror(e) : reason);
+		return e ? RF_EIO : rc;
+	};
 
-	if (!out) {
-		set_error(err, errlen, "cannot write", path, OIIO::geterror());
-		return RF_EIMAGE;
-	}
-	if (nlevels > 1 && !out->supports("mipmap")) {
-		set_error(err, errlen, "cannot write", path,
-		            "this file type holds no MIP levels (use .exr)");
-		return RF_EIMAGE;
-	}
+	if (!out)
+		return fail(RF_EIMAGE, OIIO::geterror());
+	if (nlevels > 1 && !out->supports("mipmap"))
+		return fail(RF_EIMAGE, "this file type holds no MIP levels (use .exr)");
+	if (!out->supports("ioproxy") || !out->set_ioproxy(file.get()))
+		return fail(RF_EIMAGE, "this file type cannot be written through a checked "
+		                       "file (use .exr)");
 	for (size_t k = 0; k < nlevels; k++) {
 		TypeDesc t = type == RF_PIXEL_HALF ? TypeDesc::HALF : TypeDesc::FLOAT;
 		ImageSpec spec((int)w[k], (int)h[k], (int)nch, t);
@@ -557,14 +586,21 @@ write_levels(const char *path, size_t nlevels, const size_t *w, const size_t *h,
 		// module_writer_open).
 		spec.attribute("DateTime", fixed_date());
 		if (!out->open(path, spec, k ? ImageOutput::AppendMIPLevel : ImageOutput::Create) ||
-		    !out->write_image(TypeFloat, pixels[k])) {
-			set_error(err, errlen, "cannot write", path, out->geterror());
-			return RF_EIMAGE;
-		}
+		    !out->write_image(TypeFloat, pixels[k]))
+			return fail(RF_EIMAGE, out->geterror());
 	}
-	if (!out->close()) {
-		set_error(err, errlen, "cannot write", path, out->geterror());
-		return RF_EIMAGE;
+	if (!out->close())
+		return fail(RF_EIMAGE, out->geterror());
+	out.reset();
+	int e = file->error_;
+	file.reset();
+	if (fflush(fp) != 0 || ferror(fp))
+		e = e ? e : (errno ? errno : EIO);
+	if (fclose(fp) != 0)
+		e = e ? e : errno;
+	if (e) {
+		set_error(err, errlen, "cannot write", path, strerror(e));
+		return RF_EIO;
 	}
 	return 0;
 }
