@@ -174,18 +174,22 @@ write_heatmap(const char *path, const struct rf_compare_input *in, double scale)
 	float *rgb = emalloc(w * h * 3 * sizeof(float) + 1);
 	rf_image_writer *iw;
 	char err[1024];
-	int type;
+	int type, rc;
 
 	if ((type = rf_image_type_for_path(path)) < 0 && rf_image_module_check(err, sizeof(err)) < 0)
 		die("%s", err);
 	if (type < 0 && (type = rf_image_type_for_path(path)) < 0)
 		die("-o: no image type for '%s' (try .png or .exr)", path);
 	rf_compare_heatmap(rgb, in, scale);
-	if (rf_image_writer_open(&iw, path, w, h, 3, names, (enum rf_pixel_type)type, err,
-	                         sizeof(err)) < 0 ||
-	    rf_image_writer_write_rows(iw, 0, h, rgb) < 0 ||
-	    rf_image_writer_close(iw, err, sizeof(err)) < 0)
-		die("%s", err);
+	/* A failed write's message is the writer's, not err (which held
+	 * nothing then), and a full disk is a system error. */
+	if ((rc = rf_image_writer_open(&iw, path, w, h, 3, names, (enum rf_pixel_type)type,
+	                               err, sizeof(err))) < 0)
+		die_status(rc, err);
+	if ((rc = rf_image_writer_write_rows(iw, 0, h, rgb)) < 0)
+		die_status(rc, rf_image_writer_error(iw));
+	if ((rc = rf_image_writer_close(iw, err, sizeof(err))) < 0)
+		die_status(rc, err);
 	free(rgb);
 }
 
