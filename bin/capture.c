@@ -85,13 +85,15 @@ write_stream(const rf_cubemap *c, const char *path, const struct cli_io *io,
 	FILE *fp = stdout;
 	rf_header *base;
 	rf_writer *w;
+	rf_output *file = NULL;
 	int rc;
 
 	memset(&info, 0, sizeof(info));
 	info.mapping = RF_MAPPING_DEFAULT;
 	info.base_copied = 1;
-	if (path && !(fp = fopen(path, "wb")))
-		die("cannot open '%s':", path);
+	/* whole or not at all: an old file stays if this fails */
+	if (path && (rc = rf_output_open(&file, path, &fp, err, sizeof(err))) < 0)
+		die_status(rc, err);
 	if ((rc = rf_header_create(&base)) < 0)
 		die_status(rc, NULL);
 	cli_record_command(base);
@@ -105,8 +107,8 @@ write_stream(const rf_cubemap *c, const char *path, const struct cli_io *io,
 		die_status(rc, err);
 	rf_writer_close(w);
 	rf_header_destroy(base);
-	if (fp != stdout)
-		fshut(fp, path);
+	if (file && (rc = rf_output_commit(file, err, sizeof(err))) < 0)
+		die_status(rc, err);
 }
 
 static void

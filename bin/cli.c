@@ -19,6 +19,34 @@ static int command_argc;
  * anything could move it). */
 static int stdout_terminal;
 
+/* Removes the files being written, then dies of the signal as it would
+ * have: the status says which, and a shell stops its loop on SIGINT. */
+static void
+remove_outputs(int sig)
+{
+	int e = errno;
+
+	rf_output_remove_all();
+	signal(sig, SIG_DFL);
+	raise(sig);
+	errno = e;
+}
+
+/* A signal the parent left ignored (nohup, a background job's SIGINT)
+ * stays ignored. */
+static void
+on_signal(int sig)
+{
+	struct sigaction sa, old;
+
+	if (sigaction(sig, NULL, &old) == 0 && old.sa_handler == SIG_IGN)
+		return;
+	memset(&sa, 0, sizeof(sa));
+	sa.sa_handler = remove_outputs;
+	sigemptyset(&sa.sa_mask);
+	sigaction(sig, &sa, NULL);
+}
+
 void
 cli_init(int argc, char **argv)
 {
@@ -37,6 +65,11 @@ cli_init(int argc, char **argv)
 		argv[0] = (char *)argv0;
 	}
 	stdout_terminal = isatty(STDOUT_FILENO);
+	/* Files being written are removed when a signal ends the tool
+	 * (lib/util/output.c): a hidden temporary file would stay. */
+	on_signal(SIGINT);
+	on_signal(SIGTERM);
+	on_signal(SIGHUP);
 	/* A closed downstream pipe ends us quietly, even when a parent
 	 * process left SIGPIPE ignored. */
 	signal(SIGPIPE, SIG_DFL);

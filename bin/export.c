@@ -269,17 +269,7 @@ export_block(void *arg, const float *in, float *out, size_t y, size_t n)
 	return 0;
 }
 
-/* The temporary file of -o -, removed however the tool ends. */
-static char made[4096];
-
-static void
-remove_made(void)
-{
-	if (made[0])
-		unlink(made);
-}
-
-/* The made file to standard output, then gone. */
+/* The made file to standard output. */
 static void
 copy_out(const char *path)
 {
@@ -287,8 +277,6 @@ copy_out(const char *path)
 	FILE *fp = fopen(path, "rb");
 	size_t n;
 
-	unlink(path);
-	made[0] = '\0';
 	if (!fp)
 		die("cannot open '%s':", path);
 	while ((n = fread(buf, 1, sizeof(buf), fp)) > 0)
@@ -311,6 +299,7 @@ export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
 	size_t nrows = rf_header_nrows(h), rows, c, k, factor = resolve_factor(o, h, frame);
 	int integer = is_integer(o->type), srgb, rc;
 	struct export_block eb;
+	rf_output *scratch = NULL;
 	rf_image_writer *w;
 
 	nch = select_channels(h, o->channels ? o->channels : default_channels(h), map);
@@ -345,17 +334,15 @@ export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
 	srgb = o->srgb >= 0 ? o->srgb : integer;
 	if (o->to_stdout) {
 		/* OpenEXR seeks back to its offsets: the image is made in a
-		 * file, then copied out */
+		 * file of our own, removed however the tool ends
+		 * (lib/util/output.c), then copied out */
 		const char *dir = getenv("TMPDIR");
-		int fd;
 
-		snprintf(path, sizeof(path), "%s/reflect-export.XXXXXX.%s",
-		         dir && *dir ? dir : "/tmp", o->format->ext);
-		if ((fd = mkstemps(path, (int)strlen(o->format->ext) + 1)) < 0)
-			die("cannot make a temporary file in '%s':", dir && *dir ? dir : "/tmp");
-		close(fd);
-		snprintf(made, sizeof(made), "%s", path);
-		atexit(remove_made);
+		snprintf(path, sizeof(path), "%s/reflect-export.%s", dir && *dir ? dir : "/tmp",
+		         o->format->ext);
+		if ((rc = rf_output_begin(&scratch, path, err, sizeof(err))) < 0)
+			die_status(rc, err);
+		snprintf(path, sizeof(path), "%s", rf_output_file(scratch));
 	} else {
 		output_name(path, sizeof(path), o->output, frame);
 	}
@@ -396,13 +383,12 @@ export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
 	rf_downsampler_destroy(eb.down);
 	if (rc < 0)
 		cli_io_read_failed(io, rc);
-	if ((rc = rf_image_writer_close(w, err, sizeof(err))) < 0) {
-		if (o->to_stdout)
-			unlink(path);
+	if ((rc = rf_image_writer_close(w, err, sizeof(err))) < 0)
 		die_status(rc, err);
-	}
-	if (o->to_stdout)
+	if (o->to_stdout) {
 		copy_out(path);
+		rf_output_discard(scratch);
+	}
 }
 
 int

@@ -104,6 +104,7 @@ write_chain(const struct prefilter_opts *o, const char *output, const rf_cubemap
 	char err[1024];
 	rf_header *base;
 	rf_writer *w;
+	rf_output *file = NULL;
 	FILE *fp = stdout;
 	const char *name = "<stdout>";
 	int rc;
@@ -131,8 +132,9 @@ write_chain(const struct prefilter_opts *o, const char *output, const rf_cubemap
 			rf_header_destroy(base);
 			return;
 		}
-		if (!(fp = fopen(output, "wb")))
-			die("cannot open '%s':", output);
+		/* whole or not at all: an old file stays if this fails */
+		if ((rc = rf_output_open(&file, output, &fp, err, sizeof(err))) < 0)
+			die_status(rc, err);
 		name = output;
 	}
 	cli_record_command(base);
@@ -142,8 +144,8 @@ write_chain(const struct prefilter_opts *o, const char *output, const rf_cubemap
 		die_status(rc, err);
 	rf_writer_close(w);
 	rf_header_destroy(base);
-	if (fp != stdout)
-		fshut(fp, name);
+	if (file && (rc = rf_output_commit(file, err, sizeof(err))) < 0)
+		die_status(rc, err);
 }
 
 int

@@ -64,6 +64,30 @@ enum rf_status {
 RF_EXTERN const char *rf_strerror(int status);
 RF_EXTERN const char *rf_status_name(int status);
 
+/*
+ * Files written whole or not at all (lib/util/output.c): to a temporary
+ * file beside the path, synced and renamed over it by rf_output_commit;
+ * removed by rf_output_discard, at exit(3), and by rf_output_remove_all.
+ * A path that is a device, a FIFO or a symbolic link is written in place.
+ */
+typedef struct rf_output rf_output;
+
+/* The temporary file for path, made (empty): write rf_output_file(*o). */
+RF_EXTERN int rf_output_begin(rf_output **o, const char *path, char *err, size_t errlen);
+/* The same, opened for writing as *fp (rf_output_commit closes it). */
+RF_EXTERN int rf_output_open(rf_output **o, const char *path, FILE **fp, char *err,
+                             size_t errlen);
+/* The file to write: the temporary file, or the path itself. */
+RF_EXTERN const char *rf_output_file(const rf_output *o);
+/* Flushes and syncs the file and renames it to its path; frees o.  On
+ * an error (the reason in err) the file is removed, the old one kept. */
+RF_EXTERN int rf_output_commit(rf_output *o, char *err, size_t errlen);
+/* Removes the temporary file; frees o.  NULL is ignored. */
+RF_EXTERN void rf_output_discard(rf_output *o);
+/* Removes every temporary file still being written, with nothing but
+ * unlink(2): for a signal handler, which the library never installs. */
+RF_EXTERN void rf_output_remove_all(void);
+
 RF_EXTERN unsigned rf_version(void);
 RF_EXTERN const char *rf_version_string(void);
 

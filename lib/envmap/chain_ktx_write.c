@@ -317,35 +317,6 @@ write_ktx2(struct out *o, const rf_cubemap *c, const struct kv *kv,
 
 /* ---- the file ----------------------------------------------------------- */
 
-/* A temporary file beside path, with its mode; NULL (and *direct 1) for a
- * path that is a device, FIFO or link, written in place. */
-static char *
-make_temp(const char *path, int *fd, int *direct)
-{
-	const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
-	struct stat st;
-	mode_t mask;
-	char *temp;
-	int exists = lstat(path, &st) == 0;
-
-	*direct = exists && !S_ISREG(st.st_mode);
-	if (*direct || !(temp = malloc(strlen(path) + 16)))
-		return NULL;
-	sprintf(temp, "%.*s.%s.XXXXXX", (int)(base - path), path, base);
-	if ((*fd = mkostemp(temp, O_CLOEXEC)) < 0) {
-		free(temp);
-		return NULL;
-	}
-	if (exists) {
-		(void)fchmod(*fd, st.st_mode & 07777);
-	} else {
-		mask = umask(0);
-		umask(mask);
-		(void)fchmod(*fd, 0666 & ~mask);
-	}
-	return temp;
-}
-
 int
 rf_chain_write_ktx(const rf_cubemap *c, const struct rf_chain_info *info, const char *path,
                    const struct rf_ktx_options *opt, char *err, size_t errlen)
@@ -354,8 +325,8 @@ rf_chain_write_ktx(const rf_cubemap *c, const struct rf_chain_info *info, const 
 	unsigned char *buf = NULL, *zbuf = NULL;
 	struct out o = { NULL, path, 0 };
 	struct kv kv;
-	char *temp = NULL;
-	int rc = 0, fd = -1, direct = 0, saved;
+	rf_output *file = NULL;
+	int rc = 0, saved;
 
 	if (opt->version != 1 && opt->version != 2) {
 		rf__format(err, errlen, "'%s': KTX version %d; 1 or 2 are written", path,
@@ -396,41 +367,26 @@ rf_chain_write_ktx(const rf_cubemap *c, const struct rf_chain_info *info, const 
 	}
 #endif
 	kv_fill(&kv, c, info, opt->version);
-	/* Through a file beside path renamed over it, as the image writer
-	 * does: a failure leaves an old file whole. */
-	temp = make_temp(path, &fd, &direct);
-	if (!temp && !direct) {
-		rf__format(err, errlen, "cannot write '%s': %s", path, strerror(errno));
-		rc = RF_EIO;
+	/* Through a file beside path renamed over it (lib/util/output.c): a
+	 * failure leaves an old file whole. */
+	if ((rc = rf_output_open(&file, path, &o.fp, err, errlen)) < 0)
 		goto out;
-	}
-	o.fp = temp ? fdopen(fd, "wb") : fopen(path, "wb");
-	if (!o.fp) {
-		rf__format(err, errlen, "cannot write '%s': %s", path, strerror(errno));
-		if (fd >= 0)
-			close(fd);
-		rc = RF_EIO;
-		goto out;
-	}
 	errno = 0;
 	if (opt->version == 1)
 		rc = write_ktx1(&o, c, &kv, opt->texel, buf);
 	else
 		rc = write_ktx2(&o, c, &kv, opt, buf, zbuf, zcap, err, errlen);
 	saved = errno;
-	if ((fclose(o.fp) != 0 || o.failed) && rc == 0) {
+	if (o.failed && rc == 0) {
 		rf__format(err, errlen, "cannot write '%s': %s", path,
-		           strerror(o.failed ? (saved ? saved : EIO) : errno));
+		           strerror(saved ? saved : EIO));
 		rc = RF_EIO;
 	}
-	if (rc == 0 && temp && rename(temp, path) < 0) {
-		rf__format(err, errlen, "cannot write '%s': %s", path, strerror(errno));
-		rc = RF_EIO;
-	}
-	if (rc < 0 && temp)
-		unlink(temp);
+	if (rc < 0)
+		rf_output_discard(file);
+	else
+		rc = rf_output_commit(file, err, errlen);
 out:
-	free(temp);
 	free(buf);
 	free(zbuf);
 	return rc;

@@ -350,107 +350,15 @@ struct rf_image_writer {
 	} u;
 	size_t height, next_row;
 	char error[1024];         /* the last write's, for rf_image_writer_error */
-	char *temp;               /* written here, renamed to path at close */
-	struct rf_image_writer *next_temp;
+	rf_output *out;           /* the file written, renamed to path at close */
 	char path[];
 };
-
-/*
- * An image is written to a temporary file beside its path and renamed
- * over it once whole, as git and sqlite write theirs: a write that fails
- * (a full disk, input that ends early) leaves an existing file as it
- * was, and a reader never sees half an image.  The temporary file keeps
- * the path's extension, since the module picks the format by it.  One
- * that is still open when the process exits (a tool dying on bad input)
- * is removed then.  Devices, FIFOs and symbolic links are written in
- * place: a rename would replace them.
- */
-static pthread_mutex_t temps_lock = PTHREAD_MUTEX_INITIALIZER;
-static struct rf_image_writer *temps;
-
-static void
-remove_temps(void)
-{
-	struct rf_image_writer *w;
-
-	pthread_mutex_lock(&temps_lock);
-	for (w = temps; w; w = w->next_temp)
-		unlink(w->temp);
-	temps = NULL;
-	pthread_mutex_unlock(&temps_lock);
-}
-
-static void
-register_removal(void)
-{
-	atexit(remove_temps);
-}
-
-static void
-forget_temp(rf_image_writer *w)
-{
-	struct rf_image_writer **p;
-
-	pthread_mutex_lock(&temps_lock);
-	for (p = &temps; *p && *p != w; p = &(*p)->next_temp)
-		;
-	if (*p)
-		*p = w->next_temp;
-	pthread_mutex_unlock(&temps_lock);
-}
-
-/* w->temp made and registered; 0, or RF_EIO with a message. */
-static int
-make_temp(rf_image_writer *w, char *err, size_t errlen)
-{
-	static pthread_once_t registered = PTHREAD_ONCE_INIT;
-	const char *slash = strrchr(w->path, '/'), *base = slash ? slash + 1 : w->path;
-	const char *dot = strrchr(base, '.');
-	size_t dirlen = (size_t)(base - w->path), suffix = dot ? strlen(dot) : 0;
-	struct stat st;
-	mode_t mask;
-	int fd, exists = lstat(w->path, &st) == 0;
-
-	if (exists && !S_ISREG(st.st_mode))
-		return 0;
-	if (!(w->temp = malloc(strlen(w->path) + 10))) {
-		rf__format(err, errlen, "cannot write '%s': out of memory", w->path);
-		return RF_ENOMEM;
-	}
-	sprintf(w->temp, "%.*s.%.*s.XXXXXX%s", (int)dirlen, w->path,
-	        (int)(strlen(base) - suffix), base, dot ? dot : "");
-	if ((fd = mkostemps(w->temp, (int)suffix, O_CLOEXEC)) < 0) {
-		rf__format(err, errlen, "cannot write '%s': %s", w->path, strerror(errno));
-		free(w->temp);
-		w->temp = NULL;
-		return RF_EIO;
-	}
-	/* The mode a new file would get, or the one the old file has. */
-	if (exists) {
-		(void)fchmod(fd, st.st_mode & 07777);
-	} else {
-		mask = umask(0);
-		umask(mask);
-		(void)fchmod(fd, 0666 & ~mask);
-	}
-	close(fd);
-	pthread_once(&registered, register_removal);
-	pthread_mutex_lock(&temps_lock);
-	w->next_temp = temps;
-	temps = w;
-	pthread_mutex_unlock(&temps_lock);
-	return 0;
-}
 
 /* Frees a writer whose file is not to be kept: its temporary file goes. */
 static void
 discard(rf_image_writer *w)
 {
-	if (w->temp) {
-		forget_temp(w);
-		unlink(w->temp);
-		free(w->temp);
-	}
+	rf_output_discard(w->out);
 	free(w);
 }
 
@@ -458,12 +366,13 @@ discard(rf_image_writer *w)
 static void
 name_path(const rf_image_writer *w, char *err, size_t errlen)
 {
+	const char *temp = w->out ? rf_output_file(w->out) : NULL;
 	char *at, out[1024];
 	size_t tl;
 
-	if (!w->temp || !err || !(at = strstr(err, w->temp)))
+	if (!temp || !strcmp(temp, w->path) || !err || !(at = strstr(err, temp)))
 		return;
-	tl = strlen(w->temp);
+	tl = strlen(temp);
 	rf__format(out, sizeof(out), "%.*s%s%s", (int)(at - err), err, w->path, at + tl);
 	rf__format(err, errlen, "%s", out);
 }
@@ -504,11 +413,13 @@ rf_image_writer_open(rf_image_writer **wp, const char *path, size_t width,
 		free(w);
 		return load_status;
 	}
-	if ((rc = make_temp(w, err, errlen)) < 0) {
+	/* Through a temporary file (lib/util/output.c): a failure leaves an
+	 * old file as it was. */
+	if ((rc = rf_output_begin(&w->out, path, err, errlen)) < 0) {
 		free(w);
 		return rc;
 	}
-	file = w->temp ? w->temp : path;
+	file = rf_output_file(w->out);
 	switch (w->kind) {
 	case WRITER_PNG:
 		rc = rf__png_writer_open(&w->u.png, file, width, height, nchannels, type,
@@ -592,17 +503,12 @@ rf_image_writer_close(rf_image_writer *w, char *err, size_t errlen)
 		rf__format(err, errlen, "cannot write '%s': image is incomplete", w->path);
 		rc = RF_EINVAL;
 	}
-	if (rc == 0 && w->temp && rename(w->temp, w->path) < 0) {
-		rf__format(err, errlen, "cannot write '%s': %s", w->path, strerror(errno));
-		rc = RF_EIO;
-	}
-	if (rc == 0 && w->temp) {
-		forget_temp(w);
-		free(w->temp);
-		free(w);
-	} else {
+	if (rc < 0) {
 		discard(w);
+		return rc;
 	}
+	rc = rf_output_commit(w->out, err, errlen);
+	free(w);
 	return rc;
 }
 
@@ -625,24 +531,18 @@ rf_image_write_levels(const char *path, size_t nlevels, const size_t *w, const s
 	}
 	strcpy(t->path, path);
 	t->kind = WRITER_MODULE;
-	if ((rc = make_temp(t, err, errlen)) < 0) {
+	if ((rc = rf_output_begin(&t->out, path, err, errlen)) < 0) {
 		free(t);
 		return rc;
 	}
-	rc = api->write_levels(t->temp ? t->temp : path, nlevels, w, h, nchannels, names,
+	rc = api->write_levels(rf_output_file(t->out), nlevels, w, h, nchannels, names,
 	                       pixels, attributes, type, err, errlen);
-	if (rc < 0)
+	if (rc < 0) {
 		name_path(t, err, errlen);
-	if (rc == 0 && t->temp && rename(t->temp, path) < 0) {
-		rf__format(err, errlen, "cannot write '%s': %s", path, strerror(errno));
-		rc = RF_EIO;
-	}
-	if (rc == 0 && t->temp) {
-		forget_temp(t);
-		free(t->temp);
-		free(t);
-	} else {
 		discard(t);
+		return rc;
 	}
+	rc = rf_output_commit(t->out, err, errlen);
+	free(t);
 	return rc;
 }
