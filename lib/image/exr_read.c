@@ -256,10 +256,12 @@ rf__exr_read_level(struct rf__image_data *img, const char *path, size_t level,
 	}
 	/* a header's sizes are checked before they are believed: at most
 	 * 2^28 values (1 GB of floats), a 16k x 16k cube of RGBA */
-	if (w < 1 || h < 1 || (size_t)w > ((size_t)1 << 28) / (size_t)n ||
-	    (size_t)h > ((size_t)1 << 28) / ((size_t)w * (size_t)n)) {
-		rf__format(err, errlen, "'%s': a %dx%d image of %d channels is out of range",
-		           path, w, h, n);
+	if (w < 1 || h < 1 ||
+	    (rc = rf__image_bounds(path, "openexr", (size_t)w, (size_t)h, (size_t)n, err,
+	                           errlen)) < 0) {
+		if (w < 1 || h < 1)
+			rf__format(err, errlen, "'%s': a %dx%d image of %d channels is out of "
+			           "range", path, w, h, n);
 		rc = RF_ETOOBIG;
 		goto out;
 	}

@@ -228,7 +228,7 @@ rf_image_read_level(rf_image **img, const char *path, size_t level, char *err,
 	}
 	if (!module(err, errlen))
 		return load_status;
-	if ((rc = api->read_level(&mod, path, level, err, errlen)) < 0)
+	if ((rc = api->read_level(&mod, path, level, rf__image_bounds, err, errlen)) < 0)
 		return rc;
 	return wrap_module(img, mod);
 }

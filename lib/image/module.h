@@ -13,10 +13,16 @@ struct rf__module_writer;
 #define RF_IMAGE_MODULE_NAME "reflect-oiio.so"
 #define RF_IMAGE_MODULE_ENTRY "rf__image_module"
 
+/* libreflect's bounds (bounds.c), which read_level calls with the size
+ * its header gives and the format's name, before it allocates anything:
+ * 0 goes on; an error (its message in err) is returned as it is. */
+typedef int rf__image_check_fn(const char *path, const char *format, size_t width,
+                               size_t height, size_t nchannels, char *err, size_t errlen);
+
 struct rf__image_api {
 	size_t size; /* sizeof(struct rf__image_api) in the module */
-	int (*read_level)(rf_image **img, const char *path, size_t level, char *err,
-	                  size_t errlen);
+	int (*read_level)(rf_image **img, const char *path, size_t level,
+	                  rf__image_check_fn *check, char *err, size_t errlen);
 	int (*count_levels)(const char *path, size_t *nlevels, char *err, size_t errlen);
 	void (*free_image)(rf_image *img);
 	size_t (*width)(const rf_image *img);

@@ -178,7 +178,8 @@ system_reason(const char *path, bool write)
 
 // Reads MIP level `level` of the first image.
 static int
-read_level(rf_image **imgp, const char *path, size_t level, char *err, size_t errlen)
+read_level(rf_image **imgp, const char *path, size_t level, rf__image_check_fn *check,
+           char *err, size_t errlen)
 {
 	*imgp = nullptr;
 	// Values as stored: no premultiplying of 8- and 16-bit files that
@@ -204,11 +205,12 @@ read_level(rf_image **imgp, const char *path, size_t level, char *err, size_t er
 		set_error(err, errlen, "cannot read", path, "not a 2D image");
 		return RF_EIMAGE;
 	}
+	// The header's size, bounded by libreflect before it is believed.
 	size_t n = (size_t)spec.width * (size_t)spec.height;
-	if (n > ((size_t)1 << 31) / (size_t)spec.nchannels) {
-		set_error(err, errlen, "cannot read", path, "image too large");
-		return RF_ETOOBIG;
-	}
+	int rc = check(path, in->format_name(), (size_t)spec.width, (size_t)spec.height,
+	               (size_t)spec.nchannels, err, errlen);
+	if (rc < 0)
+		return rc;
 	std::unique_ptr<rf_image> img(new rf_image);
 	img->width = (size_t)spec.width;
 	img->height = (size_t)spec.height;
@@ -231,12 +233,12 @@ read_level(rf_image **imgp, const char *path, size_t level, char *err, size_t er
 }
 
 static int
-module_read_level(rf_image **imgp, const char *path, size_t level, char *err,
-                    size_t errlen)
+module_read_level(rf_image **imgp, const char *path, size_t level,
+                  rf__image_check_fn *check, char *err, size_t errlen)
 {
 	*imgp = nullptr;
 	return guarded(err, errlen, "cannot read", path,
-	               [&] { return read_level(imgp, path, level, err, errlen); });
+	               [&] { return read_level(imgp, path, level, check, err, errlen); });
 }
 
 static void

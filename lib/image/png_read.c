@@ -98,13 +98,9 @@ rf__png_read(struct rf__image_data *img, const char *path, char *err, size_t err
 	png_read_update_info(png, info);
 	nch = png_get_channels(png, info);
 	depth = png_get_bit_depth(png, info);
-	if (w < 1 || h < 1 || (size_t)w > ((size_t)1 << 28) / (size_t)nch ||
-	    (size_t)h > ((size_t)1 << 28) / ((size_t)w * (size_t)nch)) {
-		rf__format(err, errlen, "'%s': a %ux%u image is out of range", path,
-		           (unsigned)w, (unsigned)h);
-		rc = RF_ETOOBIG;
+	if ((rc = rf__image_bounds(path, "png", (size_t)w, (size_t)h, (size_t)nch, err,
+	                           errlen)) < 0)
 		goto out;
-	}
 	data = malloc((size_t)h * png_get_rowbytes(png, info));
 	rows = malloc((size_t)h * sizeof(*rows));
 	img->pixels = malloc((size_t)w * h * (size_t)nch * sizeof(float));
