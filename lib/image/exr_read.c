@@ -82,6 +82,20 @@ levels_of(exr_context_t ctx, int *tiled, int *nlevels)
 	return 0;
 }
 
+/* RF_ENOTFOUND for a compression the C core cannot decode (3.1: DWAA
+ * and DWAB, "not yet implemented in C"): OpenEXR's C++ library reads it,
+ * through the module.  DWA is the default of Nuke and of the HDRIs that
+ * Blender ships. */
+static int
+core_decodes(exr_context_t ctx)
+{
+	exr_compression_t comp;
+
+	if (exr_get_compression(ctx, 0, &comp))
+		return RF_EIMAGE;
+	return comp == EXR_COMPRESSION_DWAA || comp == EXR_COMPRESSION_DWAB ? RF_ENOTFOUND : 0;
+}
+
 int
 rf__exr_count_levels(const char *path, size_t *nlevels, char *err, size_t errlen)
 {
@@ -227,7 +241,7 @@ rf__exr_read_level(struct rf__image_data *img, const char *path, size_t level,
 		rf__format(err, errlen, "cannot read '%s': %s", path, why);
 		return RF_EIMAGE;
 	}
-	if ((rc = levels_of(ctx, &tiled, &nlevels)) < 0)
+	if ((rc = levels_of(ctx, &tiled, &nlevels)) < 0 || (rc = core_decodes(ctx)) < 0)
 		goto out;
 	if ((int)level >= nlevels) {
 		rf__format(err, errlen, "'%s' has %d level%s, not %zu", path, nlevels,
@@ -317,7 +331,9 @@ rf__exr_read_level(struct rf__image_data *img, const char *path, size_t level,
 				                  ci.start_y - dw.min.y);
 		}
 	}
-	if (rv) {
+	if (rv == EXR_ERR_FEATURE_NOT_IMPLEMENTED) {
+		rc = RF_ENOTFOUND; /* another coding the core cannot decode */
+	} else if (rv) {
 		rf__format(err, errlen, "cannot read '%s': %s", path,
 		           why[0] ? why : exr_get_default_error_message(rv));
 		rc = RF_EIMAGE;
