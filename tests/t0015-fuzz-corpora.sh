@@ -6,7 +6,7 @@ test_description='the fuzz harnesses replayed over their corpora and the bugs th
 # control byte, a header that does not come back, radiance that is not
 # finite, the vector and plain reads disagreeing) and, in the sanitizer
 # build, on any memory error or undefined behaviour.
-for t in header scene dds ktx numeric probes envstream cache shade
+for t in header scene dds ktx numeric probes envstream cache shade exr png hdr sniff
 do
 	test_expect_success "replay the $t corpus" '
 		"$builddir/tests/fuzz/replay-'$t'" "$srcdir/tests/fuzz/corpus/'$t'" >out &&
@@ -31,7 +31,7 @@ test_expect_success 'the environment and shading harnesses hold their corpora fi
 '
 
 test_expect_success 'random bytes through every harness' '
-	for t in header scene dds ktx numeric probes envstream cache shade
+	for t in header scene dds ktx numeric probes envstream cache shade exr png hdr sniff
 	do
 		for seed in 1 2 3 4 5 6 7 8
 		do
