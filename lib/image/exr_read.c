@@ -27,9 +27,12 @@ static void
 on_error(exr_const_context_t ctx, exr_result_t code, const char *msg)
 {
 	(void)ctx;
-	if (reason && !reason[0])
+	if (reason && !reason[0]) {
 		rf__format(reason, reason_len, "%s",
 		           msg && *msg ? msg : exr_get_default_error_message(code));
+		/* the core quotes the file's bytes: "Invalid type 'box2i^P'" */
+		rf__printable(reason);
+	}
 }
 
 int

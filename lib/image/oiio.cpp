@@ -92,9 +92,12 @@ set_error(char *err, size_t errlen, const char *what, const std::string &path,
 	std::string r = reason;
 
 	// OpenImageIO's messages may span lines; a tool message is one line.
+	// and one without control bytes, which a file's names may bring.
 	for (char &c : r)
 		if (c == '\n' || c == '\r')
 			c = ' ';
+		else if ((unsigned char)c < 0x20 || c == 0x7f)
+			c = '?';
 	while (!r.empty() && r.back() == ' ')
 		r.pop_back();
 	if (errlen)

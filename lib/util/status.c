@@ -34,6 +34,14 @@ rf_status_name(int status)
 }
 
 void
+rf__printable(char *s)
+{
+	for (; *s; s++)
+		if ((unsigned char)*s < 0x20 || *s == 0x7f)
+			*s = '?';
+}
+
+void
 rf__format(char *buf, size_t size, const char *fmt, ...)
 {
 	va_list ap;

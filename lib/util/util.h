@@ -16,6 +16,10 @@
 /* Writes a message into buf; always terminated, silently truncated. */
 void rf__format(char *buf, size_t size, const char *fmt, ...) RF__PRINTF(3, 4);
 
+/* Replaces each control byte of s (a name read from a file, echoed by a
+ * library's message) by '?': a message is one printable line. */
+void rf__printable(char *s);
+
 /* x * y * z without overflow; 0 and *out set on success. */
 int rf__mul3(size_t x, size_t y, size_t z, size_t *out);
 
