@@ -172,29 +172,10 @@ rf_chain_read_stream(rf_cubemap **cp, struct rf_chain_info *info, rf_reader *r,
 	return rf__chain_read_stream(cp, info, r, NULL, NULL, err, errlen);
 }
 
-static int read_stream(rf_cubemap **cp, struct rf_chain_info *info, rf_reader *r,
-                       const rf_header *first, struct rf__nonfinite *nf, char *err,
-                       size_t errlen);
-
 int
 rf__chain_read_stream(rf_cubemap **cp, struct rf_chain_info *info, rf_reader *r,
                       const rf_header *first, struct rf__nonfinite *nf, char *err,
                       size_t errlen)
-{
-	int rc = read_stream(cp, info, r, first, nf, err, errlen);
-	size_t i;
-
-	/* A message is one line whatever a header value held (a tab in
-	 * MAPPING=, quoted): control characters become '?'. */
-	for (i = 0; rc < 0 && i < errlen && err[i]; i++)
-		if ((unsigned char)err[i] < 0x20 || err[i] == 0x7f)
-			err[i] = '?';
-	return rc;
-}
-
-static int
-read_stream(rf_cubemap **cp, struct rf_chain_info *info, rf_reader *r,
-            const rf_header *first, struct rf__nonfinite *nf, char *err, size_t errlen)
 {
 	const rf_header *h = first;
 	double levels = 1, level = 0, steps = 0, samples = 0;

@@ -27,12 +27,11 @@ static void
 on_error(exr_const_context_t ctx, exr_result_t code, const char *msg)
 {
 	(void)ctx;
-	if (reason && !reason[0]) {
+	/* the core quotes the file's bytes ("Invalid type 'box2i^P'"),
+	 * which rf__format makes printable */
+	if (reason && !reason[0])
 		rf__format(reason, reason_len, "%s",
 		           msg && *msg ? msg : exr_get_default_error_message(code));
-		/* the core quotes the file's bytes: "Invalid type 'box2i^P'" */
-		rf__printable(reason);
-	}
 }
 
 int

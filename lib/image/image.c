@@ -128,7 +128,7 @@ load(void)
 		const char *slash = strrchr(info.dli_fname, '/');
 		struct stat st;
 
-		rf__format(path, sizeof(path), "%.*s/%s", (int)(slash - info.dli_fname),
+		snprintf(path, sizeof(path), "%.*s/%s", (int)(slash - info.dli_fname),
 		           info.dli_fname, RF_IMAGE_MODULE_NAME);
 		if ((api = try_module(path)))
 			return;
@@ -138,12 +138,12 @@ load(void)
 			return;
 		/* An installed tree, moved: the module's directory beside the
 		 * library (pkglibdir is libdir/PACKAGE). */
-		rf__format(path, sizeof(path), "%.*s/%s/%s", (int)(slash - info.dli_fname),
+		snprintf(path, sizeof(path), "%.*s/%s/%s", (int)(slash - info.dli_fname),
 		           info.dli_fname, REFLECT_MODULEDIR_REL, RF_IMAGE_MODULE_NAME);
 		if ((api = try_module(path)) || stat(path, &st) == 0)
 			return;
 	}
-	rf__format(path, sizeof(path), "%s/%s", REFLECT_MODULEDIR, RF_IMAGE_MODULE_NAME);
+	snprintf(path, sizeof(path), "%s/%s", REFLECT_MODULEDIR, RF_IMAGE_MODULE_NAME);
 	api = try_module(path);
 }
 

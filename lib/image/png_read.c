@@ -28,7 +28,6 @@ on_error(png_structp png, png_const_charp msg)
 	struct reading *r = png_get_error_ptr(png);
 
 	rf__format(r->err, r->errlen, "cannot read '%s': %s", r->path, msg);
-	rf__printable(r->err);
 	png_longjmp(png, 1);
 }
 

@@ -94,7 +94,7 @@ write_header(rf_writer *w, const rf_header *h)
 	for (i = 0; (s = rf_header_line(h, i)); i++)
 		if (putline(w, s) < 0)
 			return RF_EIO;
-	rf__format(line, sizeof(line), "NCOLS=%zu\nNROWS=%zu\nNCOMP=%zu",
+	snprintf(line, sizeof(line), "NCOLS=%zu\nNROWS=%zu\nNCOMP=%zu",
 	           rf_header_ncols(h), rf_header_nrows(h), rf_header_nchannels(h));
 	if (putline(w, line) < 0 || put(w, "CHANNELS=", 9) < 0)
 		return RF_EIO;

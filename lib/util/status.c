@@ -51,4 +51,5 @@ rf__format(char *buf, size_t size, const char *fmt, ...)
 	va_start(ap, fmt);
 	vsnprintf(buf, size, fmt, ap);
 	va_end(ap);
+	rf__printable(buf);
 }

@@ -13,11 +13,13 @@
 #define RF__PRINTF(a, b)
 #endif
 
-/* Writes a message into buf; always terminated, silently truncated. */
+/* Writes a message into buf: one printable line whatever its arguments
+ * quote (a header value's tab, a file's bytes), each control byte as
+ * '?'; always terminated, silently truncated.  Text that is not a
+ * message (a path, header lines) is made with snprintf. */
 void rf__format(char *buf, size_t size, const char *fmt, ...) RF__PRINTF(3, 4);
 
-/* Replaces each control byte of s (a name read from a file, echoed by a
- * library's message) by '?': a message is one printable line. */
+/* Replaces each control byte of s by '?', as rf__format does. */
 void rf__printable(char *s);
 
 /* x * y * z without overflow; 0 and *out set on success. */
