@@ -21,21 +21,13 @@
 #include "reflect/envmap.h"
 #include "reflect/shading.h"
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+#define HARNESS "fuzz-cache"
+#include "harness.h"
 
 #define SIZE 8
 
 static char dir[400], entry[512];
 static rf_cubemap *reference;
-
-static void
-check(int cond, const char *what)
-{
-	if (!cond) {
-		fprintf(stderr, "fuzz-cache: %s\n", what);
-		abort();
-	}
-}
 
 static void
 note(void *arg, const char *msg)

@@ -18,16 +18,8 @@
 
 #include "reflect/envmap.h"
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-
-static void
-check(int cond, const char *what)
-{
-	if (!cond) {
-		fprintf(stderr, "fuzz-dds: %s\n", what);
-		abort();
-	}
-}
+#define HARNESS "fuzz-dds"
+#include "harness.h"
 
 int
 LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

@@ -22,27 +22,8 @@
 #include "reflect/envmap.h"
 #include "reflect/shading.h"
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-
-static void
-check(int cond, const char *what)
-{
-	if (!cond) {
-		fprintf(stderr, "fuzz-envstream: %s\n", what);
-		abort();
-	}
-}
-
-static void
-check_message(const char *err)
-{
-	size_t i;
-
-	check(err[0] != '\0', "an error without a message");
-	for (i = 0; err[i]; i++)
-		check((unsigned char)err[i] >= 0x20 && err[i] != 0x7f,
-		      "a control character in a message");
-}
+#define HARNESS "fuzz-envstream"
+#include "harness.h"
 
 static void
 check_finite(const rf_cubemap *c, const char *what)

@@ -18,18 +18,10 @@
 
 #include "reflect/reflect.h"
 
+#define HARNESS "fuzz-header"
+#include "harness.h"
+
 #define ROW_BYTES_CAP ((size_t)1 << 20)
-
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-
-static void
-check(int cond, const char *what)
-{
-	if (!cond) {
-		fprintf(stderr, "fuzz-header: %s\n", what);
-		abort();
-	}
-}
 
 /* Writes the header (no data) and reads it back: it must be the same. */
 static void

@@ -21,7 +21,8 @@
 #include "reflect/reflect.h"
 #include "reflect/shading.h"
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+#define HARNESS "fuzz-numeric"
+#include "harness.h"
 
 #define NCOLS_MAX 64
 /* In per pixel: P N V roughness; the projection adds R D hit.dist
@@ -34,49 +35,12 @@ static const char *const gbuffer_channels[IN_FLOATS] = {
 
 static const char *const direction_channels[3] = { "D.X", "D.Y", "D.Z" };
 
-static void
-check(int cond, const char *what)
-{
-	if (!cond) {
-		fprintf(stderr, "fuzz-numeric: %s\n", what);
-		abort();
-	}
-}
-
 static const char *
 no_key(void *ctx, const char *key)
 {
 	(void)ctx;
 	(void)key;
 	return NULL;
-}
-
-/* A small chain whose texels vary by face, level and position, so a read
- * that lands on the wrong texel changes the value. */
-static rf_cubemap *
-environment(void)
-{
-	static rf_cubemap *c;
-	size_t k, i, j, n;
-	int f;
-
-	if (c)
-		return c;
-	check(rf_cubemap_create(&c, 8, 4) == 0, "cubemap_new");
-	for (k = 0; k < 4; k++) {
-		n = rf_cubemap_level_size(c, k);
-		for (f = 0; f < 6; f++)
-			for (j = 0; j < n; j++)
-				for (i = 0; i < n; i++) {
-					float *t = rf_cubemap_texel(c, k, (enum rf_face)f, i, j);
-
-					t[0] = 1.0f + (float)f + 0.1f * (float)i;
-					t[1] = 2.0f + 0.1f * (float)j;
-					t[2] = 1.0f + (float)k;
-				}
-		rf_cubemap_seal_level(c, k);
-	}
-	return c;
 }
 
 /* The projected row shaded with or without the vector reads; the pass's

@@ -6,13 +6,12 @@
  * the file can hold, each value there; a refusal says why in one
  * printable line.
  */
+#define HARNESS "fuzz-png"
 #include "image-harness.h"
-
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int
 LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-	image_run("fuzz-png", data, size);
+	image_run(data, size);
 	return 0;
 }

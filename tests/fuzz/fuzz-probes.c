@@ -23,26 +23,8 @@
 #include "reflect/reflect.h"
 #include "reflect/shading.h"
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-
-static void
-check(int cond, const char *what)
-{
-	if (!cond) {
-		fprintf(stderr, "fuzz-probes: %s\n", what);
-		abort();
-	}
-}
-
-static void
-check_message(const char *err)
-{
-	const char *c;
-
-	check(err[0] != '\0', "a refusal without a message");
-	for (c = err; *c; c++)
-		check((unsigned char)*c >= 0x20 && *c != 0x7f, "a control byte in a message");
-}
+#define HARNESS "fuzz-probes"
+#include "harness.h"
 
 static void
 check_probe(const struct rf_probe *p)

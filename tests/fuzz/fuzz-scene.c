@@ -12,16 +12,8 @@
 
 #include "reflect/scene.h"
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-
-static void
-check(int cond, const char *what)
-{
-	if (!cond) {
-		fprintf(stderr, "fuzz-scene: %s\n", what);
-		abort();
-	}
-}
+#define HARNESS "fuzz-scene"
+#include "harness.h"
 
 int
 LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

@@ -20,7 +20,8 @@
 #include "reflect/reflect.h"
 #include "reflect/shading.h"
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+#define HARNESS "fuzz-shade"
+#include "harness.h"
 
 #define NCOLS_MAX 32
 #define OPTION_BYTES 4
@@ -32,42 +33,6 @@ static const char *const channels[CHANNELS] = {
 	"emission.R", "emission.G", "emission.B", "D.X", "D.Y", "D.Z",
 	RF_SHADE_ROUGHNESS, RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHADE_SPEC_B
 };
-
-static void
-check(int cond, const char *what)
-{
-	if (!cond) {
-		fprintf(stderr, "fuzz-shade: %s\n", what);
-		abort();
-	}
-}
-
-/* A small chain whose texels vary by face, level and position. */
-static rf_cubemap *
-environment(void)
-{
-	static rf_cubemap *c;
-	size_t k, i, j, n;
-	int f;
-
-	if (c)
-		return c;
-	check(rf_cubemap_create(&c, 8, 4) == 0, "cubemap_create");
-	for (k = 0; k < 4; k++) {
-		n = rf_cubemap_level_size(c, k);
-		for (f = 0; f < 6; f++)
-			for (j = 0; j < n; j++)
-				for (i = 0; i < n; i++) {
-					float *t = rf_cubemap_texel(c, k, (enum rf_face)f, i, j);
-
-					t[0] = 1.0f + (float)f + 0.1f * (float)i;
-					t[1] = 2.0f + 0.1f * (float)j;
-					t[2] = 1.0f + (float)k;
-				}
-		rf_cubemap_seal_level(c, k);
-	}
-	return c;
-}
 
 struct run {
 	float *px;     /* the output row, or NULL when the row was refused */

@@ -19,16 +19,8 @@
 
 #include "cli.h"
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-
-static void
-check(int cond, const char *what)
-{
-	if (!cond) {
-		fprintf(stderr, "fuzz-sniff: %s\n", what);
-		abort();
-	}
-}
+#define HARNESS "fuzz-sniff"
+#include "harness.h"
 
 struct feed {
 	int fd;
