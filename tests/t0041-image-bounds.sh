@@ -82,8 +82,40 @@ then
 		test_grep "cannot hold it" err &&
 		REFLECT_READERS=module refused big.png
 	'
+	# libpng reads and zeroes a whole text chunk before it looks at
+	# it: 300 bytes claiming a 700 MB tEXt chunk cost 707 MB.
+	test_expect_success 'a PNG chunk we do not use costs no memory, whatever it claims' '
+		$PY - <<-\PYEOF &&
+		import struct, zlib
+		def chunk(t, d, n=None):
+		    n = len(d) if n is None else n
+		    return struct.pack(">I", n) + t + d + struct.pack(">I", zlib.crc32(t + d))
+		ihdr = struct.pack(">IIBBBBB", 4, 2, 8, 0, 0, 0, 0)
+		head = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr)
+		idat = chunk(b"IDAT", zlib.compress(b"\0" * 10)) + chunk(b"IEND", b"")
+		text = chunk(b"tEXt", b"Comment\0" + b"x" * 200, 700 << 20)
+		open("claims.png", "wb").write(head + text + idat)
+		open("texts.png", "wb").write(head + chunk(b"tEXt", b"Comment\0" + b"x" * 200) +
+		                              chunk(b"zTXt", b"Comment\0\0" + zlib.compress(b"y" * 300)) +
+		                              chunk(b"iCCP", b"p\0\0" + zlib.compress(b"junk")) + idat)
+		PYEOF
+		cat >peak.py <<-\PYEOF &&
+		import resource, subprocess, sys
+		r = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=open("err", "w"))
+		kb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+		print("status", r.returncode, "peak", kb, "KB")
+		sys.exit(r.returncode != 1 or kb > 200000)
+		PYEOF
+		$PY peak.py reflect-import claims.png &&
+		test_one_line_message reflect-import err &&
+		test_grep "claims.png${SQ}: the file ends inside a chunk: truncated or damaged" err &&
+		reflect-import texts.png | reflect-info >info &&
+		test_grep "NCOLS=4" info &&
+		test_grep "NROWS=2" info
+	'
 else
 	test_skip 'a PNG and a TIFF that claim 2^28 values in 100 bytes' 'no python3'
+	test_skip 'a PNG chunk we do not use costs no memory, whatever it claims' 'no python3'
 fi
 
 test_done
