@@ -17,10 +17,10 @@
 #include "reflect/shading.h"
 #include "reflect/scene.h"
 /* The box's geometry as the projection plugins have it, to the bit. */
-#include "project/projection.h"
-#include "project/bevel.h"
-#include "sequences.h"
-#include "soa.h"
+#include "probe/projection.h"
+#include "probe/bevel.h"
+#include "maths/sequences.h"
+#include "maths/soa.h"
 
 struct rf_plugin_host {
 	struct rf_host table; /* its ctx is this host */
@@ -38,9 +38,9 @@ struct rf_plugin_host {
 	rf_cubemap *plain;
 	struct rf__rgba_levels levels;
 	int vector;
-	struct box box;
+	struct rf__box box;
 	int wide_rays; /* project_rays in eight lanes (AVX2) */
-	struct bevel bevel; /* the probe's rounded box, when probe.bevel > 0 */
+	struct rf__bevel bevel; /* the probe's rounded box, when probe.bevel > 0 */
 	/* The first fail() of a block: set once (failed), read after the
 	 * block's threads are joined. */
 	int failed;
@@ -145,8 +145,8 @@ lod_to_roughness(void *ctx, float lod)
 /* project_rays' loop for p inside the box, whole vectors of rays at a
  * time (project-lanes.h), by the same operations in the same order (the
  * same bits as one at a time). */
-#define LANES_BODY "plugin/project-lanes.h"
-#include "lanes-widths.h"
+#define RF__LANES_BODY "plugin/project-lanes.h"
+#include "maths/lanes-widths.h"
 
 /* How many rays from p inside the box the vector loops did. */
 static uint32_t
@@ -155,7 +155,7 @@ project_rays_vector(const rf_plugin_host *h, uint32_t n, const float p[3], const
 {
 	uint32_t i = 0;
 
-#if defined(LANES_WIDE)
+#if defined(RF__LANES_WIDE)
 	if (h->wide_rays)
 		i = project_lanes_8(&h->box, i, n, p, dirs, lookup, dist, jacobian);
 #endif
@@ -166,7 +166,7 @@ project_rays_vector(const rf_plugin_host *h, uint32_t n, const float p[3], const
 }
 
 /* The rays' exits from the rounded box, as the bevel mode finds them
- * (bevel_exit), the Jacobian's cosines taken to the shape's normal at
+ * (rf__bevel_exit), the Jacobian's cosines taken to the shape's normal at
  * each exit. */
 static void
 project_rays_bevel(const rf_plugin_host *h, uint32_t n, const float p[3], const float *dirs,
@@ -178,7 +178,7 @@ project_rays_bevel(const rf_plugin_host *h, uint32_t n, const float p[3], const 
 		const float *dir = dirs + 3 * i;
 		float *d = lookup + 3 * i, t, reach, nrm[3], cos_c, cos_p;
 
-		if (!h->probe.box_projection || bevel_exit(&h->bevel, p, dir, &t, nrm) < 0) {
+		if (!h->probe.box_projection || rf__bevel_exit(&h->bevel, p, dir, &t, nrm) < 0) {
 			d[0] = dir[0];
 			d[1] = dir[1];
 			d[2] = dir[2];
@@ -186,7 +186,7 @@ project_rays_bevel(const rf_plugin_host *h, uint32_t n, const float p[3], const 
 			jacobian[i] = 1.0f;
 			continue;
 		}
-		lookup_from_hit(&h->box, p, dir, t, d, &reach);
+		rf__lookup_from_hit(&h->box, p, dir, t, d, &reach);
 		dist[i] = t;
 		cos_c = fabsf(d[0] * nrm[0] + d[1] * nrm[1] + d[2] * nrm[2]);
 		cos_p = fabsf(dir[0] * nrm[0] + dir[1] * nrm[1] + dir[2] * nrm[2]);
@@ -195,15 +195,15 @@ project_rays_bevel(const rf_plugin_host *h, uint32_t n, const float p[3], const 
 	}
 }
 
-/* The rays' exits from the box, as box_exit and lookup_from_hit find
+/* The rays' exits from the box, as rf__box_exit and rf__lookup_from_hit find
  * them (the same quotients, so the same bits), with the face each leaves
- * by, which box_exit does not say: the axis of the nearest wall. */
+ * by, which rf__box_exit does not say: the axis of the nearest wall. */
 static void
 project_rays(void *ctx, uint32_t n, const float p[3], const float *dirs, float *lookup,
              float *dist, float *jacobian)
 {
 	const rf_plugin_host *h = ctx;
-	const struct box *b = &h->box;
+	const struct rf__box *b = &h->box;
 	int inside = h->probe.box_projection, k;
 	uint32_t i;
 
@@ -223,7 +223,7 @@ project_rays(void *ctx, uint32_t n, const float p[3], const float *dirs, float *
 		for (k = 0; inside && k < 3; k++) {
 			float tk;
 
-			if (!(fabsf(dir[k]) > AXIS_EPSILON))
+			if (!(fabsf(dir[k]) > RF__AXIS_EPSILON))
 				continue;
 			tk = ((dir[k] > 0.0f ? b->hi[k] : b->lo[k]) - p[k]) / dir[k];
 			if (tk < t) {
@@ -241,7 +241,7 @@ project_rays(void *ctx, uint32_t n, const float p[3], const float *dirs, float *
 		}
 		if (t < 0.0f)
 			t = 0.0f; /* on a face (within the slack), leaving it */
-		lookup_from_hit(b, p, dir, t, d, &reach);
+		rf__lookup_from_hit(b, p, dir, t, d, &reach);
 		dist[i] = t;
 		/* dw_C / dw_P = |x - P|^2 cos_C / (|x - C|^2 cos_P), the cosines to
 		 * the face's normal: a wall patch seen from both points. */
@@ -374,7 +374,7 @@ random_pairs(void *ctx, int pattern, uint32_t x, uint32_t y, uint32_t frame, uin
 	uint32_t k, m, j;
 
 	if (pattern == RF_SEQUENCE_WHITE) {
-		sequence_pairs(SEQUENCE_WHITE, h->table.seed, frame, 0, x, y, i0, n, NULL, NULL, u0,
+		rf__sequence_pairs(SEQUENCE_WHITE, h->table.seed, frame, 0, x, y, i0, n, NULL, NULL, u0,
 		               u1);
 		return;
 	}
@@ -382,8 +382,8 @@ random_pairs(void *ctx, int pattern, uint32_t x, uint32_t y, uint32_t frame, uin
 	for (k = 0; k < n; k += m) {
 		m = n - k < 64 ? n - k : 64;
 		for (j = 0; j < m; j++)
-			hammersley(i0 + k + j, n_all ? n_all : n, &ham0[j], &ham1[j]);
-		sequence_pairs(pattern == RF_SEQUENCE_BLUE ? SEQUENCE_BLUE : SEQUENCE_LOW_DISCREPANCY,
+			rf__hammersley(i0 + k + j, n_all ? n_all : n, &ham0[j], &ham1[j]);
+		rf__sequence_pairs(pattern == RF_SEQUENCE_BLUE ? SEQUENCE_BLUE : SEQUENCE_LOW_DISCREPANCY,
 		               h->table.seed, frame, frame, x, y, i0 + k, m, ham0, ham1, u0 + k,
 		               u1 + k);
 	}
@@ -402,11 +402,11 @@ declare_bevel(void *ctx, float radius, int grown)
 {
 	rf_plugin_host *h = ctx;
 
-	if (!(radius >= 0.0f) || !h->table.probe || radius > bevel_max_radius(&h->probe))
+	if (!(radius >= 0.0f) || !h->table.probe || radius > rf__bevel_max_radius(&h->probe))
 		return -1;
 	h->probe.bevel = radius;
 	h->probe.bevel_grown = radius > 0.0f && grown;
-	h->bevel = bevel_of_probe(&h->probe, radius, grown);
+	h->bevel = rf__bevel_of_probe(&h->probe, radius, grown);
 	return 0;
 }
 
@@ -466,7 +466,7 @@ rf_plugin_host_create(rf_plugin_host **hp)
 	if (!(*hp = h = calloc(1, sizeof(*h))))
 		return RF_ENOMEM;
 	h->table.size = sizeof(h->table);
-	h->wide_rays = lanes_wide();
+	h->wide_rays = rf__lanes_wide();
 	h->table.abi_major = RF_PLUGIN_ABI_MAJOR;
 	h->table.abi_minor = RF_PLUGIN_ABI_MINOR;
 	h->table.ctx = h;
@@ -544,8 +544,8 @@ rf_plugin_host_set_probe(rf_plugin_host *h, const struct rf_probe *probe)
 {
 	if (probe) {
 		h->probe = *probe;
-		h->box = box_of_probe(probe);
-		h->bevel = bevel_of_probe(probe, probe->bevel, probe->bevel_grown);
+		h->box = rf__box_of_probe(probe);
+		h->bevel = rf__bevel_of_probe(probe, probe->bevel, probe->bevel_grown);
 	}
 	h->table.probe = probe ? &h->probe : NULL;
 	if (probe) {

@@ -7,11 +7,11 @@
  * lanes-widths.h (see lanes.h).
  */
 
-#include "lanes.h"
+#include "maths/lanes.h"
 
 /* Rays i and on, LANES at a time; returns where it stopped. */
 LANES_ATTR static uint32_t
-NAME(project_lanes)(const struct box *b, uint32_t i, uint32_t n, const float p[3],
+NAME(project_lanes)(const struct rf__box *b, uint32_t i, uint32_t n, const float p[3],
                     const float *dirs, float *lookup, float *dist, float *jacobian)
 {
 	const VF inf = NAME(v_splat)(INFINITY), zero = NAME(v_splat)(0.0f);
@@ -30,7 +30,7 @@ NAME(project_lanes)(const struct box *b, uint32_t i, uint32_t n, const float p[3
 
 			tk = (wall - p[k]) / dv[k];
 			ad = (VF)((VI)dv[k] & 0x7FFFFFFF);
-			take = (ad > AXIS_EPSILON) & (tk < t);
+			take = (ad > RF__AXIS_EPSILON) & (tk < t);
 			t = NAME(v_select)(take, tk, t);
 			axis = (k & take) | (axis & ~take);
 		}

@@ -30,7 +30,7 @@
 
 #include "envmap/envmap-internal.h"
 #include "envmap/rgba_levels.h"
-#include "project/projection.h"
+#include "probe/projection.h"
 #include "util/pool.h"
 #include "scene/scene-internal.h"
 #include "reflect/plugin.h"
@@ -70,7 +70,7 @@ struct capture {
 	enum rf_mapping mapping;
 	float steps;
 	float shq[3][9];
-	struct box box;
+	struct rf__box box;
 	rf_cubemap *out;
 	size_t n;
 	size_t edge_samples, object_samples; /* of the bounce being rendered */
@@ -319,8 +319,8 @@ shade_object(const struct capture *c, const struct rf_hit *h, const double d[3],
 	nv = n[0] * v[0] + n[1] * v[1] + n[2] * v[2];
 	for (k = 0; k < 3; k++)
 		dir[k] = r[k] = 2.0f * nv * n[k] - v[k];
-	if (c->probe->box_projection && box_exit(&c->box, p, r, &t) == 0)
-		lookup_from_hit(&c->box, p, r, t, dir, &reach);
+	if (c->probe->box_projection && rf__box_exit(&c->box, p, r, &t) == 0)
+		rf__lookup_from_hit(&c->box, p, r, t, dir, &reach);
 	lod = rf_roughness_to_lod(c->mapping, c->steps, h->roughness);
 	{
 		/* the shading pass's own read of the levels (reflect-shade -m
@@ -564,7 +564,7 @@ rf_scene_capture(const rf_scene *s, size_t probe, const struct rf_capture_option
 	pr.box_projection = c.probe->box_projection;
 	pr.bevel = 0;
 	pr.bevel_grown = 0;
-	c.box = box_of_probe(&pr);
+	c.box = rf__box_of_probe(&pr);
 	make_frames(c.frames);
 	c.k = calloc(s->nobjects + 1, RF__ORIGIN_STRIDE * sizeof(double));
 	c.visible = calloc(s->nobjects + 1, sizeof(*c.visible));

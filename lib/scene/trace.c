@@ -23,7 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ggx.h"
+#include "maths/ggx.h"
 #include "util/pool.h"
 #include "scene/scene-internal.h"
 
@@ -37,7 +37,7 @@ struct rf_tracer {
 	uint32_t *seen;     /* objects reflected rays can meet */
 	size_t nseen;
 	double *k;          /* per thread: rf__trace_prepare for a pixel */
-	/* cos and sin of 2 pi ggx_radical_inverse(i) for a half's samples: a
+	/* cos and sin of 2 pi rf__ggx_radical_inverse(i) for a half's samples: a
 	 * pixel's rotation turns them by angle addition instead of a sincos
 	 * a sample (a tenth of the time) */
 	float *turn;
@@ -99,7 +99,7 @@ rf_tracer_create(struct rf_tracer **tp, const rf_scene *s, size_t width, size_t 
 		return RF_ENOMEM;
 	}
 	for (i = 0; i < ((size_t)o->samples + 1) / 2; i++) {
-		double a = 2.0 * M_PI * ggx_radical_inverse((uint32_t)i);
+		double a = 2.0 * M_PI * rf__ggx_radical_inverse((uint32_t)i);
 
 		t->turn[2 * i] = (float)cos(a);
 		t->turn[2 * i + 1] = (float)sin(a);
@@ -224,7 +224,7 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 	vl[0] = rf__dot(v, x);
 	vl[1] = rf__dot(v, y);
 	vl[2] = rf__dot(v, n);
-	lv = ggx_lambda(alpha2, vl[2]); /* vl[2] > 0: trace_row asks */
+	lv = rf__ggx_lambda(alpha2, vl[2]); /* vl[2] > 0: trace_row asks */
 	/* Heitz's view-stretched frame */
 	vh[0] = a * vl[0];
 	vh[1] = a * vl[1];
@@ -282,7 +282,7 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 				i = i0 + j;
 				float u0 = ((float)i + 0.5f) * inv_k + (float)u0r;
 				const float c0 = turn[2 * j], s0 = turn[2 * j + 1];
-				/* cos and sin of 2 pi (ggx_radical_inverse(i) + u1r) */
+				/* cos and sin of 2 pi (rf__ggx_radical_inverse(i) + u1r) */
 				const float cs = c0 * rc - s0 * rs, sn = s0 * rc + c0 * rs;
 				float r, p1, p2, w, nhx, nhy, nhz, nex, ney, nez, len2, inv, vn;
 				float lx, ly, lz, lzc, l0, l1, l2, wt;

@@ -8,7 +8,7 @@
 #include <stdint.h>
 
 /* the radical inverse and Smith's Lambda, in double */
-#include "ggx.h"
+#include "maths/ggx.h"
 
 /*
  * Samples per entry.  Drawing the GGX distribution of *visible* normals
@@ -33,7 +33,7 @@ pow5(double x)
 static inline void
 disc_point(unsigned i, unsigned n, double p[3])
 {
-	double phi = 2.0 * M_PI * ggx_radical_inverse(i);
+	double phi = 2.0 * M_PI * rf__ggx_radical_inverse(i);
 
 	p[0] = sqrt(((double)i + 0.5) / (double)n);
 	p[1] = cos(phi);
@@ -69,7 +69,7 @@ integrate(double nv, double roughness, const double *disc, unsigned n, double *a
 	hx /= len;
 	hz /= len;
 	s = 0.5 * (1.0 + hz);
-	lv = ggx_lambda(a2, nv);
+	lv = rf__ggx_lambda(a2, nv);
 	for (i = 0; i < n; i++) {
 		const double *p = disc + 3 * i;
 		double t1 = p[0] * p[1], t2 = p[0] * p[2], t3, mx, my, mz, vh, lz, w, fc;
@@ -91,7 +91,7 @@ integrate(double nv, double roughness, const double *disc, unsigned n, double *a
 		if (lz <= 0.0 || vh <= 0.0)
 			continue;
 		/* Visible-normal sampling leaves G2 / G1(v) as the weight. */
-		w = (1.0 + lv) / (1.0 + lv + ggx_lambda(a2, lz));
+		w = (1.0 + lv) / (1.0 + lv + rf__ggx_lambda(a2, lz));
 		fc = pow5(1.0 - vh);
 		sum_a += w * (1.0 - fc);
 		sum_b += w * fc;

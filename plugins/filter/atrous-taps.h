@@ -6,7 +6,7 @@
  * at either width.  Included by lanes-widths.h (see lanes.h).
  */
 
-#include "../lanes.h"
+#include "maths/lanes.h"
 
 /* exp_neg, lane by lane the same operations */
 LANES_ATTR static inline VF

@@ -215,8 +215,8 @@ lobe_limit(const struct atrous *a, const struct rf_span *span, float *act)
  * vector code, the same bits wherever it lies and at either width.  A
  * tap off the row's ends reads lanes one by one, an objid of NaN for the
  * lanes outside (which then weigh nothing). */
-#define LANES_BODY "filter/atrous-taps.h"
-#include "../lanes-widths.h"
+#define RF__LANES_BODY "atrous-taps.h"
+#include "maths/lanes-widths.h"
 
 /* Per-instance scratch, grown in run() (once a size, not per pixel). */
 static int
@@ -297,7 +297,7 @@ group(const struct atrous *a, const struct rf_span *span, uint32_t i, const floa
 	for (v0 = 0; v0 < nv; v0 += 64) {
 		uint32_t v1 = v0 + 64 < nv ? v0 + 64 : nv;
 
-#if defined(LANES_WIDE)
+#if defined(RF__LANES_WIDE)
 		if (a->wide) {
 			taps_8(a, span, (long)i, lp + i, v0, v1, wsum, vsum[0]);
 		} else
@@ -347,7 +347,7 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	a->inv_rough = (float)(1.0 / values[ROUGHNESS]);
 	a->inv_color = values[COLOR] > 0.0 ? (float)(1.0 / values[COLOR]) : 0.0f;
 	a->lobe = (float)values[LOBE];
-	a->wide = lanes_wide();
+	a->wide = rf__lanes_wide();
 	for (i = 0; i < a->passes; i++)
 		radius[i] = 2u << i;
 	if (host->filter_passes(host->ctx, a->passes, radius) < 0) {

@@ -23,7 +23,7 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "../ggx.h"
+#include "maths/ggx.h"
 
 /* N and Ng closer than this (the sine of their angle) are one normal. */
 #define HORIZON_SAME_NORMAL 1e-4
@@ -36,12 +36,12 @@ horizon_share(const float nf[3], const float ngf[3], const float vf[3], double r
 	double n[3] = { nf[0], nf[1], nf[2] }, ng[3] = { ngf[0], ngf[1], ngf[2] };
 	double v[3] = { vf[0], vf[1], vf[2] }, t[3], b[3], c[3], vl[3];
 	double alpha = r * r, a2, lv, num = 0.0, den = 0.0, sign, aa, bb;
-	struct ggx_vndf g;
+	struct rf__ggx_vndf g;
 	int i;
 
-	ggx_normalise(n);
-	ggx_normalise(ng);
-	ggx_normalise(v);
+	rf__ggx_normalise(n);
+	rf__ggx_normalise(ng);
+	rf__ggx_normalise(v);
 	c[0] = n[1] * ng[2] - n[2] * ng[1];
 	c[1] = n[2] * ng[0] - n[0] * ng[2];
 	c[2] = n[0] * ng[1] - n[1] * ng[0];
@@ -66,19 +66,19 @@ horizon_share(const float nf[3], const float ngf[3], const float vf[3], double r
 	if (alpha < 1e-4)
 		alpha = 1e-4;
 	a2 = alpha * alpha;
-	lv = ggx_lambda(a2, vl[2]);
-	ggx_vndf_init(&g, vl, alpha);
+	lv = rf__ggx_lambda(a2, vl[2]);
+	rf__ggx_vndf_init(&g, vl, alpha);
 	for (i = 0; i < k; i++) {
 		double h[3], l[3], vdh, w, lw;
 		int j;
 
-		ggx_vndf_normal(&g, (i + 0.5) / k, ggx_radical_inverse((uint32_t)i), h);
+		rf__ggx_vndf_normal(&g, (i + 0.5) / k, rf__ggx_radical_inverse((uint32_t)i), h);
 		vdh = vl[0] * h[0] + vl[1] * h[1] + vl[2] * h[2];
 		for (j = 0; j < 3; j++)
 			l[j] = 2.0 * vdh * h[j] - vl[j];
 		if (!(l[2] > 0.0))
 			continue;
-		w = (1.0 + lv) / (1.0 + lv + ggx_lambda(a2, l[2]));
+		w = (1.0 + lv) / (1.0 + lv + rf__ggx_lambda(a2, l[2]));
 		den += w;
 		/* l in the world, against Ng */
 		lw = 0.0;

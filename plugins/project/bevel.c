@@ -15,8 +15,8 @@
 
 #include "reflect/plugin.h"
 
-#include "bevel.h"
-#include "projection.h"
+#include "probe/bevel.h"
+#include "probe/projection.h"
 
 enum { RADIUS, OFFSET, ROUGHEN, NPARAMS };
 
@@ -54,11 +54,11 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 		         "stream with PROBE_BOX and PROBE_CENTER");
 		return -1;
 	}
-	if (values[RADIUS] > bevel_max_radius(host->probe)) {
+	if (values[RADIUS] > rf__bevel_max_radius(host->probe)) {
 		snprintf(err, errlen, "radius %g is more than the probe box's smallest half "
 		         "extent, %g: give radius=%g or less", values[RADIUS],
-		         (double)bevel_max_radius(host->probe),
-		         (double)bevel_max_radius(host->probe));
+		         (double)rf__bevel_max_radius(host->probe),
+		         (double)rf__bevel_max_radius(host->probe));
 		return -1;
 	}
 	if (host->size < offsetof(struct rf_host, declare_bevel) + sizeof(host->declare_bevel) ||
@@ -76,7 +76,7 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	m->radius = (float)values[RADIUS];
 	m->grown = values[OFFSET] != 0.0;
 	m->roughen = (float)values[ROUGHEN];
-	m->max_radius = bevel_max_radius(host->probe);
+	m->max_radius = rf__bevel_max_radius(host->probe);
 	*state = m;
 	return 0;
 }
@@ -85,8 +85,8 @@ static void
 run(void *state, const struct rf_span *span)
 {
 	const struct bevel_mode *m = state;
-	const struct bevel shape = bevel_of_probe(&m->probe, m->radius, m->grown);
-	const struct box box = box_of_probe(&m->probe);
+	const struct rf__bevel shape = rf__bevel_of_probe(&m->probe, m->radius, m->grown);
+	const struct rf__box box = rf__box_of_probe(&m->probe);
 	const int projecting = m->probe.box_projection;
 	const float *in = span->in;
 	float *out = span->out;
@@ -96,26 +96,26 @@ run(void *state, const struct rf_span *span)
 		float p[3] = { in[0], in[1], in[2] }, r[3], d[3], hit = 0.0f, reach = 0.0f;
 		int ok;
 
-		reflection_vector(in + 3, in + 6, r);
+		rf__reflection_vector(in + 3, in + 6, r);
 		if (!projecting)
 			ok = -1;
 		else if (m->radius == 0.0f && m->roughen == 0.0f)
-			ok = box_exit(&box, p, r, &hit); /* exactly box */
+			ok = rf__box_exit(&box, p, r, &hit); /* exactly box */
 		else
-			ok = bevel_exit(&shape, p, r, &hit, NULL);
+			ok = rf__bevel_exit(&shape, p, r, &hit, NULL);
 		if (ok == 0 && m->roughen > 0.0f && in[9] > 0.0f) {
 			const float alpha = in[9] * in[9];
 			float grown = m->radius + m->roughen * 2.0f * alpha * hit;
-			struct bevel wider;
+			struct rf__bevel wider;
 
 			if (grown > m->max_radius)
 				grown = m->max_radius;
-			wider = bevel_of_probe(&m->probe, grown, m->grown);
-			ok = bevel_exit(&wider, p, r, &hit, NULL);
+			wider = rf__bevel_of_probe(&m->probe, grown, m->grown);
+			ok = rf__bevel_exit(&wider, p, r, &hit, NULL);
 		}
 		if (ok == 0)
-			lookup_from_hit(&box, p, r, hit, d, &reach);
-		projection_out(out, ok, r, d, hit, reach);
+			rf__lookup_from_hit(&box, p, r, hit, d, &reach);
+		rf__projection_out(out, ok, r, d, hit, reach);
 	}
 }
 

@@ -3,7 +3,7 @@
 
 #include "reflect/plugin.h"
 
-#include "projection.h"
+#include "probe/projection.h"
 
 static const char *const inputs[] = {
 	"P.X", "P.Y", "P.Z", "N.X", "N.Y", "N.Z", "V.X", "V.Y", "V.Z", NULL
@@ -16,14 +16,14 @@ static int
 create(const struct rf_host *host, const double *values, void **state,
        char *err, size_t errlen)
 {
-	return reflection_create(host, state, err, errlen);
+	return rf__reflection_create(host, state, err, errlen);
 }
 
 static void
 run(void *state, const struct rf_span *span)
 {
 	const struct rf_probe *probe = state;
-	const struct box box = box_of_probe(probe);
+	const struct rf__box box = rf__box_of_probe(probe);
 	const int projecting = probe->box_projection;
 	const float *in = span->in;
 	float *out = span->out;
@@ -33,11 +33,11 @@ run(void *state, const struct rf_span *span)
 		float p[3] = { in[0], in[1], in[2] }, r[3], d[3], hit = 0.0f, reach = 0.0f;
 		int ok;
 
-		reflection_vector(in + 3, in + 6, r);
-		ok = projecting ? box_exit(&box, p, r, &hit) : -1;
+		rf__reflection_vector(in + 3, in + 6, r);
+		ok = projecting ? rf__box_exit(&box, p, r, &hit) : -1;
 		if (ok == 0)
-			lookup_from_hit(&box, p, r, hit, d, &reach);
-		projection_out(out, ok, r, d, hit, reach);
+			rf__lookup_from_hit(&box, p, r, hit, d, &reach);
+		rf__projection_out(out, ok, r, d, hit, reach);
 	}
 }
 

@@ -3,7 +3,7 @@
 
 #include "reflect/plugin.h"
 
-#include "projection.h"
+#include "probe/projection.h"
 
 static const char *const inputs[] = {
 	"N.X", "N.Y", "N.Z", "V.X", "V.Y", "V.Z", NULL
@@ -28,7 +28,7 @@ run(void *state, const struct rf_span *span)
 	uint32_t i;
 
 	for (i = 0; i < span->npix; i++, in += 6, out += 8) {
-		reflection_vector(in, in + 3, out);
+		rf__reflection_vector(in, in + 3, out);
 		out[3] = out[0];
 		out[4] = out[1];
 		out[5] = out[2];

@@ -32,7 +32,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "../ggx.h"
+#include "maths/ggx.h"
 #include "footprint-shape.h"
 
 #define SAMPLES 4096
@@ -103,7 +103,7 @@ measure_kernel(double pr, struct sample *s, double *vw)
 	size_t k, n = 0;
 
 	for (k = 0; k < SAMPLES; k++) {
-		double u0 = (k + 0.5) / SAMPLES, u1 = ggx_radical_inverse((uint32_t)k);
+		double u0 = (k + 0.5) / SAMPLES, u1 = rf__ggx_radical_inverse((uint32_t)k);
 		double t2 = alpha * alpha * u0 / (1.0 - u0), ch = 1.0 / sqrt(1.0 + t2);
 		double sh = sqrt(1.0 - ch * ch), a = 2.0 * M_PI * u1, h[3], l[3];
 
@@ -130,7 +130,7 @@ measure(double theta_v, double pr, struct sample *s, double *vw, double out[4])
 {
 	double alpha = pr * pr, a2 = alpha * alpha, mu = cos(theta_v), v[3], lv;
 	double total = 0.0, phi25, phi50, phi75, d[3];
-	struct ggx_vndf g;
+	struct rf__ggx_vndf g;
 	size_t k, n = 0;
 
 	if (mu < 1e-3)
@@ -138,19 +138,19 @@ measure(double theta_v, double pr, struct sample *s, double *vw, double out[4])
 	v[0] = sqrt(1.0 - mu * mu);
 	v[1] = 0.0;
 	v[2] = mu;
-	lv = ggx_lambda(a2, mu);
-	ggx_vndf_init(&g, v, alpha);
+	lv = rf__ggx_lambda(a2, mu);
+	rf__ggx_vndf_init(&g, v, alpha);
 	for (k = 0; k < SAMPLES; k++) {
 		double h[3], vdh, *l = s[n].l;
 
-		ggx_vndf_normal(&g, (k + 0.5) / SAMPLES, ggx_radical_inverse((uint32_t)k), h);
+		rf__ggx_vndf_normal(&g, (k + 0.5) / SAMPLES, rf__ggx_radical_inverse((uint32_t)k), h);
 		vdh = v[0] * h[0] + v[1] * h[1] + v[2] * h[2];
 		l[0] = 2.0 * vdh * h[0] - v[0];
 		l[1] = 2.0 * vdh * h[1] - v[1];
 		l[2] = 2.0 * vdh * h[2] - v[2];
 		if (!(l[2] > 0.0))
 			continue; /* below the surface (or no normal): no light */
-		s[n].w = (1.0 + lv) / (1.0 + lv + ggx_lambda(a2, l[2]));
+		s[n].w = (1.0 + lv) / (1.0 + lv + rf__ggx_lambda(a2, l[2]));
 		s[n].phi = atan2(-l[0], l[2]);
 		total += s[n].w;
 		n++;

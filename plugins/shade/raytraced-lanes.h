@@ -9,7 +9,7 @@
  * the scalar loops.  Included by lanes-widths.h (see lanes.h).
  */
 
-#include "../lanes.h"
+#include "maths/lanes.h"
 
 /* Heitz's sampler (sample_vndf_one), LANES rays at a time. */
 LANES_ATTR static size_t

@@ -35,9 +35,9 @@
 #include <string.h>
 
 #include "reflect/plugin.h"
-#include "../soa.h"
+#include "maths/soa.h"
 
-#include "../sequences.h"
+#include "maths/sequences.h"
 
 enum { SAMPLES, PATTERN, ANIMATE, SAMPLER, ESTIMATOR, MASKING, MIPOFFSET, SEED, FRAMES,
        NPARAMS };
@@ -117,7 +117,7 @@ static void
 random_pairs(const struct raytraced *rt, uint32_t px, uint32_t py, uint32_t n,
              float *restrict u0, float *restrict u1)
 {
-	sequence_pairs(rt->pattern, rt->seed, rt->animate ? rt->frame : 0, rt->r2_step, px, py,
+	rf__sequence_pairs(rt->pattern, rt->seed, rt->animate ? rt->frame : 0, rt->r2_step, px, py,
 	               0, n, rt->ham0, rt->ham1, u0, u1);
 }
 
@@ -251,8 +251,8 @@ sample_vndf_one(const struct vndf_view *s, float u0, float u1, float *hx, float 
 }
 
 /* the lobe's loops in vectors of 4 lanes, and of 8 with AVX2 */
-#define LANES_BODY "shade/raytraced-lanes.h"
-#include "../lanes-widths.h"
+#define RF__LANES_BODY "raytraced-lanes.h"
+#include "maths/lanes-widths.h"
 
 static void
 sample_vndf_batch(int wide, const struct vndf_view *s, size_t n, const float *restrict u0,
@@ -261,7 +261,7 @@ sample_vndf_batch(int wide, const struct vndf_view *s, size_t n, const float *re
 {
 	size_t i = 0;
 
-#if defined(LANES_WIDE)
+#if defined(RF__LANES_WIDE)
 	if (wide)
 		i = vndf_lanes_8(s, i, n, u0, u1, hx, hy, hz);
 #endif
@@ -335,7 +335,7 @@ footprint_lods(int wide, const struct rf_host *host, uint32_t n, const float *re
 {
 	uint32_t i = 0;
 
-#if defined(LANES_WIDE)
+#if defined(RF__LANES_WIDE)
 	if (wide)
 		i = lod_lanes_8(host, i, n, lookup, jac, pdf, share, lod);
 #endif
@@ -412,7 +412,7 @@ trace_lobe(struct raytraced *rt, const struct lobe *lb, uint32_t n, const float 
 	sample_vndf_batch(rt->wide, &lb->view, n, u0, u1, hxs, hys, hzs);
 	/* Whole vectors of rays, as the loop below does one: the same
 	 * operations, so the same bits. */
-#if defined(LANES_WIDE)
+#if defined(RF__LANES_WIDE)
 	if (!original && rt->wide)
 		i = lobe_lanes_8(rt, lb, i, n, hxs, hys, hzs, &count);
 #endif
@@ -529,14 +529,14 @@ count_at_most(const float *r, uint32_t stride, float s)
 	uint32_t i = 0, count = 0;
 
 #if defined(__SSE2__)
-	const lanes_v4f vs = { s, s, s, s };
-	lanes_v4i acc = { 0, 0, 0, 0 };
+	const rf__lanes_v4f vs = { s, s, s, s };
+	rf__lanes_v4i acc = { 0, 0, 0, 0 };
 
 	for (; i < stride; i += 4) {
-		lanes_v4f x;
+		rf__lanes_v4f x;
 
 		memcpy(&x, r + i, sizeof(x));
-		acc -= (lanes_v4i)(x <= vs);
+		acc -= (rf__lanes_v4i)(x <= vs);
 	}
 	count = (uint32_t)(acc[0] + acc[1] + acc[2] + acc[3]);
 #endif
@@ -676,12 +676,12 @@ invert_trapezoids(size_t n, const float *restrict a0, const float *restrict a1,
 	size_t i = 0;
 
 #if defined(__SSE2__)
-	const lanes_v4f zero = { 0, 0, 0, 0 }, top = { 0.99999994f, 0.99999994f, 0.99999994f,
+	const rf__lanes_v4f zero = { 0, 0, 0, 0 }, top = { 0.99999994f, 0.99999994f, 0.99999994f,
 	                                         0.99999994f };
 
 	for (; i + 4 <= n; i += 4) {
-		lanes_v4f va0, va1, vs, vo, q, r;
-		lanes_v4i in;
+		rf__lanes_v4f va0, va1, vs, vo, q, r;
+		rf__lanes_v4i in;
 
 		memcpy(&va0, a0 + i, sizeof(va0));
 		memcpy(&va1, a1 + i, sizeof(va1));
@@ -690,9 +690,9 @@ invert_trapezoids(size_t n, const float *restrict a0, const float *restrict a1,
 		q = vs * g;
 		r = 2.0f * q / (va0 + v_sqrt_4(v_max0_4(va0 * va0 + 2.0f * (va1 - va0) * q)));
 		in = r > zero;
-		r = (lanes_v4f)((lanes_v4i)r & in); /* below 0 and NaN: 0 */
+		r = (rf__lanes_v4f)((rf__lanes_v4i)r & in); /* below 0 and NaN: 0 */
 		in = r < top;
-		r = (lanes_v4f)(((lanes_v4i)r & in) | ((lanes_v4i)top & ~in));
+		r = (rf__lanes_v4f)(((rf__lanes_v4i)r & in) | ((rf__lanes_v4i)top & ~in));
 		memcpy(t + i, &r, sizeof(r));
 		r = vo + r * h;
 		memcpy(u + i, &r, sizeof(r));
@@ -883,7 +883,7 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 		return -1;
 	}
 	rt->host = host;
-	rt->wide = lanes_wide();
+	rt->wide = rf__lanes_wide();
 	rt->samples = (uint32_t)values[SAMPLES];
 	rt->pattern = (int)values[PATTERN];
 	rt->animate = values[ANIMATE] != 0.0;
@@ -943,7 +943,7 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	rt->index = (uint32_t *)(rt->dens + k);
 	rt->table = (float *)(rt->index + k);
 	for (i = 0; i < rt->samples; i++) {
-		hammersley((uint32_t)i, rt->samples, &rt->ham0[i], &rt->ham1[i]);
+		rf__hammersley((uint32_t)i, rt->samples, &rt->ham0[i], &rt->ham1[i]);
 	}
 	rt->r2_step = rt->animate ? rt->frame : 0;
 	if (rt->split) {
@@ -975,7 +975,7 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 			uint32_t j = part * rt->samples + (uint32_t)i;
 
 			rt->ham0[i] = ((float)j + 0.5f) / n_all;
-			rt->ham1[i] = radical_inverse(j);
+			rt->ham1[i] = rf__radical_inverse(j);
 		}
 	}
 	*state = rt;

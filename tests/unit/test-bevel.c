@@ -10,7 +10,7 @@
 #include <stdint.h>
 
 #include "reflect/plugin.h"
-#include "project/bevel.h"
+#include "probe/bevel.h"
 #include "bevel-original.h"
 #include "tap.h"
 
@@ -98,13 +98,13 @@ static void
 check_exit(float radius, int grown, const double dir[3], double want_t, const double want_n[3],
            int *bad)
 {
-	const struct bevel b = bevel_of_probe(&room, radius, grown);
+	const struct rf__bevel b = rf__bevel_of_probe(&room, radius, grown);
 	const float p[3] = { 0, 1.5f, 0 }, d[3] = { (float)dir[0], (float)dir[1], (float)dir[2] };
 	float t, n[3];
 	int i;
 
 	*bad = 1;
-	if (bevel_exit(&b, p, d, &t, n) < 0) {
+	if (rf__bevel_exit(&b, p, d, &t, n) < 0) {
 		printf("# no exit\n");
 		return;
 	}
@@ -201,12 +201,12 @@ TEST(exit_on_a_corner)
 	ASSERT(!bad);
 }
 
-/* R = 0 is box_exit to the bit (the plugin calls box_exit then, but the
+/* R = 0 is rf__box_exit to the bit (the plugin calls rf__box_exit then, but the
  * shape of radius 0 must agree with it anyway). */
 TEST(radius_zero_is_the_box)
 {
-	const struct bevel b = bevel_of_probe(&room, 0.0f, 0);
-	const struct box box = box_of_probe(&room);
+	const struct rf__bevel b = rf__bevel_of_probe(&room, 0.0f, 0);
+	const struct rf__box box = rf__box_of_probe(&room);
 	int i, bad = 0;
 
 	for (i = 0; i < 20000; i++) {
@@ -221,8 +221,8 @@ TEST(radius_zero_is_the_box)
 		d[0] = (float)dd[0];
 		d[1] = (float)dd[1];
 		d[2] = (float)dd[2];
-		r1 = bevel_exit(&b, p, d, &t1, NULL);
-		r2 = box_exit(&box, p, d, &t2);
+		r1 = rf__bevel_exit(&b, p, d, &t1, NULL);
+		r2 = rf__box_exit(&box, p, d, &t2);
 		bad += r1 != r2 || (r1 == 0 && t1 != t2);
 	}
 	ASSERT_EQ(bad, 0);
@@ -233,7 +233,7 @@ TEST(radius_zero_is_the_box)
 static void
 measure(float radius, int grown, int n, double *ours, double *original)
 {
-	const struct bevel b = bevel_of_probe(&room, radius, grown);
+	const struct rf__bevel b = rf__bevel_of_probe(&room, radius, grown);
 	double s[3];
 	float size[3];
 	int i, k, wrong = 0, wrong_original = 0;
@@ -259,7 +259,7 @@ measure(float radius, int grown, int n, double *ours, double *original)
 			o[i] = ro[i]; /* the float point, exactly */
 		}
 		want = exit_by_marching(s, radius, o, d);
-		if (bevel_exit(&b, p, df, &t, NULL) < 0 || rel_error(t, want) > 1e-3) {
+		if (rf__bevel_exit(&b, p, df, &t, NULL) < 0 || rel_error(t, want) > 1e-3) {
 			wrong++;
 			printf("# wrong: r %g grown %d o %.9g %.9g %.9g d %.9g %.9g %.9g: %.9g, "
 			       "marching %.9g\n", (double)radius, grown, o[0], o[1], o[2], d[0],
@@ -305,12 +305,12 @@ TEST(exit_against_marching)
  * ceiling; no step of D is more than 4 times the fan's mean step. */
 TEST(continuous_across_an_edge)
 {
-	const struct box box = box_of_probe(&room);
+	const struct rf__box box = rf__box_of_probe(&room);
 	static const float radii[3] = { 0.1f, 0.5f, 1.2f };
 	int r;
 
 	for (r = 0; r < 3; r++) {
-		const struct bevel b = bevel_of_probe(&room, radii[r], 0);
+		const struct rf__bevel b = rf__bevel_of_probe(&room, radii[r], 0);
 		const float p[3] = { 0.5f, 1.2f, 0.3f };
 		float prev[3] = { 0, 0, 0 }, maxstep = 0.0f, total = 0.0f;
 		const int n = 20000;
@@ -324,9 +324,9 @@ TEST(continuous_across_an_edge)
 			d[0] /= len;
 			d[1] /= len;
 			d[2] /= len;
-			ASSERT(bevel_exit(&b, p, d, &t, NULL) == 0);
+			ASSERT(rf__bevel_exit(&b, p, d, &t, NULL) == 0);
 			ASSERT(t == t && t > 0.0f);
-			lookup_from_hit(&box, p, d, t, lk, &reach);
+			rf__lookup_from_hit(&box, p, d, t, lk, &reach);
 			if (i) {
 				float dx = lk[0] - prev[0], dy = lk[1] - prev[1], dz = lk[2] - prev[2];
 				float step = sqrtf(dx * dx + dy * dy + dz * dz);
@@ -349,7 +349,7 @@ TEST(continuous_across_an_edge)
  * (a floor point within R of a wall) and points outside. */
 TEST(points_outside_the_shape)
 {
-	const struct bevel b = bevel_of_probe(&room, 1.0f, 0);
+	const struct rf__bevel b = rf__bevel_of_probe(&room, 1.0f, 0);
 	/* on the floor, 0.1 from the +X wall: outside the rounded edge */
 	const float p[3] = { 2.9f, 0.0f, 0.0f };
 	const float into_wall[3] = { 0.995037f, 0.0995037f, 0.0f };
@@ -358,11 +358,11 @@ TEST(points_outside_the_shape)
 	float t, n[3];
 
 	/* leaving at once: 0, and the normal is finite */
-	ASSERT(bevel_exit(&b, p, into_wall, &t, n) == 0);
+	ASSERT(rf__bevel_exit(&b, p, into_wall, &t, n) == 0);
 	ASSERT(t == 0.0f);
 	ASSERT(n[0] == n[0] && n[1] == n[1] && n[2] == n[2]);
 	/* through the shape and out: where the marching says */
-	ASSERT(bevel_exit(&b, p, back_in, &t, n) == 0);
+	ASSERT(rf__bevel_exit(&b, p, back_in, &t, n) == 0);
 	{
 		const double s[3] = { 2, 0.5, 1 };
 		double o[3] = { 2.9, -1.5, 0 }, d[3] = { back_in[0], back_in[1], 0 }, want;
@@ -384,7 +384,7 @@ TEST(points_outside_the_shape)
 		ASSERT_NEAR(t, hi, 1e-4 * hi);
 	}
 	/* outside the bounding box: no exit */
-	ASSERT(bevel_exit(&b, outside, into_wall, &t, n) < 0);
+	ASSERT(rf__bevel_exit(&b, outside, into_wall, &t, n) < 0);
 }
 
 int

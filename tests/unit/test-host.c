@@ -1,6 +1,6 @@
 /* Unit tests of the host services every tool gives its plugins. */
 #include "reflect/host.h"
-#include "sequences.h"
+#include "maths/sequences.h"
 #include "tap.h"
 
 TEST(table_follows_the_settings)
@@ -357,7 +357,7 @@ TEST(random_pairs_of_the_host)
 		int k;
 
 		t->random_pairs(t->ctx, patterns[i], 10, 20, 5, 0, 16, 16, a, b);
-		sequence_pairs(patterns[i], 7, 5, 5, 10, 20, 0, 16, ham0, ham1, c, d);
+		rf__sequence_pairs(patterns[i], 7, 5, 5, 10, 20, 0, 16, ham0, ham1, c, d);
 		for (k = 0; k < 16; k++)
 			ASSERT(a[k] == c[k] && b[k] == d[k]);
 	}

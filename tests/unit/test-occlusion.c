@@ -48,7 +48,7 @@ brute_force(const double n[3], const double ng[3], const double v[3], double r, 
 			h[k] /= f;
 		nh = dot3(n, h);
 		d = a2 / (M_PI * pow(nh * nh * (a2 - 1.0) + 1.0, 2.0));
-		g = 1.0 / (1.0 + ggx_lambda(a2, nv) + ggx_lambda(a2, nl));
+		g = 1.0 / (1.0 + rf__ggx_lambda(a2, nv) + rf__ggx_lambda(a2, nl));
 		f = d * g / (4.0 * nv);
 		den += f;
 		if (dot3(ng, l) > 0.0)

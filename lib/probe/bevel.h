@@ -26,18 +26,18 @@
  * When no candidate qualifies (rounding at a region's border), bisection
  * on the signed distance finds the exit.
  */
-#ifndef REFLECT_PLUGINS_BEVEL_H
-#define REFLECT_PLUGINS_BEVEL_H
+#ifndef REFLECT_PROBE_BEVEL_H
+#define REFLECT_PROBE_BEVEL_H
 
 #include <math.h>
 
-#include "projection.h"
+#include "probe/projection.h"
 
 /* Bisection steps of the fallback: the bracket [0, slab exit] shrinks to
  * 2^-30 of itself, below a float's rounding. */
-#define BEVEL_BISECTION_STEPS 30
+#define RF__BEVEL_BISECTION_STEPS 30
 
-struct bevel {
+struct rf__bevel {
 	float lo[3], hi[3]; /* the bounding box (the probe box, grown or not) */
 	float outer_lo[3], outer_hi[3]; /* that grown by the slack */
 	float c[3];     /* the shape's centre: the probe box's */
@@ -51,7 +51,7 @@ struct bevel {
 /* The largest radius a probe box takes with its faces on the box (its
  * smallest half extent). */
 static inline float
-bevel_max_radius(const struct rf_probe *probe)
+rf__bevel_max_radius(const struct rf_probe *probe)
 {
 	float m = INFINITY;
 	int i;
@@ -65,11 +65,11 @@ bevel_max_radius(const struct rf_probe *probe)
 }
 
 /* The shape of probe rounded by radius (0 <= radius, and with the faces
- * on the box radius <= bevel_max_radius), grown beyond the box or not. */
-static inline struct bevel
-bevel_of_probe(const struct rf_probe *probe, float radius, int grown)
+ * on the box radius <= rf__bevel_max_radius), grown beyond the box or not. */
+static inline struct rf__bevel
+rf__bevel_of_probe(const struct rf_probe *probe, float radius, int grown)
 {
-	struct bevel b;
+	struct rf__bevel b;
 	float big = 0.0f;
 	int i;
 
@@ -81,8 +81,8 @@ bevel_of_probe(const struct rf_probe *probe, float radius, int grown)
 		if (b.s[i] < 0.0f)
 			b.s[i] = 0.0f;
 		b.outer[i] = b.s[i] + radius;
-		b.slack[i] = BOX_TOLERANCE * (probe->box_max[i] - probe->box_min[i]);
-		/* as box_of_probe has them, so that radius 0 is the box's bits */
+		b.slack[i] = RF__BOX_TOLERANCE * (probe->box_max[i] - probe->box_min[i]);
+		/* as rf__box_of_probe has them, so that radius 0 is the box's bits */
 		b.lo[i] = grown ? probe->box_min[i] - radius : probe->box_min[i];
 		b.hi[i] = grown ? probe->box_max[i] + radius : probe->box_max[i];
 		b.outer_lo[i] = b.lo[i] - b.slack[i];
@@ -96,7 +96,7 @@ bevel_of_probe(const struct rf_probe *probe, float radius, int grown)
 
 /* Signed distance from the shape at x (relative to the centre). */
 static inline float
-bevel_sdf(const struct bevel *b, const float x[3])
+rf__bevel_sdf(const struct rf__bevel *b, const float x[3])
 {
 	float q[3], out = 0.0f, in = -INFINITY;
 	int i;
@@ -111,7 +111,7 @@ bevel_sdf(const struct bevel *b, const float x[3])
 
 /* The outward normal at a point x on (or near) the boundary. */
 static inline void
-bevel_normal(const struct bevel *b, const float x[3], float n[3])
+rf__bevel_normal(const struct rf__bevel *b, const float x[3], float n[3])
 {
 	float q[3], len = 0.0f;
 	int i, top = 0;
@@ -138,7 +138,7 @@ bevel_normal(const struct bevel *b, const float x[3], float n[3])
 /* Far root of |u + t d|^2 = r^2 over the axes of mask (2 or 3 of them),
  * or NaN when the line misses. */
 static inline float
-bevel_far_root(const float u[3], const float d[3], const int use[3], float r)
+rf__bevel_far_root(const float u[3], const float d[3], const int use[3], float r)
 {
 	float a = 0.0f, bb = 0.0f, c = -r * r, disc;
 	int i;
@@ -162,20 +162,20 @@ bevel_far_root(const float u[3], const float d[3], const int use[3], float r)
  * its faces on the box) leaves where the ray last crosses the boundary,
  * or at once (0) when it does not cross it ahead. */
 static inline int
-bevel_exit(const struct bevel *b, const float p[3], const float dir[3], float *dist,
+rf__bevel_exit(const struct rf__bevel *b, const float p[3], const float dir[3], float *dist,
            float normal[3])
 {
 	float o[3], h[3], sg[3], oo[3], dd[3], best = INFINITY, tf = INFINITY, x[3];
 	int i, k, beyond = 0, axis = 0, found = 0;
 
-	/* the slab exit of the bounding box, by box_exit's operations */
+	/* the slab exit of the bounding box, by rf__box_exit's operations */
 	for (i = 0; i < 3; i++) {
 		float to_hi, to_lo, ti;
 
 		if (p[i] < b->outer_lo[i] || p[i] > b->outer_hi[i])
 			return -1;
 		o[i] = p[i] - b->c[i];
-		if (!(fabsf(dir[i]) > AXIS_EPSILON))
+		if (!(fabsf(dir[i]) > RF__AXIS_EPSILON))
 			continue;
 		to_hi = (b->hi[i] - p[i]) / dir[i];
 		to_lo = (b->lo[i] - p[i]) / dir[i];
@@ -227,7 +227,7 @@ bevel_exit(const struct bevel *b, const float p[3], const float dir[3], float *d
 				use[i] = k != i;
 				u[i] = oo[i] - b->s[i];
 			}
-			t = bevel_far_root(u, dd, use, b->r);
+			t = rf__bevel_far_root(u, dd, use, b->r);
 			if (!(t >= -b->tol))
 				continue;
 			for (i = 0; i < 3; i++) {
@@ -246,17 +246,17 @@ bevel_exit(const struct bevel *b, const float p[3], const float dir[3], float *d
 	} else {
 		for (i = 0; i < 3; i++)
 			x[i] = o[i];
-		if (bevel_sdf(b, x) >= 0.0f) {
+		if (rf__bevel_sdf(b, x) >= 0.0f) {
 			*dist = 0.0f; /* outside, not crossing ahead: leaving */
 		} else {
 			float lo = 0.0f, hi = tf;
 
-			for (k = 0; k < BEVEL_BISECTION_STEPS; k++) {
+			for (k = 0; k < RF__BEVEL_BISECTION_STEPS; k++) {
 				float mid = 0.5f * (lo + hi);
 
 				for (i = 0; i < 3; i++)
 					x[i] = o[i] + dir[i] * mid;
-				if (bevel_sdf(b, x) < 0.0f)
+				if (rf__bevel_sdf(b, x) < 0.0f)
 					lo = mid;
 				else
 					hi = mid;
@@ -267,7 +267,7 @@ bevel_exit(const struct bevel *b, const float p[3], const float dir[3], float *d
 	if (normal) {
 		for (i = 0; i < 3; i++)
 			x[i] = o[i] + dir[i] * *dist;
-		bevel_normal(b, x, normal);
+		rf__bevel_normal(b, x, normal);
 	}
 	return 0;
 }

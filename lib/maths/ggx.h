@@ -1,19 +1,19 @@
 /*
- * GGX in double precision for the plugins and their build-time tables
- * (the horizon occlusion mode, footprint-gen): Hammersley's second
- * coordinate, Smith's Lambda, and Heitz's sampler of the visible
- * normals (JCGT 2018; spec 7.3).  Header-only: each plugin stays one
- * self-contained object.
+ * GGX in double precision for the library, the plugins and their
+ * build-time tables (the path tracer, the DFG table, the horizon
+ * occlusion mode, footprint-gen): Hammersley's second coordinate,
+ * Smith's Lambda, and Heitz's sampler of the visible normals (JCGT 2018;
+ * spec 7.3).  Header-only: each plugin stays one self-contained object.
  */
-#ifndef REFLECT_PLUGINS_GGX_H
-#define REFLECT_PLUGINS_GGX_H
+#ifndef REFLECT_MATHS_GGX_H
+#define REFLECT_MATHS_GGX_H
 
 #include <math.h>
 #include <stdint.h>
 
 /* The radical inverse of i in base 2: its bits reversed, over 2^32. */
 static inline double
-ggx_radical_inverse(uint32_t i)
+rf__ggx_radical_inverse(uint32_t i)
 {
 	i = (i << 16) | (i >> 16);
 	i = ((i & 0x55555555u) << 1) | ((i & 0xAAAAAAAAu) >> 1);
@@ -25,7 +25,7 @@ ggx_radical_inverse(uint32_t i)
 
 /* Smith's Lambda for alpha^2 = a2, a direction at cosine c from N. */
 static inline double
-ggx_lambda(double a2, double c)
+rf__ggx_lambda(double a2, double c)
 {
 	double c2 = c * c;
 
@@ -34,7 +34,7 @@ ggx_lambda(double a2, double c)
 
 /* v / |v|, left as it is when it has no length. */
 static inline void
-ggx_normalise(double v[3])
+rf__ggx_normalise(double v[3])
 {
 	double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
 
@@ -47,12 +47,12 @@ ggx_normalise(double v[3])
 
 /* What the sampler works out once for a view vl (local frame, N = z)
  * and an alpha: the stretched view and its frame. */
-struct ggx_vndf {
+struct rf__ggx_vndf {
 	double alpha, vh[3], t1[3], t2[3], s;
 };
 
 static inline void
-ggx_vndf_init(struct ggx_vndf *g, const double vl[3], double alpha)
+rf__ggx_vndf_init(struct rf__ggx_vndf *g, const double vl[3], double alpha)
 {
 	double *vh = g->vh, *t1 = g->t1, *t2 = g->t2, lensq;
 
@@ -60,7 +60,7 @@ ggx_vndf_init(struct ggx_vndf *g, const double vl[3], double alpha)
 	vh[0] = alpha * vl[0];
 	vh[1] = alpha * vl[1];
 	vh[2] = vl[2];
-	ggx_normalise(vh);
+	rf__ggx_normalise(vh);
 	lensq = vh[0] * vh[0] + vh[1] * vh[1];
 	if (lensq > 0.0) {
 		t1[0] = -vh[1] / sqrt(lensq);
@@ -79,7 +79,7 @@ ggx_vndf_init(struct ggx_vndf *g, const double vl[3], double alpha)
 /* The visible microfacet normal h (unit, local frame; 0 when it has no
  * length) of the numbers u1, u2 in [0, 1). */
 static inline void
-ggx_vndf_normal(const struct ggx_vndf *g, double u1, double u2, double h[3])
+rf__ggx_vndf_normal(const struct rf__ggx_vndf *g, double u1, double u2, double h[3])
 {
 	double rr = sqrt(u1), phi = 2.0 * M_PI * u2, p1 = rr * cos(phi), p2 = rr * sin(phi);
 	double nh[3];
@@ -92,7 +92,7 @@ ggx_vndf_normal(const struct ggx_vndf *g, double u1, double u2, double h[3])
 	h[0] = g->alpha * nh[0];
 	h[1] = g->alpha * nh[1];
 	h[2] = fmax(0.0, nh[2]);
-	ggx_normalise(h);
+	rf__ggx_normalise(h);
 }
 
 #endif

@@ -1,35 +1,35 @@
 /*
- * Includes the header named by LANES_BODY (a string) once for each
+ * Includes the header named by RF__LANES_BODY (a string) once for each
  * width the compiler can make: 4 lanes (SSE, every x86-64), with
  * functions suffixed _4, and where it can target AVX2, 8 lanes (_8),
- * to be chosen at run time by lanes_wide().  See lanes.h.
+ * to be chosen at run time by rf__lanes_wide().  See lanes.h.
  */
-#include "lanes.h"
+#include "maths/lanes.h"
 
 #if defined(__SSE2__)
 #define LANES 4
-#define VF lanes_v4f
-#define VI lanes_v4i
+#define VF rf__lanes_v4f
+#define VI rf__lanes_v4i
 #define NAME(x) x##_4
 #define LANES_ATTR
-#include LANES_BODY
+#include RF__LANES_BODY
 #undef LANES
 #undef VF
 #undef VI
 #undef NAME
 #undef LANES_ATTR
 #endif
-#if defined(LANES_WIDE)
+#if defined(RF__LANES_WIDE)
 #define LANES 8
-#define VF lanes_v8f
-#define VI lanes_v8i
+#define VF rf__lanes_v8f
+#define VI rf__lanes_v8i
 #define NAME(x) x##_8
 #define LANES_ATTR __attribute__((target("avx2")))
-#include LANES_BODY
+#include RF__LANES_BODY
 #undef LANES
 #undef VF
 #undef VI
 #undef NAME
 #undef LANES_ATTR
 #endif
-#undef LANES_BODY
+#undef RF__LANES_BODY

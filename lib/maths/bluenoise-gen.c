@@ -129,8 +129,8 @@ main(void)
 	make_mask(0x9E3779B9u, masks[1]);
 	printf("/* Made by bluenoise-gen (void and cluster, %dx%d, sigma %.1f): do "
 	       "not edit. */\n", SIZE, SIZE, SIGMA);
-	printf("#define BLUENOISE_SIZE %d\n", SIZE);
-	printf("static const unsigned short bluenoise_rank[2][%d] = {\n", CELLS);
+	printf("#define RF__BLUENOISE_SIZE %d\n", SIZE);
+	printf("static const unsigned short rf__bluenoise_rank[2][%d] = {\n", CELLS);
 	for (m = 0; m < 2; m++) {
 		printf("{");
 		for (c = 0; c < CELLS; c++)

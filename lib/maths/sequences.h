@@ -5,23 +5,23 @@
  * mode (plugin.h's random_pairs).  Header-only, as projection.h is: the
  * plugin and the host include it, and so give the same numbers.
  */
-#ifndef REFLECT_PLUGINS_SEQUENCES_H
-#define REFLECT_PLUGINS_SEQUENCES_H
+#ifndef REFLECT_MATHS_SEQUENCES_H
+#define REFLECT_MATHS_SEQUENCES_H
 
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
 
-#include "lanes.h"
+#include "maths/lanes.h"
 
 /* Two 64 x 64 blue-noise masks, made at build time by bluenoise-gen.c. */
-#include "shade/bluenoise.h"
+#include "maths/bluenoise.h"
 
 enum { SEQUENCE_WHITE, SEQUENCE_BLUE, SEQUENCE_LOW_DISCREPANCY };
 
-/* Jarzynski and Olano's pcg4d: four 32-bit keys, four well-mixed words. */
+/* Jarzynski and Olano's rf__pcg4d: four 32-bit keys, four well-mixed words. */
 static inline void
-pcg4d(uint32_t v[4])
+rf__pcg4d(uint32_t v[4])
 {
 	int i;
 
@@ -41,71 +41,71 @@ pcg4d(uint32_t v[4])
 
 /* The top 24 bits: [0, 1), never 1. */
 static inline float
-unit_float(uint32_t h)
+rf__unit_float(uint32_t h)
 {
 	return (float)(h >> 8) * (1.0f / 16777216.0f);
 }
 
 static inline float
-radical_inverse(uint32_t i)
+rf__radical_inverse(uint32_t i)
 {
 	i = (i << 16) | (i >> 16);
 	i = ((i & 0x55555555u) << 1) | ((i & 0xAAAAAAAAu) >> 1);
 	i = ((i & 0x33333333u) << 2) | ((i & 0xCCCCCCCCu) >> 2);
 	i = ((i & 0x0F0F0F0Fu) << 4) | ((i & 0xF0F0F0F0u) >> 4);
 	i = ((i & 0x00FF00FFu) << 8) | ((i & 0xFF00FF00u) >> 8);
-	return unit_float(i);
+	return rf__unit_float(i);
 }
 
 static inline float
-fract(float x)
+rf__fract(float x)
 {
 	float f = x - floorf(x);
 
 	return f < 1.0f ? f : 0.0f;
 }
 
-/* fract of an x in [0, 2), the sum of two numbers in [0, 1): the same
- * bits as fract, without floorf (a call on x86-64's baseline, half of
+/* rf__fract of an x in [0, 2), the sum of two numbers in [0, 1): the same
+ * bits as rf__fract, without floorf (a call on x86-64's baseline, half of
  * the raytraced mode's time outside its rays): less 1 or less 0. */
 static inline float
-fract_below2(float x)
+rf__fract_below2(float x)
 {
 	return x - (float)(x >= 1.0f);
 }
 
-/* out = fract(in + b) for in and b in [0, 1), by fract_below2.  Its
+/* out = rf__fract(in + b) for in and b in [0, 1), by rf__fract_below2.  Its
  * select becomes a branch in GCC's scalar code (at -O2 the loop is not
  * vectorized: n is unknown), and a branch on noise is mispredicted half
  * the time: 40 % of the raytraced mode's own loop at 64 blue rays.  Four
  * at a time in vector code, the same subtraction of 1 or 0. */
 static inline void
-shift_below2(const float *restrict in, float b, uint32_t n, float *restrict out)
+rf__shift_below2(const float *restrict in, float b, uint32_t n, float *restrict out)
 {
 	uint32_t i = 0;
 
 #if defined(__SSE2__)
-	const lanes_v4f one = { 1.0f, 1.0f, 1.0f, 1.0f }, vb = { b, b, b, b };
+	const rf__lanes_v4f one = { 1.0f, 1.0f, 1.0f, 1.0f }, vb = { b, b, b, b };
 
 	for (; i + 4 <= n; i += 4) {
-		lanes_v4f x;
+		rf__lanes_v4f x;
 
 		memcpy(&x, in + i, sizeof(x));
 		x += vb;
-		x -= (lanes_v4f)((lanes_v4i)one & (x >= one));
+		x -= (rf__lanes_v4f)((rf__lanes_v4i)one & (x >= one));
 		memcpy(out + i, &x, sizeof(x));
 	}
 #endif
 	for (; i < n; i++)
-		out[i] = fract_below2(in[i] + b);
+		out[i] = rf__fract_below2(in[i] + b);
 }
 
 /* Point i of the Hammersley set of n: ((i + 1/2) / n, radical inverse). */
 static inline void
-hammersley(uint32_t i, uint32_t n, float *a, float *b)
+rf__hammersley(uint32_t i, uint32_t n, float *a, float *b)
 {
 	*a = ((float)i + 0.5f) / (float)n;
-	*b = radical_inverse(i);
+	*b = rf__radical_inverse(i);
 }
 
 /* Pairs i0 .. i0 + n - 1 of a pixel's sequence.  White: a hash of pixel,
@@ -117,7 +117,7 @@ hammersley(uint32_t i, uint32_t n, float *a, float *b)
  * converges as Hammersley does, and what error is left is spread as blue
  * noise, fine grained, which the eye and any later blur forgive. */
 static inline void
-sequence_pairs(int pattern, uint32_t seed, uint32_t frame, uint32_t r2_step, uint32_t px,
+rf__sequence_pairs(int pattern, uint32_t seed, uint32_t frame, uint32_t r2_step, uint32_t px,
                uint32_t py, uint32_t i0, uint32_t n, const float *ham0, const float *ham1,
                float *u0, float *u1)
 {
@@ -128,19 +128,19 @@ sequence_pairs(int pattern, uint32_t seed, uint32_t frame, uint32_t r2_step, uin
 		for (i = 0; i < n; i++) {
 			uint32_t v[4] = { px, py, i0 + i, seed ^ (frame * 0x9E3779B9u) };
 
-			pcg4d(v);
-			u0[i] = unit_float(v[0]);
-			u1[i] = unit_float(v[1]);
+			rf__pcg4d(v);
+			u0[i] = rf__unit_float(v[0]);
+			u1[i] = rf__unit_float(v[1]);
 		}
 		return;
 	}
 	if (pattern == SEQUENCE_BLUE) {
-		uint32_t sx = (px + seed * 23u) % BLUENOISE_SIZE;
-		uint32_t sy = (py + seed * 41u) % BLUENOISE_SIZE;
-		uint32_t c = sy * BLUENOISE_SIZE + sx;
+		uint32_t sx = (px + seed * 23u) % RF__BLUENOISE_SIZE;
+		uint32_t sy = (py + seed * 41u) % RF__BLUENOISE_SIZE;
+		uint32_t c = sy * RF__BLUENOISE_SIZE + sx;
 
-		b0 = ((float)bluenoise_rank[0][c] + 0.5f) / (float)(BLUENOISE_SIZE * BLUENOISE_SIZE);
-		b1 = ((float)bluenoise_rank[1][c] + 0.5f) / (float)(BLUENOISE_SIZE * BLUENOISE_SIZE);
+		b0 = ((float)rf__bluenoise_rank[0][c] + 0.5f) / (float)(RF__BLUENOISE_SIZE * RF__BLUENOISE_SIZE);
+		b1 = ((float)rf__bluenoise_rank[1][c] + 0.5f) / (float)(RF__BLUENOISE_SIZE * RF__BLUENOISE_SIZE);
 	}
 	if (r2_step) {
 		f0 = (float)r2_step * 0.7548776662f;
@@ -148,16 +148,16 @@ sequence_pairs(int pattern, uint32_t seed, uint32_t frame, uint32_t r2_step, uin
 	}
 	/* one pass a step, each without a test inside */
 	if (pattern == SEQUENCE_BLUE) {
-		shift_below2(ham0, b0, n, u0);
-		shift_below2(ham1, b1, n, u1);
+		rf__shift_below2(ham0, b0, n, u0);
+		rf__shift_below2(ham1, b1, n, u1);
 	} else {
 		memcpy(u0, ham0, n * sizeof(*u0));
 		memcpy(u1, ham1, n * sizeof(*u1));
 	}
 	if (r2_step)
 		for (i = 0; i < n; i++) {
-			u0[i] = fract(u0[i] + f0);
-			u1[i] = fract(u1[i] + f1);
+			u0[i] = rf__fract(u0[i] + f0);
+			u1[i] = rf__fract(u1[i] + f1);
 		}
 }
 

@@ -7,34 +7,34 @@
  * nothing) defined.  Header-only, for the library and for plugins,
  * which link nothing.
  *
- * Once, whatever the width: lanes_wide(), whether to take the
+ * Once, whatever the width: rf__lanes_wide(), whether to take the
  * eight-lane code (AVX2 without FMA, so the bits of either width are
  * the same); REFLECT_SIMD=off, the library's switch for its own
  * kernels, takes the four-lane code, to compare.
  */
-#ifndef REFLECT_PLUGINS_LANES_H
-#define REFLECT_PLUGINS_LANES_H
+#ifndef REFLECT_MATHS_LANES_H
+#define REFLECT_MATHS_LANES_H
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "soa.h"
+#include "maths/soa.h"
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define LANES_WIDE 1
-typedef float lanes_v8f __attribute__((vector_size(32)));
-typedef int lanes_v8i __attribute__((vector_size(32)));
+#define RF__LANES_WIDE 1
+typedef float rf__lanes_v8f __attribute__((vector_size(32)));
+typedef int rf__lanes_v8i __attribute__((vector_size(32)));
 #endif
 #if defined(__SSE2__)
-typedef float lanes_v4f __attribute__((vector_size(16)));
-typedef int lanes_v4i __attribute__((vector_size(16)));
+typedef float rf__lanes_v4f __attribute__((vector_size(16)));
+typedef int rf__lanes_v4i __attribute__((vector_size(16)));
 #endif
 
 static inline int
-lanes_wide(void)
+rf__lanes_wide(void)
 {
-#if defined(LANES_WIDE)
+#if defined(RF__LANES_WIDE)
 	const char *simd = getenv("REFLECT_SIMD");
 
 	__builtin_cpu_init();
@@ -107,13 +107,13 @@ LANES_ATTR static inline void
 NAME(v_aos_to_soa)(const float *in, VF v[3])
 {
 #if LANES == 4
-	aos_to_soa(in, v);
+	rf__aos_to_soa(in, v);
 #else
-	soa_v4 a[3], b[3];
+	rf__soa_v4 a[3], b[3];
 	int j;
 
-	aos_to_soa(in, a);
-	aos_to_soa(in + 12, b);
+	rf__aos_to_soa(in, a);
+	rf__aos_to_soa(in + 12, b);
 	for (j = 0; j < 3; j++)
 		v[j] = __builtin_shufflevector(a[j], b[j], 0, 1, 2, 3, 4, 5, 6, 7);
 #endif
@@ -123,17 +123,17 @@ LANES_ATTR static inline void
 NAME(v_soa_to_aos)(const VF v[3], float *out)
 {
 #if LANES == 4
-	soa_to_aos(v, out);
+	rf__soa_to_aos(v, out);
 #else
-	soa_v4 a[3], b[3];
+	rf__soa_v4 a[3], b[3];
 	int j;
 
 	for (j = 0; j < 3; j++) {
 		a[j] = __builtin_shufflevector(v[j], v[j], 0, 1, 2, 3);
 		b[j] = __builtin_shufflevector(v[j], v[j], 4, 5, 6, 7);
 	}
-	soa_to_aos(a, out);
-	soa_to_aos(b, out + 12);
+	rf__soa_to_aos(a, out);
+	rf__soa_to_aos(b, out + 12);
 #endif
 }
 #endif
