@@ -40,6 +40,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "reflect/probe.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -140,20 +142,6 @@ struct rf_param {
 	unsigned flags;      /* RF_PARAM_* */
 	const char *choices; /* with RF_PARAM_CHOICE: "a|b|c", value = index;
 	                        with RF_PARAM_STRING: the default string */
-};
-
-/* The probe the stream is shaded with (world units). */
-struct rf_probe {
-	float center[3];  /* capture point */
-	float box_min[3]; /* influence and projection box */
-	float box_max[3];
-	int box_projection; /* 0: directions are used as they are */
-	/* ABI 1.1: the shape the lookups leave by, when not the box itself:
-	 * its edges and corners rounded by bevel (world units), its faces on
-	 * the box, or with bevel_grown the box grown by bevel all round
-	 * (the PROBE_BEVEL key; 0 for the box). */
-	float bevel;
-	int bevel_grown;
 };
 
 /* Services of the host; a member is NULL when the tool cannot offer it.
@@ -271,8 +259,6 @@ struct rf_host {
 	const float *probe_blend;
 	float (*probe_weights)(void *ctx, const float p[3], float *weights);
 };
-
-#define RF_PROBES_MAX 16
 
 /* The patterns of random_pairs (the raytraced mode's pattern=). */
 #define RF_SEQUENCE_WHITE 0

@@ -180,28 +180,6 @@ RF_EXTERN int rf_header_supersample(const rf_header *h, size_t *factor);
 #define RF_KEY_ACCUMULATED "ACCUMULATED" /* frames in an accumulated result */
 #define RF_KEY_FILTER "FILTER"         /* reflect-filter's mode */
 
-struct rf_probe;
-/* The probe of a frame, from the strings a tool was given for its
- * --box, --center and --box-projection (NULL: not given), else from the
- * frame's PROBE_BOX, PROBE_CENTER and PROBE_BOX_PROJECTION, and the bevel
- * from PROBE_BEVEL; the centre defaults to the box's, box projection to
- * on.  RF_ENOTFOUND when
- * neither gives a box, RF_EINVAL for a value that does not parse or an
- * empty box; err says which. */
-RF_EXTERN int rf_probe_resolve(struct rf_probe *probe, const rf_header *h,
-                               const char *box, const char *center,
-                               const char *projection, char *err, size_t errlen);
-/* Every probe of a frame, from its keys (PROBE_*, then PROBE2_*, ...
- * while they have a box) into probes and their blend distances
- * (PROBE_BLEND..., 0 when absent), at most max: how many (a probe whose
- * keys do not parse ends the list), or RF_EINVAL when the first's do
- * not. */
-RF_EXTERN int rf_probe_list_read(struct rf_probe *probes, float *blend, size_t max,
-                                 const rf_header *h);
-/* Writes the probe as PROBE_BOX, PROBE_CENTER, PROBE_BOX_PROJECTION and
- * PROBE_BEVEL (removed for the box). */
-RF_EXTERN int rf_probe_to_header(const struct rf_probe *probe, rf_header *h);
-
 /*
  * Reading.  A reader takes frames back to back until EOF.  Errors fill a
  * message (see rf_reader_error) that names the input, the header line or

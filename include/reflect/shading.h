@@ -12,6 +12,7 @@
 #include "reflect/reflect.h"
 #include "reflect/envmap.h"
 #include "reflect/plugin.h"
+#include "reflect/probe.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -46,41 +47,6 @@ RF_EXTERN void rf_dfg_integrate(double n_dot_v, double roughness, unsigned sampl
                                 double *a, double *b);
 
 /* ---- blending probes ------------------------------------------------- */
-
-/*
- * A frame's probes (PROBE_*, PROBE2_*, ... with PROBEk_BLEND and
- * PROBEk_IMPORTANCE) and how they are blended at a point, as HDRP does:
- * each probe's weight is smoothstep(min over its box's faces of
- * sat(d_f / blend_f)), d_f the distance from the point to face f and
- * blend_f that face's blend distance (a face without one does not fade;
- * 0 outside the box), times with normal_fade HDRP's fade of
- * surfaces turned away from the capture point within the blend distance;
- * probes are taken most important first, then smallest box first, each
- * clipped to what the ones before left (w' = min(w, 1 - sum)), at most
- * max_probes of them (0: all).  What is left, 1 - sum, is the fallback's.
- */
-struct rf_blend {
-	uint32_t nprobes;
-	struct rf_probe probes[RF_PROBES_MAX];
-	float blend[RF_PROBES_MAX];   /* the widest face's, as plugins see it */
-	float face_blend[RF_PROBES_MAX][6]; /* +X -X +Y -Y +Z -Z; 0: none */
-	float importance[RF_PROBES_MAX];
-	uint32_t order[RF_PROBES_MAX]; /* the order they are taken in */
-	uint32_t max_probes;
-	int normal_fade;
-};
-
-/* The frame's probes into b (max_probes and normal_fade untouched), and
- * their order: how many, or < 0 with err saying why. */
-RF_EXTERN int rf_blend_read(struct rf_blend *b, const rf_header *h, char *err,
-                            size_t errlen);
-/* b->order from the probes' importance and boxes. */
-RF_EXTERN void rf_blend_order(struct rf_blend *b);
-/* Each probe's weight at p (b->nprobes floats, in the probes' order),
- * the unit normal n for the normal fade (NULL: none); returns the
- * fallback's share. */
-RF_EXTERN float rf_blend_weights(const struct rf_blend *b, const float p[3],
-                                 const float n[3], float *weights);
 
 /* Where what no probe covers comes from: the first probe's environment
  * along R, without parallax; nothing, the probes' weights scaled to 1

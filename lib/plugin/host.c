@@ -14,7 +14,8 @@
 #include "envmap/rgba_levels_simd.h"
 #include "util/util.h"
 #include "reflect/host.h"
-#include "reflect/shading.h"
+#include "reflect/probe.h"
+#include "reflect/shading.h" /* rf_dfg_lookup */
 #include "reflect/scene.h"
 /* The box's geometry as the projection plugins have it, to the bit. */
 #include "probe/projection.h"

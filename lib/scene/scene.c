@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "scene/scene-internal.h"
+#include "probe/probe-internal.h"
 #include "stream/stream-internal.h"
 
 static const double pi = 3.14159265358979323846;

@@ -17,16 +17,7 @@ int rf__header_push_line(rf_header *h, const char *line);
 /* 1 when the key is one the writer makes from the header's fields. */
 int rf__header_key_reserved(const char *key, size_t len);
 
-/* Shared keys (keys.c): n numbers as "%.9g %.9g ..."; the key of a
- * numbered probe (PROBE_BOX of probe index 1 is PROBE2_BOX); the three
- * geometry keys of probe `index`. */
+/* n numbers as "%.9g %.9g ..." (keys.c). */
 int rf__header_set_numbers(rf_header *h, const char *key, const double *v, size_t n);
-void rf__header_probe_key(char *buf, size_t size, size_t index, const char *key);
-/* A PROBE_BLEND value: one distance for every face, or six, +X -X +Y -Y
- * +Z -Z (HDRP's per face), each at least 0. */
-int rf__probe_blend_parse(const char *v, float face[6]);
-int rf__header_set_probe_keys(rf_header *h, size_t index, const double box_min[3],
-                              const double box_max[3], const double center[3],
-                              int box_projection);
 
 #endif

@@ -13,9 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "stream/stream-internal.h"
+#include "probe/probe-internal.h"
 #include "util/util.h"
-#include "reflect/shading.h"
 
 static float
 volume(const struct rf_probe *p)
