@@ -5,6 +5,7 @@
 
 #include "cli.h"
 #include "reflect/import.h"
+#include "reflect/probe.h"
 
 static void
 usage(void)

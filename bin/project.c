@@ -4,6 +4,7 @@
 
 #include "cli.h"
 #include "reflect/host.h"
+#include "reflect/probe.h"
 
 static void
 usage(void)

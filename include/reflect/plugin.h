@@ -40,8 +40,6 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "reflect/probe.h"
-
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -56,6 +54,24 @@ extern "C" {
 #endif
 
 #define RF_PLUGIN_ENTRY "rf_plugin_entry"
+
+/* A probe (world units): the plugins' view of it, and the library's
+ * (reflect/probe.h reads, writes and blends it). */
+struct rf_probe {
+	float center[3];  /* capture point */
+	float box_min[3]; /* influence and projection box */
+	float box_max[3];
+	int box_projection; /* 0: directions are used as they are */
+	/* ABI 1.1: the shape the lookups leave by, when not the box itself:
+	 * its edges and corners rounded by bevel (world units), its faces on
+	 * the box, or with bevel_grown the box grown by bevel all round
+	 * (the PROBE_BEVEL key; 0 for the box). */
+	float bevel;
+	int bevel_grown;
+};
+
+/* The most probes a frame has. */
+#define RF_PROBES_MAX 16
 
 /* What a plugin is for: the tool that loads it. */
 enum rf_plugin_kind {

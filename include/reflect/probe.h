@@ -4,8 +4,8 @@
  * A capture point, the box its environment is projected through and
  * blends by, and its shape: read from and written to a stream's header
  * keys, and weighed against the frame's other probes at a point.  The
- * struct is part of the plugin ABI (plugin.h includes this header and
- * pins its layout); the functions are the library's.
+ * struct is part of the plugin ABI, so it is defined in plugin.h, which
+ * stands alone; the functions are the library's.
  */
 #ifndef REFLECT_PROBE_H
 #define REFLECT_PROBE_H
@@ -14,28 +14,13 @@
 #include <stdint.h>
 
 #include "reflect/reflect.h"
+/* struct rf_probe and RF_PROBES_MAX: they are the plugin ABI's, and a
+ * plugin is built against that one header alone. */
+#include "reflect/plugin.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* A probe (world units): the plugins' view of it (plugin.h), and the
- * library's. */
-struct rf_probe {
-	float center[3];  /* capture point */
-	float box_min[3]; /* influence and projection box */
-	float box_max[3];
-	int box_projection; /* 0: directions are used as they are */
-	/* ABI 1.1: the shape the lookups leave by, when not the box itself:
-	 * its edges and corners rounded by bevel (world units), its faces on
-	 * the box, or with bevel_grown the box grown by bevel all round
-	 * (the PROBE_BEVEL key; 0 for the box). */
-	float bevel;
-	int bevel_grown;
-};
-
-/* The most probes a frame has. */
-#define RF_PROBES_MAX 16
 
 /* The probe of a frame, from the strings a tool was given for its
  * --box, --center and --box-projection (NULL: not given), else from the
