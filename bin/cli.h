@@ -201,4 +201,53 @@ void mode_unload(struct cli_mode *m);
  * or zeroed (--invalid; rf_stage_invalid_output_count). */
 void mode_invalid_note(struct cli_io *io, size_t count);
 
+/* A tool that runs one mode over a stream, frame after frame
+ * (cli_stage.c): its options, the mode it loaded and the host. */
+struct rf_plugin_host;
+struct cli_stage_run {
+	struct cli_io io;
+	struct cli_mode mode;
+	const char *spec; /* -m as given, or the default */
+	int nthreads;
+	struct rf_plugin_host *host; /* its frame set to the current one */
+};
+/* The value of --help in a tool's long options. */
+#define CLI_OPT_HELP ('?' + 256)
+struct option;
+struct cli_stage_tool {
+	unsigned kind;    /* RF_KIND_* */
+	const char *spec; /* the default mode */
+	/* Short options besides -l -v -V -m -j and the stream's (NULL: none);
+	 * long options, --help (CLI_OPT_HELP) among them. */
+	const char *optstring;
+	const struct option *long_options;
+	/* --help's lines between "usage:" and the common options. */
+	const char *help;
+	void (*usage)(void);
+	/* Takes one of the tool's own options: 1, or 0 for a usage error. */
+	int (*option)(struct cli_stage_run *r, int opt, const char *arg);
+	/* Once the mode and host are there, before the input is opened;
+	 * after the last frame (both may be NULL). */
+	void (*start)(struct cli_stage_run *r);
+	void (*finish)(struct cli_stage_run *r);
+	/* Reads frame in and writes what it makes of it. */
+	void (*frame)(struct cli_stage_run *r, const rf_header *in);
+};
+/* Parses the options, loads the mode and runs the tool over its input:
+ * a tool's whole main. */
+int cli_stage_main(int argc, char **argv, const struct cli_stage_tool *t);
+/* Records the command line in an output header, and the mode as key. */
+void cli_stage_header(struct cli_stage_run *r, rf_header *out, const char *key);
+/* Dies: the mode refused the input's frame (rc, its message err). */
+CLI_NORETURN void cli_stage_refused(struct cli_stage_run *r, int rc, const char *err);
+/* The frame's probe, with po's overrides (NULL: none): 1, or 0 when the
+ * frame has none; death for a probe that cannot be. */
+int cli_probe_resolve(struct rf_probe *probe, const rf_header *in,
+                      const struct cli_probe *po);
+/* The mode's per-pixel stage for frame in, the host's probe set to probe
+ * (NULL: none); *out, begun, records the command line and the mode as
+ * key.  For cli_stage_rows. */
+rf_stage *cli_stage_begin(struct cli_stage_run *r, const rf_header *in,
+                          const struct rf_probe *probe, const char *key, rf_header **out);
+
 #endif
