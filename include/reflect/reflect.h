@@ -214,6 +214,11 @@ RF_EXTERN size_t rf_reader_rows_left(const rf_reader *r);
 /* Index (from 0) of the current frame. */
 RF_EXTERN size_t rf_reader_frame_index(const rf_reader *r);
 RF_EXTERN const char *rf_reader_error(const rf_reader *r);
+/* 1 when bytes, the first len of an input, begin as a stream does: with
+ * its magic, whatever version follows (the reader judges that); else 0,
+ * as for fewer bytes than the magic's.  For a tool that tells a stream
+ * from an image before it reads either. */
+RF_EXTERN int rf_stream_sniff(const void *bytes, size_t len);
 
 /* Writing. */
 typedef struct rf_writer rf_writer;

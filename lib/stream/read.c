@@ -237,6 +237,14 @@ image_kind(const char *b, long n)
 	return NULL;
 }
 
+int
+rf_stream_sniff(const void *bytes, size_t len)
+{
+	size_t n = strlen(RF__STREAM_MAGIC);
+
+	return len >= n && !memcmp(bytes, RF__STREAM_MAGIC, n);
+}
+
 static int
 check_magic(rf_reader *r, const char *line)
 {

@@ -362,6 +362,32 @@ TEST(stream_identifier)
 	                      NULL, 0), 1);
 }
 
+/* The first bytes of an input tell a stream, of any version (the reader
+ * judges that), from what is not one; the writer's and the ASCII
+ * format's frames begin as the sniffing expects. */
+TEST(stream_sniff)
+{
+	unsigned char head[16];
+	FILE *fp;
+	int format;
+
+	ASSERT_EQ(rf_stream_sniff("#?REFLECT1\n", 11), 1);
+	ASSERT_EQ(rf_stream_sniff("#?REFLECT2\n", 11), 1);
+	ASSERT_EQ(rf_stream_sniff("#?REFLECT", 9), 1);
+	ASSERT_EQ(rf_stream_sniff("#?REFLECT1", 8), 0);
+	ASSERT_EQ(rf_stream_sniff("", 0), 0);
+	ASSERT_EQ(rf_stream_sniff("#?reflect1\n", 11), 0);
+	ASSERT_EQ(rf_stream_sniff("#?RADIANCE\n", 11), 0);
+	ASSERT_EQ(rf_stream_sniff(" #?REFLECT1\n", 12), 0);
+	ASSERT_EQ(rf_stream_sniff("\x76\x2f\x31\x01\x02\0\0\0\0", 9), 0);
+	for (format = 0; format < 2; format++) {
+		fp = write_frames(2, 2, "a b", 1, format ? RF_FORMAT_ASCII : RF_FORMAT_FLOAT);
+		ASSERT_EQ(fread(head, 1, sizeof(head), fp), sizeof(head));
+		ASSERT_EQ(rf_stream_sniff(head, sizeof(head)), 1);
+		fclose(fp);
+	}
+}
+
 /* A header line of RF_HEADER_LINE_MAX bytes is taken, with LF or CRLF;
  * one more byte is refused. */
 TEST(header_line_limit)
@@ -651,6 +677,7 @@ main(void)
 	RUN(size_overflow_refused);
 	RUN(block_rows);
 	RUN(stream_identifier);
+	RUN(stream_sniff);
 	RUN(header_line_limit);
 	RUN(headerless_frames_of_blanks);
 	RUN(skip_huge_frame);
