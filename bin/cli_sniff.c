@@ -130,10 +130,9 @@ cli_sniff_open(int fd, struct cli_sniff *s, FILE **fp)
 enum cli_kind
 cli_sniff_kind(const struct cli_sniff *s)
 {
-	static const char stream[] = "#?REFLECT", exr[] = "\x76\x2f\x31\x01",
-	                  png[] = "\x89PNG\r\n\x1a\n";
+	static const char exr[] = "\x76\x2f\x31\x01", png[] = "\x89PNG\r\n\x1a\n";
 
-	if (s->len >= sizeof(stream) - 1 && !memcmp(s->head, stream, sizeof(stream) - 1))
+	if (rf_stream_sniff(s->head, s->len))
 		return CLI_KIND_STREAM;
 	if (s->len >= sizeof(exr) - 1 && !memcmp(s->head, exr, sizeof(exr) - 1))
 		return CLI_KIND_EXR;
