@@ -1,10 +1,11 @@
 /*
  * libreflect: shading with a prefiltered environment.
  *
- * The split-sum environment BRDF (the DFG table) and the pass that turns
- * each pixel's effective roughness into a lod of the environment's one
- * mapping and samples the chain there: the host side of reflect-shade(1).
- * The roughness models themselves are plugins (RF_KIND_SHADE).
+ * The pass that turns each pixel's effective roughness into a lod of the
+ * environment's one mapping and samples the chain there: the host side
+ * of reflect-shade(1).  The roughness models themselves are plugins
+ * (RF_KIND_SHADE); the split-sum environment BRDF (the DFG table) is in
+ * reflect/surface.h, included here.
  */
 #ifndef REFLECT_SHADING_H
 #define REFLECT_SHADING_H
@@ -13,38 +14,11 @@
 #include "reflect/envmap.h"
 #include "reflect/plugin.h"
 #include "reflect/probe.h"
+#include "reflect/surface.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* ---- the environment BRDF (DFG) ---------------------------------------- */
-
-/*
- * For GGX with Smith height-correlated masking-shadowing and Schlick's
- * Fresnel F = F0 + (1 - F0) (1 - v.h)^5, the directional albedo is
- * F0 A + B with
- *   A = integral of f1 (1 - (1 - v.h)^5) n.l dl,
- *   B = integral of f1 (1 - v.h)^5 n.l dl,
- * f1 the BRDF with F = 1, over the hemisphere of n.  A + B is the albedo
- * of a white (F = 1) GGX surface.  Perceptual roughness r, alpha = r^2.
- *
- * The table has RF_DFG_SIZE x RF_DFG_SIZE entries (A, B): row j holds
- * roughness j / (size - 1), column i holds n.v = (i / (size - 1))^2 (the
- * square root spacing puts more columns toward grazing, where the
- * integrals change fastest).  It is integrated once, on first use.
- */
-#define RF_DFG_SIZE 64
-
-/* Bilinear lookup; n_dot_v and roughness are clamped to [0, 1] (NaN
- * counts as 0).  Thread-safe; the first call computes the table. */
-RF_EXTERN void rf_dfg_lookup(float n_dot_v, float roughness, float *a, float *b);
-/* The table: *size x *size pairs (A, B), rows by roughness. */
-RF_EXTERN const float *rf_dfg_table(size_t *size);
-/* One entry, integrated with `samples` quasi-random samples of the GGX
- * distribution of visible normals (what the table is made of). */
-RF_EXTERN void rf_dfg_integrate(double n_dot_v, double roughness, unsigned samples,
-                                double *a, double *b);
 
 /* ---- blending probes ------------------------------------------------- */
 

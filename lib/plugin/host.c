@@ -15,7 +15,7 @@
 #include "util/util.h"
 #include "reflect/host.h"
 #include "reflect/probe.h"
-#include "reflect/shading.h" /* rf_dfg_lookup */
+#include "reflect/surface.h"
 #include "reflect/scene.h"
 /* The box's geometry as the projection plugins have it, to the bit. */
 #include "probe/projection.h"

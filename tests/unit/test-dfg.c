@@ -2,7 +2,7 @@
  * quadrature over the hemisphere of l, no importance sampling. */
 #include <math.h>
 
-#include "reflect/shading.h"
+#include "reflect/surface.h"
 #include "tap.h"
 
 /* Smith's Lambda for GGX. */

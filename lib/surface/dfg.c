@@ -2,8 +2,8 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "shade/dfg-integrate.h"
-#include "reflect/shading.h"
+#include "surface/dfg-integrate.h"
+#include "reflect/surface.h"
 
 void
 rf_dfg_integrate(double n_dot_v, double roughness, unsigned samples, double *a,
@@ -42,7 +42,7 @@ rf_dfg_integrate(double n_dot_v, double roughness, unsigned samples, double *a,
 /* The table, integrated when reflect was built (dfg-gen.c): nothing to
  * compute at run time, where the first lookup once cost some 30 ms of
  * every process that used it. */
-#include "shade/dfg-table.h"
+#include "surface/dfg-table.h"
 
 const float *
 rf_dfg_table(size_t *size)

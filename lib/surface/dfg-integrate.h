@@ -1,4 +1,4 @@
-/* Internal to the shade area: the integrals of the DFG table, shared by
+/* Internal to the surface area: the integrals of the DFG table, shared by
  * the library (rf_dfg_integrate) and dfg-gen, which makes the table when
  * reflect is built. */
 #ifndef REFLECT_DFG_INTEGRATE_H

@@ -1,6 +1,6 @@
 /*
  * dfg-gen: writes the DFG table of libreflect as a C header, integrated
- * when reflect is built (lib/shade/dfg-integrate.h: 1024 visible-normal
+ * when reflect is built (lib/surface/dfg-integrate.h: 1024 visible-normal
  * samples an entry), so that no process pays for it at run time.
  *
  *	dfg-gen >dfg-table.h
@@ -10,8 +10,8 @@
  */
 #include <stdio.h>
 
-#include "shade/dfg-integrate.h"
-#include "reflect/shading.h"
+#include "surface/dfg-integrate.h"
+#include "reflect/surface.h"
 
 int
 main(void)
