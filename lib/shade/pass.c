@@ -11,6 +11,7 @@
 #include "envmap/rgba_levels.h"
 #include "envmap/rgba_levels_simd.h"
 #include "shade/blend-pass.h"
+#include "surface/surface-internal.h"
 #include "plugin/plugin-internal.h"
 #include "util/invalid.h"
 #include "util/pixels.h"
@@ -724,9 +725,7 @@ diffuse_light(const rf_shade *s, const float *p, const float albedo[3], float me
 				dir[k] /= l;
 		}
 	}
-	rf__sh9_quadratic_eval(s->shq, dir, e);
-	for (k = 0; k < 3; k++)
-		e[k] *= albedo[k] * (1.0f - metal) * (float)(1.0 / 3.14159265358979);
+	rf__surface_diffuse(s->shq, dir, albedo, metal, e);
 }
 
 /* The final colour's BRDF term of a reflective pixel, on rgb in place,
@@ -742,36 +741,19 @@ final_colour(const rf_shade *s, const float *p, float rgb[3], float diffuse[3])
 	const float nn = nx * nx + ny * ny + nz * nz, vv = vx * vx + vy * vy + vz * vz;
 	float nv = nn > 0.0f && vv > 0.0f
 	                   ? (nx * vx + ny * vy + nz * vz) / (sqrtf(nn) * sqrtf(vv)) : 0.0f;
-	float metal = sat(or_one(s, p, IN_METAL)), pr = sat(p[s->in[IN_ROUGH]]), a, b;
-	float albedo[3], f0[3];
+	float metal = sat(or_one(s, p, IN_METAL)), pr = sat(p[s->in[IN_ROUGH]]);
+	float albedo[3], f0[3], w[3];
 	int k;
 
-	for (k = 0; k < 3; k++) {
+	for (k = 0; k < 3; k++)
 		albedo[k] = sat(or_one(s, p, IN_AR + k));
-		f0[k] = 0.04f + (albedo[k] - 0.04f) * metal;
-	}
-	if (s->final == RF_FINAL_UNITY) {
-		/* Unity Standard (BRDF1, linear): surfaceReduction x
-		 * lerp(F0, grazing, (1 - n.v)^5) */
-		const float alpha = pr * pr, reduction = 1.0f / (alpha * alpha + 1.0f);
-		const float one_minus_refl = 0.96f * (1.0f - metal);
-		const float grazing = sat((1.0f - pr) + (1.0f - one_minus_refl));
-		const float c = 1.0f - sat(nv), c5 = c * c * c * c * c;
-
-		for (k = 0; k < 3; k++)
-			rgb[k] *= reduction * (f0[k] + (grazing - f0[k]) * c5);
-	} else {
-		rf_dfg_lookup(nv, pr, &a, &b);
-		for (k = 0; k < 3; k++) {
-			float fgd = f0[k] * a + b;
-
-			/* HDRP: the energy lost to single scattering, E = A + B,
-			 * given back in proportion to F0 */
-			if (s->final == RF_FINAL_HDRP && a + b > 0.0f)
-				fgd *= 1.0f + f0[k] * (1.0f / (a + b) - 1.0f);
-			rgb[k] *= fgd;
-		}
-	}
+	rf__surface_f0(albedo, metal, f0);
+	if (s->final == RF_FINAL_UNITY)
+		rf__surface_unity(f0, nv, pr, metal, w);
+	else
+		rf__surface_split_sum(f0, nv, pr, s->final == RF_FINAL_HDRP, w);
+	for (k = 0; k < 3; k++)
+		rgb[k] *= w[k];
 	if (s->diffuse) {
 		diffuse_light(s, p, albedo, metal, diffuse);
 		for (k = 0; k < 3; k++)
