@@ -31,10 +31,10 @@
 #include "envmap/envmap-internal.h"
 #include "envmap/rgba_levels.h"
 #include "probe/projection.h"
+#include "surface/surface-internal.h"
 #include "util/pool.h"
 #include "scene/scene-internal.h"
 #include "reflect/plugin.h"
-#include "reflect/shading.h"
 
 /* How a face's texel (a, b) in [-1, 1]^2 lines up with the world: the
  * direction is major + a axis_a + b axis_b (rf_cube_direction's table). */
@@ -307,7 +307,7 @@ static void
 shade_object(const struct capture *c, const struct rf_hit *h, const double d[3],
              float rgb[3])
 {
-	float n[3], v[3], r[3], dir[3], p[3], spec[3], e[3], a, b, t, reach, lod, nv;
+	float n[3], v[3], r[3], dir[3], p[3], spec[3], f0[3], w[3], e[3], t, reach, lod, nv;
 	const float metal = h->metallic;
 	int k;
 
@@ -332,14 +332,12 @@ shade_object(const struct capture *c, const struct rf_hit *h, const double d[3],
 		spec[1] = q[1];
 		spec[2] = q[2];
 	}
-	rf_dfg_lookup(nv > 0.0f ? nv : 0.0f, h->roughness, &a, &b);
+	rf__surface_f0(h->albedo, metal, f0);
+	rf__surface_split_sum(f0, nv, h->roughness, 0, w);
 	rf__sh9_quadratic_eval(c->shq, n, e);
-	for (k = 0; k < 3; k++) {
-		const float f0 = 0.04f + (h->albedo[k] - 0.04f) * metal;
-
-		rgb[k] = spec[k] * (f0 * a + b) +
+	for (k = 0; k < 3; k++)
+		rgb[k] = spec[k] * w[k] +
 		         h->albedo[k] * (1.0f - metal) * e[k] * (float)(1.0 / M_PI);
-	}
 }
 
 /* A full ray: walls, objects, their shading and emission; the objid. */
