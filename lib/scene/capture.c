@@ -334,10 +334,9 @@ shade_object(const struct capture *c, const struct rf_hit *h, const double d[3],
 	}
 	rf__surface_f0(h->albedo, metal, f0);
 	rf__surface_split_sum(f0, nv, h->roughness, 0, w);
-	rf__sh9_quadratic_eval(c->shq, n, e);
+	rf__surface_diffuse(c->shq, n, h->albedo, metal, e);
 	for (k = 0; k < 3; k++)
-		rgb[k] = spec[k] * w[k] +
-		         h->albedo[k] * (1.0f - metal) * e[k] * (float)(1.0 / M_PI);
+		rgb[k] = spec[k] * w[k] + e[k];
 }
 
 /* A full ray: walls, objects, their shading and emission; the objid. */
