@@ -2,10 +2,11 @@
  * libreflect: shading with a prefiltered environment.
  *
  * The pass that turns each pixel's effective roughness into a lod of the
- * environment's one mapping and samples the chain there: the host side
- * of reflect-shade(1).  The roughness models themselves are plugins
- * (RF_KIND_SHADE); the split-sum environment BRDF (the DFG table) is in
- * reflect/surface.h, included here.
+ * environment's one mapping and samples the chain there, and the shader
+ * that builds reflect-shade(1)'s frames around it from one description.
+ * The roughness models themselves are plugins (RF_KIND_SHADE); the
+ * split-sum environment BRDF (the DFG table) is in reflect/surface.h,
+ * included here.
  */
 #ifndef REFLECT_SHADING_H
 #define REFLECT_SHADING_H
@@ -203,6 +204,141 @@ RF_EXTERN const char *rf_shade_error(const rf_shade *s);
 /* Pixels of the frame whose input the pass clamped or zeroed (a pixel
  * the mode's stage repaired too is counted by each). */
 RF_EXTERN size_t rf_shade_invalid_count(const rf_shade *s);
+
+/* ---- a frame shaded as reflect-shade shades it ------------------------ */
+
+/*
+ * The whole of reflect-shade(1) over a stream: the shade mode's stage and
+ * the sampling pass, and what they need, built here from a description
+ * of the shading (struct rf_shader_options) and each frame's header: the
+ * frame's probe (rf_probe_resolve), its environment (the options' env,
+ * else the frame's PROBE_ENV, else the embedded room) and, for blending,
+ * its other probes' (PROBEk_ENV) and the sky's, each loaded, prefiltered
+ * as rf_shade_environment makes it and kept across frames while they
+ * name the same; a plugin host for every probe, and for a mode that
+ * traces its own rays a stage for every probe, their rows laid out as
+ * the pass's.  For each frame: rf_shader_begin_frame, rf_shader_run over
+ * its rows in blocks (any order, any size), rf_shader_end_frame.
+ */
+typedef struct rf_shader rf_shader;
+
+/* Loads the environment `name` (a path, or "default": the embedded
+ * room) as rf_envmap_load does, with o as it takes them (o->from_header:
+ * the name came from a stream's header); the chain's info into *info.
+ * 0, or an error with its message in err. */
+typedef int rf_shader_load_fn(void *arg, rf_cubemap **c, struct rf_chain_info *info,
+                              const char *name, const struct rf_envmap_options *o,
+                              char *err, size_t errlen);
+
+struct rf_shader_options {
+	/* The shade mode (RF_KIND_SHADE) and its parameters
+	 * (rf_plugin_parse_params); both must outlive the shader.  spec is
+	 * what the output's SHADE key says (NULL: the mode's name). */
+	const struct rf_plugin *mode;
+	const double *values;
+	const char *spec;
+	int nthreads;  /* for the stages and the pass; < 1 means 1 */
+	uint32_t seed; /* for modes that draw samples */
+	/* Invalid input, in the stages and the pass (rf_shade_set_invalid). */
+	enum rf_invalid invalid;
+
+	/* The probe, as rf_probe_resolve takes it: --box, --center and
+	 * --box-projection as given (NULL: the frame's keys).  A frame
+	 * without a box has no probe; center (three comma-separated numbers)
+	 * still places the capture point its walls are seen from. */
+	const char *box, *center, *projection;
+
+	/* The environment: env for every frame (NULL: each frame's
+	 * PROBE_ENV, else the embedded room), loaded with envmap (its
+	 * prefiltered flag also takes a chain as given: as_given of
+	 * rf_shade_env_options) by load (NULL: rf_envmap_load, NaN texels
+	 * replaced as envmap says counted in a note), then sampled with
+	 * mapping (mapping_set), steps and samples as in
+	 * rf_shade_env_options, prefiltered chains kept in cache_dir (NULL:
+	 * nowhere), at most cache_bytes (0: 256 MB). */
+	const char *env;
+	struct rf_envmap_options envmap;
+	rf_shader_load_fn *load;
+	void *load_arg;
+	int mapping_set;
+	enum rf_mapping mapping;
+	float steps;
+	unsigned samples;
+	const char *cache_dir;
+	size_t cache_bytes;
+
+	/* The pass (rf_shade_options): final, an enum rf_final; with it
+	 * diffuse (1, the default) and diffuse_box; force_lod and lod. */
+	int final;
+	int diffuse, diffuse_box;
+	int force_lod;
+	float lod;
+
+	/* Blending the frame's probes (1, the default; 0 shades with the
+	 * first alone): at most max_probes (2) a pixel, with normal_fade,
+	 * what none covers from fallback, the sky's environment named by sky
+	 * (loaded by rf_shader_create, so that one that cannot be read is
+	 * refused at once). */
+	int blend;
+	unsigned max_probes;
+	int normal_fade;
+	enum rf_blend_fallback fallback;
+	const char *sky;
+
+	/* Called with each frame's output header before the shader sets its
+	 * keys (SHADE, ENV_MAPPING, ENV_STEPS, with env PROBE_ENV, the
+	 * probe's), e.g. to record the command (rf_header_add_command); an
+	 * error returned fails rf_shader_begin_frame with it.  May be NULL. */
+	int (*header)(void *arg, rf_header *out);
+	void *header_arg;
+	/* A prefilter's progress: done 0 as it starts (a cached chain
+	 * never does), with line saying what it prefilters ("prefiltering
+	 * the environment 'x' (64x64 per face, 7 levels)", NULL when not
+	 * worth one), then as levels are done.  May be NULL. */
+	void (*progress)(void *arg, const char *line, double done, double total);
+	void *progress_arg;
+	/* A line worth telling that is no error: a damaged cache entry made
+	 * again, NaN texels replaced, and with verbose which environment
+	 * each probe reads and how.  May be NULL. */
+	void (*note)(void *arg, const char *msg);
+	void *note_arg;
+	int verbose;
+};
+
+/* Defaults: everything 0 or NULL but blend 1, max_probes 2, diffuse 1,
+ * envmap as rf_envmap_options_init makes it. */
+RF_EXTERN void rf_shader_options_init(struct rf_shader_options *o);
+/* A shader for frames of o->mode.  With fallback RF_BLEND_SKY the sky is
+ * loaded (and prefiltered) here: err says why it cannot be. */
+RF_EXTERN int rf_shader_create(rf_shader **s, const struct rf_shader_options *o,
+                               char *err, size_t errlen);
+RF_EXTERN void rf_shader_destroy(rf_shader *s);
+/* Takes the next frame's header: checks that the mode and the pass find
+ * their channels (before any environment is loaded, so that a stream
+ * that cannot be shaded fails at once), loads what the frame's probes
+ * need, and makes the output header, valid until the next call.  err
+ * names the missing channel, the key that does not parse, the
+ * environment that cannot be loaded. */
+RF_EXTERN int rf_shader_begin_frame(rf_shader *s, const rf_header *in, rf_header **out,
+                                    char *err, size_t errlen);
+/* Rows y..y+nrows of the frame, in (the input header's channels) to out
+ * (the output header's): each row through the mode's stage, then
+ * shaded while it is in cache.  RF_EINVAL with rf_shader_error for a
+ * pixel that breaks a rule (see rf_shade_set_invalid and
+ * rf_stage_run), RF_EPLUGIN with it when the mode gave up. */
+RF_EXTERN int rf_shader_run(rf_shader *s, const float *in, float *out, size_t y,
+                            size_t nrows);
+/* The frame's first refusal (the mode's stage's, else the pass's), ""
+ * when there was none. */
+RF_EXTERN const char *rf_shader_error(const rf_shader *s);
+/* Pixels of the frame whose input the stage or the pass clamped or
+ * zeroed (one both repaired counted by each), and those whose outputs
+ * of the mode were (rf_stage_invalid_output_count). */
+RF_EXTERN size_t rf_shader_invalid_count(const rf_shader *s);
+RF_EXTERN size_t rf_shader_invalid_output_count(const rf_shader *s);
+/* Lets the frame's stages and hosts go (rf_shader_begin_frame and
+ * rf_shader_destroy do too). */
+RF_EXTERN void rf_shader_end_frame(rf_shader *s);
 
 #ifdef __cplusplus
 }
