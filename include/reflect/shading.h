@@ -48,7 +48,10 @@ enum rf_blend_fallback {
  * lerp(0.04, albedo, metallic); a stream without metallic or albedo is a
  * white metal (the missing one counts as 1).  Every other channel is
  * kept; channels of the same names are overwritten.  Rows are spread
- * over threads; the bytes do not depend on their number.
+ * over threads; the bytes do not depend on their number.  The pass alone
+ * shades rows that have these channels; rf_shader (below) builds it with
+ * the mode's stage, the probes and their environments, as reflect-shade
+ * does.
  */
 /* What reflect-shade(1) asks of its environment: --mapping, --steps,
  * --samples for a prefilter on the fly, --prefiltered (as_given). */
@@ -128,38 +131,11 @@ struct rf_shade_options {
 RF_EXTERN int rf_shade_create(rf_shade **s, const struct rf_shade_options *o);
 /* The diffuse light's coefficients as a chain file kept them (after
  * rf_shade_set_environment, which projects level 0 itself otherwise). */
-/* Blends the frame's probes (b, as rf_blend_read made it) into each
- * reflective pixel: probe 0 along D through the pass's own environment,
- * probe k >= 1 along R box-projected with its own box from P through
- * envs[k] (mappings and steps per probe; [0] is the pass's), the rest
- * from the fallback (RF_BLEND_SKY: envs[nprobes], with its mapping and
- * steps); every pixel also gets weight.probe1 ...
- * weight.probeN and weight.fallback.  Before the frame's channels are
- * listed; NULL or one probe turns it off.  A mode that writes its own
- * radiance needs no envs (NULL) but rf_shade_set_blend_stages.
- * RF_EINVAL for a probe without an environment. */
-RF_EXTERN int rf_shade_set_blend(rf_shade *s, const struct rf_blend *b,
-                                 const rf_cubemap *const *envs,
-                                 const enum rf_mapping *mappings, const float *steps,
-                                 enum rf_blend_fallback fallback);
-/* For a mode that traces its own rays (mode_radiance), the frame's other
- * probes as stages of the same mode (stages[k], k = 1 .. nprobes - 1,
- * each created with a host whose probe and environment are probe k's,
- * begun on the same frame with the pass's channels reserved, so that
- * their rows have the first stage's layout): where probe k has weight
- * its stage traces the row, and spec becomes the weighted sum (the
- * fallback's share goes to the first probe).  After rf_shade_set_blend
- * and rf_shade_begin_frame; the stages must outlive the frame. */
-RF_EXTERN int rf_shade_set_blend_stages(rf_shade *s, rf_stage *const *stages);
 RF_EXTERN void rf_shade_set_irradiance(rf_shade *s, const float sh9[27]);
 /* The probe box the diffuse light's box projection uses, for the frames
  * that follow (NULL: none, the irradiance at N itself). */
 struct rf_probe;
 RF_EXTERN void rf_shade_set_probe(rf_shade *s, const struct rf_probe *probe);
-/* For the frames that follow: 1 looks up along the reflection vector R
- * (box projection off: the classic lookup), not along D; 0 (the
- * default) along D. */
-RF_EXTERN void rf_shade_set_unprojected(rf_shade *s, int unprojected);
 RF_EXTERN void rf_shade_destroy(rf_shade *s);
 /* Checks the channels of a frame and makes its output header (valid
  * until the next call).  center: the probe's capture point, or NULL when
@@ -180,13 +156,6 @@ RF_EXTERN int rf_shade_set_environment(rf_shade *s, const rf_cubemap *env,
  * already (see rf_stage_reserve_channel) in may be out: the rows are
  * shaded in place. */
 RF_EXTERN int rf_shade_run(rf_shade *s, const float *in, float *out, size_t nrows);
-/* The shade mode's stage and the pass in one: rows y..y+nrows of the
- * stage's input to out, each row through the stage and then shaded in
- * place while it is in cache.  The stage's output header must be the
- * pass's input header and hold its channels (rf_stage_reserve_channel),
- * and the stage must have at least the pass's threads. */
-RF_EXTERN int rf_shade_run_stage(rf_shade *s, rf_stage *stage, const float *in,
-                                 float *out, size_t y, size_t nrows);
 /* Invalid input (rf_invalid in reflect.h) in what the pass reads itself:
  * mask (in [0, 1]); D where the mirror shows and P where the wall does
  * (finite); emission.R G B where they show (finite, not negative); with
@@ -194,10 +163,10 @@ RF_EXTERN int rf_shade_run_stage(rf_shade *s, rf_stage *stage, const float *in,
  * albedo in [0, 1], N and V directions); with mode_radiance the spec the
  * mode wrote (finite, not negative).  Under RF_INVALID_ERROR (the
  * default) the run returns RF_EINVAL with the first such pixel in
- * rf_shade_error (a stage's own error comes first); under CLAMP each is
- * clamped (NaN to 0, a radiance's +inf to the largest float), under ZERO
- * the pixel's outputs are 0; under both a D or P that is not finite
- * reads black.  Radiance that adds up past the float range is written
+ * rf_shade_error (rf_shader_error puts its stage's first); under CLAMP
+ * each is clamped (NaN to 0, a radiance's +inf to the largest float),
+ * under ZERO the pixel's outputs are 0; under both a D or P that is not
+ * finite reads black.  Radiance that adds up past the float range is written
  * as the largest float: the outputs are always finite. */
 RF_EXTERN void rf_shade_set_invalid(rf_shade *s, enum rf_invalid policy);
 RF_EXTERN const char *rf_shade_error(const rf_shade *s);

@@ -11,6 +11,7 @@
 #include "envmap/rgba_levels.h"
 #include "envmap/rgba_levels_simd.h"
 #include "shade/blend-pass.h"
+#include "shade/shade-internal.h"
 #include "surface/surface-internal.h"
 #include "plugin/plugin-internal.h"
 #include "util/invalid.h"
@@ -66,7 +67,7 @@ struct rf_shade {
 	int emission;
 	int out[OUT_COUNT];
 	size_t nout;
-	/* Probe blending (rf_shade_set_blend): its probes and environments,
+	/* Probe blending (rf__shade_set_blend): its probes and environments,
 	 * the pass made from them at the first block, the channels it reads
 	 * and the weight channels it writes after the nout others. */
 	int blending;
@@ -97,7 +98,7 @@ struct rf_shade {
 	float steps;
 	struct rf__pool *pool;
 	/* The block rf_shade_run is running, and the stage before the pass
-	 * when rf_shade_run_stage runs both. */
+	 * when rf__shade_run_stage runs both. */
 	const float *block_in;
 	float *block_out;
 	rf_stage *stage;
@@ -255,9 +256,9 @@ rf_shade_destroy(rf_shade *s)
 }
 
 int
-rf_shade_set_blend(rf_shade *s, const struct rf_blend *b, const rf_cubemap *const *envs,
-                   const enum rf_mapping *mappings, const float *steps,
-                   enum rf_blend_fallback fallback)
+rf__shade_set_blend(rf_shade *s, const struct rf_blend *b, const rf_cubemap *const *envs,
+                     const enum rf_mapping *mappings, const float *steps,
+                     enum rf_blend_fallback fallback)
 {
 	uint32_t k;
 
@@ -316,13 +317,13 @@ rf_shade_set_probe(rf_shade *s, const struct rf_probe *probe)
 }
 
 void
-rf_shade_set_unprojected(rf_shade *s, int unprojected)
+rf__shade_set_unprojected(rf_shade *s, int unprojected)
 {
 	s->unprojected = unprojected;
 }
 
 int
-rf_shade_set_blend_stages(rf_shade *s, rf_stage *const *stages)
+rf__shade_set_blend_stages(rf_shade *s, rf_stage *const *stages)
 {
 	uint32_t k;
 
@@ -982,8 +983,8 @@ rf_shade_error(const rf_shade *s)
 }
 
 int
-rf_shade_run_stage(rf_shade *s, rf_stage *stage, const float *in, float *out, size_t y,
-                   size_t nrows)
+rf__shade_run_stage(rf_shade *s, rf_stage *stage, const float *in, float *out, size_t y,
+                     size_t nrows)
 {
 	size_t sin, sout;
 	uint32_t k;

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "shade/shade-internal.h"
 #include "util/util.h"
 #include "reflect/host.h"
 #include "reflect/shading.h"
@@ -324,7 +325,7 @@ set_blend(rf_shader *s, const rf_header *in, const struct rf_probe *first, uint3
 		return nb;
 	}
 	if (nb < 2 || !first) {
-		rf_shade_set_blend(s->pass, NULL, NULL, NULL, NULL, o->fallback);
+		rf__shade_set_blend(s->pass, NULL, NULL, NULL, NULL, o->fallback);
 		return 0;
 	}
 	/* the first probe as the options made it */
@@ -358,7 +359,7 @@ set_blend(rf_shader *s, const rf_header *in, const struct rf_probe *first, uint3
 		mappings[k] = sky->mapping;
 		steps[k] = sky->steps;
 	}
-	if ((rc = rf_shade_set_blend(s->pass, b, envs, mappings, steps, o->fallback)) < 0)
+	if ((rc = rf__shade_set_blend(s->pass, b, envs, mappings, steps, o->fallback)) < 0)
 		return bare(rc, err, errlen);
 	*n = b->nprobes;
 	return 0;
@@ -402,7 +403,7 @@ blend_stages(rf_shader *s, const rf_header *in, char *err, size_t errlen)
 			if ((rc = rf_stage_reserve_channel(s->stages[k], channel)) < 0)
 				return bare(rc, err, errlen);
 	}
-	if ((rc = rf_shade_set_blend_stages(s->pass, s->stages)) < 0)
+	if ((rc = rf__shade_set_blend_stages(s->pass, s->stages)) < 0)
 		return bare(rc, err, errlen);
 	return 0;
 }
@@ -475,7 +476,7 @@ rf_shader_begin_frame(rf_shader *s, const rf_header *in, rf_header **out, char *
 	}
 	/* Box projection off: the classic lookup along R for every mode, the
 	 * distances infinite as for a probe without box projection. */
-	rf_shade_set_unprojected(s->pass, prc == 0 && !probe.box_projection);
+	rf__shade_set_unprojected(s->pass, prc == 0 && !probe.box_projection);
 	rf_shade_set_probe(s->pass, prc == 0 && probe.box_projection ? &probe : NULL);
 	if ((rc = check_frame(s, in, center, err, errlen)) < 0)
 		return rc;
@@ -537,7 +538,7 @@ rf_shader_run(rf_shader *s, const float *in, float *out, size_t y, size_t nrows)
 {
 	if (!s->stage)
 		return RF_EINVAL;
-	return rf_shade_run_stage(s->pass, s->stage, in, out, y, nrows);
+	return rf__shade_run_stage(s->pass, s->stage, in, out, y, nrows);
 }
 
 const char *
