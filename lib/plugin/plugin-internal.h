@@ -72,4 +72,13 @@ void rf__call_leave(void);
 enum { RF__ELF_NOT_PLUGIN = 1, RF__ELF_BROKEN = 2 };
 int rf__elf_check(const char *path, char *why, size_t len);
 
+/* A loaded descriptor whose ABI fields load.c found good, checked
+ * (descriptor.c): its other fields, its name against its file's (path),
+ * its kind against the one the tool wants (0: any) and that kind's
+ * output contract, its parameters.  0, or RF_EPLUGIN with err saying
+ * "plugin 'PATH': " what is wrong and the fix. */
+struct rf_plugin;
+int rf__descriptor_check(const struct rf_plugin *p, const char *path, unsigned kind,
+                         char *err, size_t errlen);
+
 #endif

@@ -1,0 +1,279 @@
+/* The plugin search path (REFLECT_PLUGIN_PATH, then the system's), the
+ * check of its directories, and a mode found by name in it or listed
+ * from it. */
+#include <ctype.h>
+#include <dirent.h>
+#include <dlfcn.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "plugin/plugin-internal.h"
+#include "util/util.h"
+#include "reflect/plugin.h"
+
+#ifndef REFLECT_PLUGINDIR_REL
+#define REFLECT_PLUGINDIR_REL ""
+#endif
+#ifndef REFLECT_PLUGINDIR
+#define REFLECT_PLUGINDIR "/usr/local/lib/reflect-1"
+#endif
+
+/* The installed plugin directory: beside the library itself when the
+ * tree was moved (the library's directory + REFLECT_PLUGINDIR_REL, when
+ * that is a directory), else the one it was built for. */
+static const char *
+installed_plugindir(void)
+{
+	static __thread char dir[4096];
+	Dl_info info;
+	struct stat st;
+	const char *slash;
+
+	if (*REFLECT_PLUGINDIR_REL && dladdr((void *)rf_plugin_search_path, &info) &&
+	    info.dli_fname && (slash = strrchr(info.dli_fname, '/'))) {
+		rf__format(dir, sizeof(dir), "%.*s/%s", (int)(slash - info.dli_fname),
+		           info.dli_fname, REFLECT_PLUGINDIR_REL);
+		if (stat(dir, &st) == 0 && S_ISDIR(st.st_mode))
+			return dir;
+	}
+	return REFLECT_PLUGINDIR;
+}
+
+const char *
+rf_plugin_search_path(void)
+{
+	static __thread char buf[8192];
+	const char *user = getenv("REFLECT_PLUGIN_PATH");
+	const char *sys = getenv("REFLECT_PLUGIN_SYSTEM_PATH");
+
+	if (!sys)
+		sys = installed_plugindir();
+	rf__format(buf, sizeof(buf), "%s%s%s", user && *user ? user : "",
+	           user && *user && *sys ? ":" : "", sys);
+	return buf;
+}
+
+/*
+ * Whoever can write to a directory of the search path chooses the code
+ * every tool runs: a directory any user may write to (and not sticky,
+ * where they could also replace another's file) is refused, as ssh
+ * refuses such files.  A relative directory is searched from wherever
+ * the tool runs, which is seldom what was meant: a warning.
+ */
+static int
+check_list(const char *list, const char *var, char *err, size_t errlen, char *warning,
+           size_t warnlen)
+{
+	const char *p;
+	size_t n;
+
+	for (p = list; p && *p; p += n + (p[n] == ':')) {
+		char dir[4096];
+		struct stat st;
+
+		n = strcspn(p, ":");
+		if (!n)
+			continue;
+		rf__format(dir, sizeof(dir), "%.*s", (int)n, p);
+		if (*dir != '/' && warning && !*warning)
+			rf__format(warning, warnlen, "relative directory '%s' in %s is searched "
+			           "from the current directory; give an absolute path", dir, var);
+		if (stat(dir, &st) < 0 || !S_ISDIR(st.st_mode))
+			continue;
+		if ((st.st_mode & S_IWOTH) && !(st.st_mode & S_ISVTX)) {
+			rf__format(err, errlen, "plugin directory '%s' in %s is writable by "
+			           "every user (mode %04o): anyone could put a plugin there; "
+			           "chmod o-w '%s', or take it out of %s", dir, var,
+			           (unsigned)(st.st_mode & 07777), dir, var);
+			return RF_EPLUGIN;
+		}
+	}
+	return 0;
+}
+
+int
+rf_plugin_path_check(char *err, size_t errlen, char *warning, size_t warnlen)
+{
+	const char *sys = getenv("REFLECT_PLUGIN_SYSTEM_PATH");
+	int rc;
+
+	if (warning && warnlen)
+		*warning = '\0';
+	if ((rc = check_list(getenv("REFLECT_PLUGIN_PATH"), "REFLECT_PLUGIN_PATH", err, errlen,
+	                     warning, warnlen)) < 0)
+		return rc;
+	return check_list(sys ? sys : installed_plugindir(),
+	                  sys ? "REFLECT_PLUGIN_SYSTEM_PATH" : "the installed plugin directory",
+	                  err, errlen, warning, warnlen);
+}
+
+static int
+mode_name_valid(const char *s)
+{
+	if (!*s || *s == '.' || strlen(s) > 200)
+		return 0;
+	for (; *s; s++)
+		if (!isalnum((unsigned char)*s) && *s != '_' && *s != '-' && *s != '.')
+			return 0;
+	return 1;
+}
+
+int
+rf_module_load(rf_module **mp, const char *name, unsigned kind, char *err,
+               size_t errlen)
+{
+	char path[4096], why[512], not_plugin[1024] = "";
+	const char *dirs, *p;
+	struct stat st;
+	size_t n;
+
+	*mp = NULL;
+	if (strchr(name, '/'))
+		return rf_module_load_file(mp, name, kind, err, errlen);
+	if (!mode_name_valid(name)) {
+		rf__format(err, errlen, "'%.80s' is not a valid mode name (letters, "
+		           "digits, '_', '-' and '.'; a path needs a '/')", name);
+		return RF_EINVAL;
+	}
+	if (rf_plugin_path_check(err, errlen, NULL, 0) < 0)
+		return RF_EPLUGIN;
+	dirs = rf_plugin_search_path();
+	for (p = dirs; *p; p += n + (p[n] == ':')) {
+		int k;
+
+		n = strcspn(p, ":");
+		if (!n)
+			continue;
+		/* KIND-NAME.so first: a name another kind has too */
+		for (k = kind && rf_plugin_kind_name(kind) ? 0 : 1; k < 2; k++) {
+			if (k == 0)
+				rf__format(path, sizeof(path), "%.*s/%s-%s.so", (int)n, p,
+				           rf_plugin_kind_name(kind), name);
+			else
+				rf__format(path, sizeof(path), "%.*s/%s.so", (int)n, p, name);
+			if (stat(path, &st) < 0 || !S_ISREG(st.st_mode))
+				continue;
+			/* A library that is no plugin is passed over, as -l passes
+			 * it; the first is named should no plugin follow. */
+			if (rf__elf_check(path, why, sizeof(why)) == RF__ELF_NOT_PLUGIN) {
+				if (!*not_plugin)
+					rf__format(not_plugin, sizeof(not_plugin), "plugin '%s': %s",
+					           path, why);
+				continue;
+			}
+			return rf_module_load_file(mp, path, kind, err, errlen);
+		}
+	}
+	if (*not_plugin) {
+		rf__format(err, errlen, "%s", not_plugin);
+		return RF_EPLUGIN;
+	}
+	n = strlen(name);
+	rf__format(err, errlen, "unknown %s mode '%s': no %s.so in %s%s%s%s%s (-l "
+	           "lists the modes)", kind ? rf_plugin_kind_name(kind) : "plugin",
+	           name, name, *dirs ? "'" : "", *dirs ? dirs : "an empty search path",
+	           *dirs ? "'" : "",
+	           n > 3 && !strcmp(name + n - 3, ".so")
+	           ? "; a path to a file needs a '/', as in ./" : "",
+	           n > 3 && !strcmp(name + n - 3, ".so") ? name : "");
+	return RF_ENOTFOUND;
+}
+
+static int
+cmp_str(const void *a, const void *b)
+{
+	return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+int
+rf_plugin_scan(rf_plugin_visit_fn fn, void *arg)
+{
+	char *dirs, *dir, *save = NULL, **seen = NULL, **files = NULL, why[1024];
+	size_t nseen = 0, nfiles = 0, ndirs = 0, i, j;
+	struct stat dirst[64];
+	int rc = 0;
+
+	if (rf_plugin_path_check(why, sizeof(why), NULL, 0) < 0)
+		return RF_EPLUGIN;
+	if (!(dirs = strdup(rf_plugin_search_path())))
+		return RF_ENOMEM;
+	for (dir = strtok_r(dirs, ":", &save); dir; dir = strtok_r(NULL, ":", &save)) {
+		struct dirent *e;
+		struct stat ds;
+		DIR *d;
+
+		/* A directory named twice (or through a link) is scanned once:
+		 * its files would otherwise shadow themselves. */
+		if (stat(dir, &ds) < 0 || !S_ISDIR(ds.st_mode))
+			continue;
+		for (i = 0; i < ndirs; i++)
+			if (dirst[i].st_dev == ds.st_dev && dirst[i].st_ino == ds.st_ino)
+				break;
+		if (i < ndirs)
+			continue;
+		if (ndirs < sizeof(dirst) / sizeof(dirst[0]))
+			dirst[ndirs++] = ds;
+		if (!(d = opendir(dir)))
+			continue;
+		nfiles = 0;
+		while ((e = readdir(d))) {
+			size_t len = strlen(e->d_name);
+			char **grown;
+
+			if (len <= 3 || strcmp(e->d_name + len - 3, ".so"))
+				continue;
+			if (!(grown = realloc(files, (nfiles + 1) * sizeof(*files))) ||
+			    !(grown[nfiles] = strdup(e->d_name))) {
+				files = grown ? grown : files;
+				closedir(d);
+				rc = RF_ENOMEM;
+				goto out;
+			}
+			files = grown;
+			nfiles++;
+		}
+		closedir(d);
+		qsort(files, nfiles, sizeof(*files), cmp_str);
+		for (i = 0; i < nfiles; i++) {
+			char path[4096];
+			struct stat st;
+			int shadowed = 0;
+			char **grown;
+
+			rf__format(path, sizeof(path), "%s/%s", dir, files[i]);
+			if (stat(path, &st) < 0 || !S_ISREG(st.st_mode))
+				continue;
+			/* Only plugins are visited: a library beside them is not
+			 * loaded (its constructors would run), and hides nothing. */
+			if (rf__elf_check(path, why, sizeof(why)) == RF__ELF_NOT_PLUGIN)
+				continue;
+			for (j = 0; j < nseen; j++)
+				if (!strcmp(seen[j], files[i]))
+					shadowed = 1;
+			if (!shadowed) {
+				if (!(grown = realloc(seen, (nseen + 1) * sizeof(*seen))) ||
+				    !(grown[nseen] = strdup(files[i]))) {
+					seen = grown ? grown : seen;
+					rc = RF_ENOMEM;
+					goto out;
+				}
+				seen = grown;
+				nseen++;
+			}
+			fn(arg, path, shadowed);
+		}
+		for (i = 0; i < nfiles; i++)
+			free(files[i]);
+		nfiles = 0;
+	}
+out:
+	for (i = 0; i < nfiles; i++)
+		free(files[i]);
+	for (i = 0; i < nseen; i++)
+		free(seen[i]);
+	free(seen);
+	free(files);
+	free(dirs);
+	return rc;
+}
