@@ -10,7 +10,7 @@
 struct listing {
 	unsigned kind;
 	int count;
-	char **first; /* the path that won, for each file name seen */
+	char **first; /* the files no earlier one shadows, in search order */
 	size_t nfirst;
 };
 
@@ -22,21 +22,38 @@ base_name(const char *path)
 	return slash ? slash + 1 : path;
 }
 
-/* The earlier file of the same name that hides this one. */
+static void
+remember(struct listing *l, const char *path)
+{
+	l->first = realloc(l->first, (l->nfirst + 1) * sizeof(*l->first));
+	if (!l->first)
+		die_sys("out of memory");
+	l->first[l->nfirst++] = estrdup(path);
+}
+
+/* Whether a file name is one -m tries for the mode: KIND-NAME.so or
+ * NAME.so. */
+static int
+names_mode(const char *file, const struct rf_plugin *p)
+{
+	const char *kind = rf_plugin_kind_name(p->kind);
+	size_t n = strlen(kind);
+
+	if (!strncmp(file, kind, n) && file[n] == '-')
+		file += n + 1;
+	n = strlen(p->name);
+	return !strncmp(file, p->name, n) && !strcmp(file + n, ".so");
+}
+
+/* The earlier file that -m finds for the mode before this one. */
 static const char *
-winner(struct listing *l, const char *path, int shadowed)
+winner(struct listing *l, const struct rf_plugin *p)
 {
 	size_t i;
 
 	for (i = 0; i < l->nfirst; i++)
-		if (!strcmp(base_name(l->first[i]), base_name(path)))
+		if (names_mode(base_name(l->first[i]), p))
 			return l->first[i];
-	if (!shadowed) {
-		l->first = realloc(l->first, (l->nfirst + 1) * sizeof(*l->first));
-		if (!l->first)
-			die_sys("out of memory");
-		l->first[l->nfirst++] = estrdup(path);
-	}
 	return NULL;
 }
 
@@ -93,12 +110,14 @@ static void
 list_one(void *arg, const char *path, int shadowed)
 {
 	struct listing *l = arg;
-	const char *first = winner(l, path, shadowed);
+	const char *first;
 	char err[1024];
 	rf_module *m;
 	const struct rf_plugin *p;
 	uint32_t i;
 
+	if (!shadowed)
+		remember(l, path);
 	if (rf_module_load_file(&m, path, 0, err, sizeof(err)) < 0) {
 		warn("ignoring %s", err);
 		return;
@@ -109,6 +128,7 @@ list_one(void *arg, const char *path, int shadowed)
 		return;
 	}
 	if (shadowed) {
+		first = winner(l, p);
 		printf("# %s: shadowed by %s, earlier in the search path\n", path,
 		       first ? first : "an earlier file");
 		rf_module_unload(m);

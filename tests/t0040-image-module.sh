@@ -46,7 +46,7 @@ test_expect_success 'a missing module is one clear message when an image is need
 '
 
 test_expect_success 'a library that is not the module is refused' '
-	lib=$(ls "$builddir"/plugins/.libs/box.so) &&
+	lib=$(ls "$builddir"/plugins/.libs/projection-box.so) &&
 	test_expect_code 1 env REFLECT_IMAGE_MODULE="$lib" reflect-export -c all -o x.tif p.rfl 2>err &&
 	test_grep "is not reflect.s image module" err
 '

@@ -72,7 +72,7 @@ test_expect_success 'no rf_plugin_entry: not a reflect plugin, how to define it'
 '
 
 test_expect_success 'name differs from the file: both names, rename the file or the name' '
-	refused bad_name "its descriptor is named .other_name., but a plugin.s name must equal its file name; rename the file to .other_name\.so. or set the name to .bad_name."
+	refused bad_name "its descriptor is named .other_name., but a plugin.s name must equal its file name; rename the file to .projection-other_name\.so. or .other_name\.so., or set the name to .bad_name."
 '
 
 test_expect_success 'unknown parameter flag bits: the bits, versions, allowed flags' '
@@ -98,11 +98,11 @@ test_expect_success 'a shade plugin is not a projection mode: which tool takes i
 '
 
 test_expect_success 'a real plugin under another file name is refused' '
-	cp "$builddir/plugins/.libs/box.so" mybox.so &&
+	cp "$builddir/plugins/.libs/projection-box.so" mybox.so &&
 	test_expect_code 1 reflect-project -m ./mybox.so <gbuf >out 2>err &&
 	test_line_count 0 out &&
 	test_one_line_message reflect-project err &&
-	test_grep "^reflect-project: plugin .\./mybox\.so.: its descriptor is named .box., but a plugin.s name must equal its file name; rename the file to .box\.so. or set the name to .mybox.$" err
+	test_grep "^reflect-project: plugin .\./mybox\.so.: its descriptor is named .box., but a plugin.s name must equal its file name; rename the file to .projection-box\.so. or .box\.so., or set the name to .mybox.$" err
 '
 
 test_expect_success 'a file that is not a shared object: said so, never loaded' '
@@ -123,10 +123,10 @@ test_expect_success 'a file that is not a shared object: said so, never loaded' 
 # fault on them (SIGBUS, exit 135).  Cut at every part of the file.
 test_expect_success 'a truncated plugin is refused with its size, never loaded' '
 	mkdir cut &&
-	size=$(wc -c <"$builddir/plugins/.libs/box.so") &&
+	size=$(wc -c <"$builddir/plugins/.libs/projection-box.so") &&
 	for at in 40 100 2000 $((size / 2)) $((size - 100)) $((size - 1))
 	do
-		head -c $at "$builddir/plugins/.libs/box.so" >cut/box.so &&
+		head -c $at "$builddir/plugins/.libs/projection-box.so" >cut/box.so &&
 		test_expect_code 1 reflect-project -m cut/box.so <gbuf >out 2>err &&
 		test_line_count 0 out &&
 		test_one_line_message reflect-project err &&
@@ -140,7 +140,8 @@ test_expect_success 'a truncated plugin is refused with its size, never loaded' 
 # table: such a plugin loads, such a library is still told apart.
 test_expect_success 'a plugin without section headers: its symbols through PT_DYNAMIC' '
 	mkdir nosec &&
-	cp "$builddir/plugins/.libs/infinite.so" "$P/not_plugin.so" nosec/ &&
+	cp "$builddir/plugins/.libs/projection-infinite.so" nosec/infinite.so &&
+	cp "$P/not_plugin.so" nosec/ &&
 	for f in nosec/infinite.so nosec/not_plugin.so
 	do
 		printf "\000\000\000\000\000\000\000\000" |
@@ -164,7 +165,7 @@ test_expect_success 'a library that is no plugin is refused without running it' 
 '
 
 test_expect_success 'a plugin built for another machine is refused before dlopen' '
-	cp "$builddir/plugins/.libs/box.so" box.so &&
+	cp "$builddir/plugins/.libs/projection-box.so" box.so &&
 	# e_machine 183 (AArch64), or 62 (x86-64) when this is AArch64
 	machine=$(od -An -tu2 -j18 -N2 box.so | tr -d " ") &&
 	if test "$machine" = 183

@@ -20,17 +20,20 @@ test_expect_success 'setup: a G-buffer and directories of plugins' '
 	0	0	0	0	1	0	0	1	0
 	EOF
 	mkdir a b empty "we:ird" &&
-	cp "$B/box.so" a/box.so &&
-	cp "$B/box.so" "$B/infinite.so" b/ &&
-	cp "$B/box.so" "we:ird/box.so"
+	cp "$B/projection-box.so" a/ &&
+	cp "$B/projection-box.so" "$B/projection-infinite.so" b/ &&
+	cp "$B/projection-box.so" "we:ird/"
 '
 
 test_expect_success '-l lists bevel, box and infinite: summary, file, channels' '
 	reflect-project -l >out 2>err &&
 	test_line_count 0 err &&
+	# a build tree from before the files were KIND-NAME.so keeps
+	# NAME.so beside them, which -l lists as shadowed
+	grep -v "^# " out >listed &&
 	cat >expect <<-EOF &&
 	bevel${tab}box projection onto the probe box with its edges and corners rounded
-	  file: $B/bevel.so (version 1.0, plugin ABI 1.1, reflect developers, MIT)
+	  file: $B/projection-bevel.so (version 1.0, plugin ABI 1.1, reflect developers, MIT)
 	  reads: P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z
 	  writes: R.X R.Y R.Z D.X D.Y D.Z hit.dist probe.dist
 	  parameters:
@@ -38,15 +41,15 @@ test_expect_success '-l lists bevel, box and infinite: summary, file, channels' 
 	    offset=0${tab}grow the rounded box beyond the probe box (the write-up${sq}s shape) instead of keeping its faces on it (0 or 1)
 	    roughen=0${tab}radius added per width of the lobe at the hit (0: a fixed radius) ([0, inf))
 	box${tab}box projection: look up where the reflected ray leaves the probe box
-	  file: $B/box.so (version 1.0, plugin ABI 1.1, reflect developers, MIT)
+	  file: $B/projection-box.so (version 1.0, plugin ABI 1.1, reflect developers, MIT)
 	  reads: P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z
 	  writes: R.X R.Y R.Z D.X D.Y D.Z hit.dist probe.dist
 	infinite${tab}no parallax: look up the reflection vector itself (distant environment)
-	  file: $B/infinite.so (version 1.0, plugin ABI 1.1, reflect developers, MIT)
+	  file: $B/projection-infinite.so (version 1.0, plugin ABI 1.1, reflect developers, MIT)
 	  reads: N.X N.Y N.Z V.X V.Y V.Z
 	  writes: R.X R.Y R.Z D.X D.Y D.Z hit.dist probe.dist
 	EOF
-	diff -u expect out
+	diff -u expect listed
 '
 
 test_expect_success '-l lists parameters with default, help and range' '
@@ -87,7 +90,7 @@ test_expect_success '-l warns about every broken plugin and lists the rest' '
 
 test_expect_success '-l passes over a library that is no plugin, never loading it' '
 	mkdir lib &&
-	cp "$B/box.so" "$REFLECT_TEST_PLUGINS/not_plugin.so" lib/ &&
+	cp "$B/projection-box.so" "$REFLECT_TEST_PLUGINS/not_plugin.so" lib/ &&
 	cp "$REFLECT_TEST_PLUGINS/not_plugin.so" lib/infinite.so &&
 	REFLECT_PLUGIN_PATH="$PWD/lib" REFLECT_PLUGIN_SYSTEM_PATH= reflect-project -l >out 2>err &&
 	test_line_count 0 err &&
@@ -100,7 +103,7 @@ test_expect_success '-l passes over a library that is no plugin, never loading i
 test_expect_success '-m passes over a library of its name for a plugin after it' '
 	REFLECT_PLUGIN_PATH="$PWD/lib:$B" reflect-project -v -m infinite <gbuf >/dev/null 2>err &&
 	test_one_line_message reflect-project err &&
-	test_grep "^reflect-project: mode .infinite. from .$B/infinite\.so.$" err &&
+	test_grep "^reflect-project: mode .infinite. from .$B/projection-infinite\.so.$" err &&
 	test_expect_code 1 env REFLECT_PLUGIN_PATH="$PWD/lib" REFLECT_PLUGIN_SYSTEM_PATH= \
 		reflect-project -m infinite <gbuf >out 2>err &&
 	test_line_count 0 out &&
@@ -110,12 +113,12 @@ test_expect_success '-m passes over a library of its name for a plugin after it'
 
 test_expect_success '-l warns about a truncated plugin, lists the rest, exit 0' '
 	mkdir cut &&
-	size=$(wc -c <"$B/infinite.so") &&
-	head -c $((size / 2)) "$B/infinite.so" >cut/infinite.so &&
-	cp "$B/box.so" cut/ &&
+	size=$(wc -c <"$B/projection-infinite.so") &&
+	head -c $((size / 2)) "$B/projection-infinite.so" >cut/projection-infinite.so &&
+	cp "$B/projection-box.so" cut/ &&
 	REFLECT_PLUGIN_PATH="$PWD/cut" REFLECT_PLUGIN_SYSTEM_PATH= reflect-project -l >out 2>err &&
 	test_one_line_message reflect-project err &&
-	test_grep "^reflect-project: ignoring plugin .$PWD/cut/infinite\.so.: not a whole shared object: $((size / 2)) bytes, its headers need [0-9]* " err &&
+	test_grep "^reflect-project: ignoring plugin .$PWD/cut/projection-infinite\.so.: not a whole shared object: $((size / 2)) bytes, its headers need [0-9]* " err &&
 	test_grep "^box$tab" out &&
 	! grep "^infinite$tab" out
 '
@@ -133,42 +136,113 @@ test_expect_success '-l reports a shadowed duplicate and the file that wins' '
 	REFLECT_PLUGIN_PATH="$PWD/a:$PWD/b" reflect-project -l >out 2>err &&
 	test_line_count 0 err &&
 	test_grep "^box$tab" out &&
-	test_grep "^  file: $PWD/a/box\.so " out &&
-	test_grep "^# $PWD/b/box\.so: shadowed by $PWD/a/box\.so, earlier in the search path$" out &&
-	test_grep "^  file: $PWD/b/infinite\.so " out &&
+	test_grep "^  file: $PWD/a/projection-box\.so " out &&
+	test_grep "^# $PWD/b/projection-box\.so: shadowed by $PWD/a/projection-box\.so, earlier in the search path$" out &&
+	test_grep "^  file: $PWD/b/projection-infinite\.so " out &&
 	! grep "shadowed.*infinite" out
+'
+
+test_expect_success 'every mode of ours is the file KIND-NAME.so, -m takes NAME' '
+	for t in project:projection shade:shade occlude:occlusion \
+		accumulate:accumulate filter:filter
+	do
+		tool=${t%%:*} kind=${t#*:} &&
+		reflect-$tool -l >out 2>err &&
+		test_line_count 0 err &&
+		awk -v t="$tab" "/^[a-z]/ { split(\$0, f, t); name = f[1] }
+			/^  file: / { print name, \$2 }" out >modes &&
+		test -s modes &&
+		while read name file
+		do
+			test "$file" = "$B/$kind-$name.so" ||
+			return 1
+		done <modes ||
+		return 1
+	done &&
+	reflect-project -v -m box <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .box. from .$B/projection-box\.so.$" err
+'
+
+test_expect_success 'a plain NAME.so of the right kind is found, as plugins of others are named' '
+	mkdir plain &&
+	cp "$B/projection-box.so" plain/box.so &&
+	REFLECT_PLUGIN_PATH="$PWD/plain" REFLECT_PLUGIN_SYSTEM_PATH= \
+		reflect-project -v -m box <gbuf >/dev/null 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/plain/box\.so.$" err &&
+	# an earlier directory wins, whichever of the two names it holds
+	REFLECT_PLUGIN_PATH="$PWD/plain" REFLECT_PLUGIN_SYSTEM_PATH="$B" \
+		reflect-project -v -m box <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/plain/box\.so.$" err &&
+	REFLECT_PLUGIN_PATH="$PWD/plain" REFLECT_PLUGIN_SYSTEM_PATH="$B" \
+		reflect-project -l >out 2>err &&
+	test_line_count 0 err &&
+	test_grep "^  file: $PWD/plain/box\.so " out &&
+	test_grep "^# $B/projection-box\.so: shadowed by $PWD/plain/box\.so, earlier in the search path$" out
+'
+
+test_expect_success 'NAME.so beside KIND-NAME.so (an earlier install): KIND-NAME.so wins' '
+	mkdir both &&
+	cp "$B/projection-box.so" both/ &&
+	cp "$B/projection-box.so" both/box.so &&
+	REFLECT_PLUGIN_PATH="$PWD/both" REFLECT_PLUGIN_SYSTEM_PATH= \
+		reflect-project -v -m box <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/both/projection-box\.so.$" err &&
+	REFLECT_PLUGIN_PATH="$PWD/both" REFLECT_PLUGIN_SYSTEM_PATH= reflect-project -l >out 2>err &&
+	test_line_count 0 err &&
+	grep "^[a-z]" out >names &&
+	test_line_count 1 names &&
+	test_grep "^  file: $PWD/both/projection-box\.so " out &&
+	test_grep "^# $PWD/both/box\.so: shadowed by $PWD/both/projection-box\.so, earlier in the search path$" out
+'
+
+test_expect_success 'NAME.so is not shadowed by KIND-NAME.so of another kind' '
+	mkdir mixed &&
+	cp "$B/occlusion-box.so" mixed/ &&
+	cp "$B/projection-box.so" mixed/box.so &&
+	REFLECT_PLUGIN_PATH="$PWD/mixed" REFLECT_PLUGIN_SYSTEM_PATH= \
+		reflect-project -v -m box <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/mixed/box\.so.$" err &&
+	REFLECT_PLUGIN_PATH="$PWD/mixed" REFLECT_PLUGIN_SYSTEM_PATH= reflect-project -l >out 2>err &&
+	test_line_count 0 err &&
+	test_grep "^  file: $PWD/mixed/box\.so " out &&
+	! grep shadowed out &&
+	REFLECT_PLUGIN_PATH="$PWD/mixed" REFLECT_PLUGIN_SYSTEM_PATH= reflect-occlude -l >out 2>err &&
+	test_line_count 0 err &&
+	test_grep "^  file: $PWD/mixed/occlusion-box\.so " out &&
+	! grep shadowed out
 '
 
 test_expect_success '-l: a directory named twice does not shadow itself' '
 	REFLECT_PLUGIN_PATH="$PWD/a:$PWD/a/.:$PWD/a" reflect-project -l >out 2>err &&
 	test_line_count 0 err &&
 	! grep shadowed out &&
-	test_grep "^  file: $PWD/a/box\.so " out
+	test_grep "^  file: $PWD/a/projection-box\.so " out
 '
 
 test_expect_success '-v: REFLECT_PLUGIN_PATH in order, the first match wins' '
 	REFLECT_PLUGIN_PATH="$PWD/a:$PWD/b" reflect-project -v -m box <gbuf >/dev/null 2>err &&
 	test_one_line_message reflect-project err &&
-	test_grep "^reflect-project: mode .box. from .$PWD/a/box\.so.$" err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/a/projection-box\.so.$" err &&
 	REFLECT_PLUGIN_PATH="$PWD/b:$PWD/a" reflect-project -v -m box <gbuf >/dev/null 2>err &&
-	test_grep "^reflect-project: mode .box. from .$PWD/b/box\.so.$" err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/b/projection-box\.so.$" err &&
 	REFLECT_PLUGIN_PATH="$PWD/a:$PWD/b" reflect-project -v -m infinite <gbuf >/dev/null 2>err &&
-	test_grep "^reflect-project: mode .infinite. from .$PWD/b/infinite\.so.$" err
+	test_grep "^reflect-project: mode .infinite. from .$PWD/b/projection-infinite\.so.$" err
 '
 
 test_expect_success 'REFLECT_PLUGIN_SYSTEM_PATH comes after REFLECT_PLUGIN_PATH' '
 	REFLECT_PLUGIN_PATH="$PWD/a" REFLECT_PLUGIN_SYSTEM_PATH="$PWD/b" \
 		reflect-project -v -m box <gbuf >/dev/null 2>err &&
-	test_grep "^reflect-project: mode .box. from .$PWD/a/box\.so.$" err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/a/projection-box\.so.$" err &&
 	REFLECT_PLUGIN_PATH="$PWD/a" REFLECT_PLUGIN_SYSTEM_PATH="$PWD/b" \
 		reflect-project -v -m infinite <gbuf >/dev/null 2>err &&
-	test_grep "^reflect-project: mode .infinite. from .$PWD/b/infinite\.so.$" err &&
+	test_grep "^reflect-project: mode .infinite. from .$PWD/b/projection-infinite\.so.$" err &&
 	REFLECT_PLUGIN_PATH= REFLECT_PLUGIN_SYSTEM_PATH="$PWD/b" \
 		reflect-project -v -m box <gbuf >/dev/null 2>err &&
-	test_grep "^reflect-project: mode .box. from .$PWD/b/box\.so.$" err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/b/projection-box\.so.$" err &&
 	REFLECT_PLUGIN_PATH="$PWD/a" REFLECT_PLUGIN_SYSTEM_PATH="$PWD/b" \
 		reflect-project -l >out &&
-	test_grep "^# $PWD/b/box\.so: shadowed by $PWD/a/box\.so, earlier in the search path$" out
+	test_grep "^# $PWD/b/projection-box\.so: shadowed by $PWD/a/projection-box\.so, earlier in the search path$" out
 '
 
 test_expect_success 'an empty REFLECT_PLUGIN_SYSTEM_PATH means no system directory' '
@@ -176,10 +250,10 @@ test_expect_success 'an empty REFLECT_PLUGIN_SYSTEM_PATH means no system directo
 		reflect-project -m box <gbuf >out 2>err &&
 	test_line_count 0 out &&
 	test_one_line_message reflect-project err &&
-	test_grep "^reflect-project: unknown projection mode .box.: no box\.so in .$PWD/empty. (-l lists the modes)$" err &&
+	test_grep "^reflect-project: unknown projection mode .box.: no projection-box\.so or box\.so in .$PWD/empty. (-l lists the modes)$" err &&
 	test_expect_code 1 env REFLECT_PLUGIN_PATH= REFLECT_PLUGIN_SYSTEM_PATH= \
 		reflect-project -m box <gbuf >out 2>err &&
-	test_grep "^reflect-project: unknown projection mode .box.: no box\.so in an empty search path (-l lists the modes)$" err &&
+	test_grep "^reflect-project: unknown projection mode .box.: no projection-box\.so or box\.so in an empty search path (-l lists the modes)$" err &&
 	test_expect_code 1 env REFLECT_PLUGIN_PATH= REFLECT_PLUGIN_SYSTEM_PATH= \
 		reflect-project -l >out 2>err &&
 	test_line_count 0 out &&
@@ -196,35 +270,35 @@ test_expect_success 'an unset REFLECT_PLUGIN_SYSTEM_PATH means the installed plu
 			reflect-project -m nosuch <gbuf >out 2>err
 	) &&
 	test_one_line_message reflect-project err &&
-	test_grep "^reflect-project: unknown projection mode .nosuch.: no nosuch\.so in .$PWD/empty:$plugindir. (-l lists the modes)$" err
+	test_grep "^reflect-project: unknown projection mode .nosuch.: no projection-nosuch\.so or nosuch\.so in .$PWD/empty:$plugindir. (-l lists the modes)$" err
 '
 
 test_expect_success 'a name with a slash is a path, not searched for' '
-	REFLECT_PLUGIN_PATH="$PWD/empty" reflect-project -v -m a/box.so <gbuf >/dev/null 2>err &&
-	test_grep "^reflect-project: mode .box. from .a/box\.so.$" err &&
-	REFLECT_PLUGIN_PATH="$PWD/empty" reflect-project -v -m "$PWD/b/box.so" <gbuf >/dev/null 2>err &&
-	test_grep "^reflect-project: mode .box. from .$PWD/b/box\.so.$" err &&
+	REFLECT_PLUGIN_PATH="$PWD/empty" reflect-project -v -m a/projection-box.so <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .box. from .a/projection-box\.so.$" err &&
+	REFLECT_PLUGIN_PATH="$PWD/empty" reflect-project -v -m "$PWD/b/projection-box.so" <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/b/projection-box\.so.$" err &&
 	test_expect_code 1 env REFLECT_PLUGIN_PATH="$PWD/a" \
-		reflect-project -m ./box.so <gbuf >/dev/null 2>err &&
-	test_grep "^reflect-project: cannot open plugin .\./box\.so.: No such file or directory$" err
+		reflect-project -m ./projection-box.so <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: cannot open plugin .\./projection-box\.so.: No such file or directory$" err
 '
 
 test_expect_success 'a path may hold a colon before its last slash' '
-	REFLECT_PLUGIN_PATH="$PWD/empty" reflect-project -v -m "$PWD/we:ird/box.so" <gbuf >/dev/null 2>err &&
-	test_grep "^reflect-project: mode .box. from .$PWD/we:ird/box\.so.$" err
+	REFLECT_PLUGIN_PATH="$PWD/empty" reflect-project -v -m "$PWD/we:ird/projection-box.so" <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/we:ird/projection-box\.so.$" err
 '
 
 test_expect_success 'NAME.so without a slash: not found, with a hint' '
 	test_expect_code 1 reflect-project -m box.so <gbuf >out 2>err &&
 	test_one_line_message reflect-project err &&
-	test_grep "^reflect-project: unknown projection mode .box\.so.: no box\.so\.so in .$B.; a path to a file needs a ./., as in \./box\.so (-l lists the modes)$" err
+	test_grep "^reflect-project: unknown projection mode .box\.so.: no projection-box\.so\.so or box\.so\.so in .$B.; a path to a file needs a ./., as in \./box\.so (-l lists the modes)$" err
 '
 
 test_expect_success 'an unknown mode: a clear message, exit 1' '
 	test_expect_code 1 reflect-project -m nosuch <gbuf >out 2>err &&
 	test_line_count 0 out &&
 	test_one_line_message reflect-project err &&
-	test_grep "^reflect-project: unknown projection mode .nosuch.: no nosuch\.so in .$B. (-l lists the modes)$" err &&
+	test_grep "^reflect-project: unknown projection mode .nosuch.: no projection-nosuch\.so or nosuch\.so in .$B. (-l lists the modes)$" err &&
 	test_expect_code 1 reflect-project -m "no such" <gbuf >out 2>err &&
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: .no such. is not a valid mode name" err
@@ -232,7 +306,7 @@ test_expect_success 'an unknown mode: a clear message, exit 1' '
 
 test_expect_success 'a plugin directory anyone may write to is refused' '
 	mkdir open &&
-	cp "$B/box.so" open/ &&
+	cp "$B/projection-box.so" open/ &&
 	chmod 777 open &&
 	test_expect_code 1 env REFLECT_PLUGIN_PATH="$PWD/open" \
 		reflect-project -m box <gbuf >out 2>err &&
@@ -245,7 +319,7 @@ test_expect_success 'a plugin directory anyone may write to is refused' '
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: plugin directory .$PWD/open. in REFLECT_PLUGIN_SYSTEM_PATH is writable by every user (mode 0777): " err &&
 	# a path given to -m is the user.s own choice
-	reflect-project -m "$PWD/open/box.so" <gbuf >out 2>err &&
+	reflect-project -m "$PWD/open/projection-box.so" <gbuf >out 2>err &&
 	test_line_count 0 err
 '
 
@@ -253,7 +327,7 @@ test_expect_success 'a sticky directory anyone may write to is searched, like /t
 	chmod 1777 open &&
 	REFLECT_PLUGIN_PATH="$PWD/open" reflect-project -v -m box <gbuf >/dev/null 2>err &&
 	test_one_line_message reflect-project err &&
-	test_grep "^reflect-project: mode .box. from .$PWD/open/box\.so.$" err &&
+	test_grep "^reflect-project: mode .box. from .$PWD/open/projection-box\.so.$" err &&
 	chmod 755 open
 '
 
@@ -261,7 +335,7 @@ test_expect_success 'a relative plugin directory is searched, with a warning' '
 	REFLECT_PLUGIN_PATH="a" reflect-project -v -m box <gbuf >/dev/null 2>err &&
 	test_line_count 2 err &&
 	test_grep "^reflect-project: relative directory .a. in REFLECT_PLUGIN_PATH is searched from the current directory; give an absolute path$" err &&
-	test_grep "^reflect-project: mode .box. from .a/box\.so.$" err &&
+	test_grep "^reflect-project: mode .box. from .a/projection-box\.so.$" err &&
 	REFLECT_PLUGIN_PATH="$PWD/b" REFLECT_PLUGIN_SYSTEM_PATH="a" reflect-project -l >out 2>err &&
 	test_one_line_message reflect-project err &&
 	test_grep "^reflect-project: relative directory .a. in REFLECT_PLUGIN_SYSTEM_PATH is searched" err &&

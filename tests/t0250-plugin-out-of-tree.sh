@@ -46,8 +46,26 @@ test_expect_success 'make install into a temporary prefix' '
 		false
 	fi &&
 	test -x "$prefix/bin/reflect-project" &&
-	test -f "$prefix/lib/reflect-1/box.so" &&
-	test -f "$prefix/lib/pkgconfig/reflect-plugin.pc"
+	test -f "$prefix/lib/pkgconfig/reflect-plugin.pc" &&
+	(cd "$prefix/lib/reflect-1" && ls *.so) >plugins &&
+	cat >expect <<-\EOF &&
+	accumulate-ema.so
+	accumulate-mean.so
+	filter-atrous.so
+	filter-quad.so
+	occlusion-box.so
+	occlusion-horizon.so
+	projection-bevel.so
+	projection-box.so
+	projection-infinite.so
+	shade-approx.so
+	shade-footprint.so
+	shade-godot.so
+	shade-hdrp.so
+	shade-none.so
+	shade-raytraced.so
+	EOF
+	diff -u expect plugins
 '
 
 test_expect_success 'the headers are installed as <reflect/plugin.h>' '
@@ -94,7 +112,7 @@ test_expect_success 'the installed reflect-project lists it with its parameter' 
 	test_grep "^  reads: P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z$" out &&
 	test_grep "^    radius=5${tab}radius of the proxy sphere around the capture point (\[0\.001, 1e+06\])$" out &&
 	test_grep "^box${tab}" out &&
-	test_grep "^  file: $(cat plugindir)/box\.so " out
+	test_grep "^  file: $(cat plugindir)/projection-box\.so " out
 '
 
 # The G-buffer: probe centre C = (0,0,0), sphere radius r = 2.  For each
@@ -277,7 +295,7 @@ test_expect_success 'an installed tree runs where it lies, and moved' '
 	clean="env -u LD_LIBRARY_PATH -u REFLECT_PLUGIN_PATH -u REFLECT_PLUGIN_SYSTEM_PATH" &&
 	$clean moved/bin/reflect-gbuffer -x 8 -y 6 >g.rfl &&
 	$clean moved/bin/reflect-project -v g.rfl >p.rfl 2>err &&
-	test_grep "mode .box. from .$PWD/moved/bin/../lib/reflect-1/box.so." err &&
+	test_grep "mode .box. from .$PWD/moved/bin/../lib/reflect-1/projection-box.so." err &&
 	$clean moved/bin/reflect-shade --final p.rfl >s.rfl 2>/dev/null &&
 	if test -f moved/lib/reflect/reflect-oiio.so
 	then

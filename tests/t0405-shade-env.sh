@@ -140,7 +140,7 @@ test_expect_success '--env wins over PROBE_ENV and replaces it' '
 
 test_expect_success '-v says which plugin and which environment' '
 	reflect-shade -v -m hdrp --env=chain.rfl scene.rfl >/dev/null 2>err &&
-	test_grep "^reflect-shade: mode .hdrp. from .*hdrp.so" err &&
+	test_grep "^reflect-shade: mode .hdrp. from .*/shade-hdrp\.so.$" err &&
 	test_grep "^reflect-shade: environment .chain.rfl.: 8 texels, 4 levels, mapping unity, steps 3$" err
 '
 

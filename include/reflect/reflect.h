@@ -260,8 +260,9 @@ RF_EXTERN int rf_plugin_writes_radiance(const struct rf_plugin *p);
  * the host makes the plain levels. */
 RF_EXTERN int rf_plugin_traces_raw(const struct rf_plugin *p);
 /* Searches REFLECT_PLUGIN_PATH, then REFLECT_PLUGIN_SYSTEM_PATH (when set;
- * empty means none) else the installed directory, passing over files
- * that are no plugin.  A name containing '/' is a path.  A file is read
+ * empty means none) else the installed directory, for KIND-NAME.so (the
+ * kind as rf_plugin_kind_name spells it) then NAME.so in each, passing
+ * over files that are no plugin.  A name containing '/' is a path.  A file is read
  * as data before dlopen: one cut short, of another machine, or without
  * the entry is refused unloaded.  On failure err holds the reason. */
 RF_EXTERN int rf_module_load(rf_module **m, const char *name, unsigned kind,
@@ -285,10 +286,12 @@ RF_EXTERN const char *rf_plugin_search_path(void);
 RF_EXTERN int rf_plugin_path_check(char *err, size_t errlen, char *warning,
                                    size_t warnlen);
 
-/* Calls fn for every plugin file (*.so) in the search path, first match of
- * a name first; `shadowed` is 1 for files hidden by an earlier one.  A
- * file that is no plugin (not ELF, or exporting no rf_plugin_entry) is
- * passed over unloaded; one cut short is visited, for its refusal. */
+/* Calls fn for every plugin file (*.so) in the search path, in the order
+ * rf_module_load tries them; `shadowed` is 1 for a file it never reaches,
+ * as one of the mode's names comes first (a NAME.so after a KIND-NAME.so
+ * is loaded to learn whether it is of that kind).  A file that is no
+ * plugin (not ELF, or exporting no rf_plugin_entry) is passed over
+ * unloaded; one cut short is visited, for its refusal. */
 typedef void (*rf_plugin_visit_fn)(void *arg, const char *path, int shadowed);
 RF_EXTERN int rf_plugin_scan(rf_plugin_visit_fn fn, void *arg);
 

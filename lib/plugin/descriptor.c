@@ -355,8 +355,9 @@ check_outputs(const struct rf_plugin *p, const char *path, char *err, size_t err
 }
 
 /* Whether a file stem is the plugin's name after its kind and a '-'
- * (occlusion-box): modes of two kinds may share a name, box the
- * projection and box the occlusion, in one directory. */
+ * (projection-box, as reflect names its modes): modes of two kinds may
+ * share a name, box the projection and box the occlusion, in one
+ * directory. */
 static int
 kind_prefixed(const char *stem, const struct rf_plugin *p)
 {
@@ -403,10 +404,13 @@ rf__descriptor_check(const struct rf_plugin *p, const char *path, unsigned kind,
 	}
 	file_stem(path, stem, sizeof(stem));
 	if (strcmp(stem, p->name) && !kind_prefixed(stem, p)) {
+		const char *kn = rf_plugin_kind_name(p->kind);
+
 		rf__format(err, errlen, "plugin '%s': its descriptor is named '%.60s', "
 		           "but a plugin's name must equal its file name; rename the "
-		           "file to '%.60s.so' or set the name to '%.60s'", path,
-		           p->name, p->name, stem);
+		           "file to '%s%s%.60s%s%.60s.so', or set the name to '%.60s'",
+		           path, p->name, kn ? kn : "", kn ? "-" : "", kn ? p->name : "",
+		           kn ? ".so' or '" : "", p->name, stem);
 		return RF_EPLUGIN;
 	}
 	known = p->abi_minor >= 1 ? RF_PLUGIN_KNOWN_FLAGS : 0;

@@ -124,7 +124,7 @@ rf_module_load(rf_module **mp, const char *name, unsigned kind, char *err,
                size_t errlen)
 {
 	char path[4096], why[512], not_plugin[1024] = "";
-	const char *dirs, *p;
+	const char *dirs, *p, *kn;
 	struct stat st;
 	size_t n;
 
@@ -145,7 +145,9 @@ rf_module_load(rf_module **mp, const char *name, unsigned kind, char *err,
 		n = strcspn(p, ":");
 		if (!n)
 			continue;
-		/* KIND-NAME.so first: a name another kind has too */
+		/* KIND-NAME.so first, as the modes reflect installs are named
+		 * (two kinds have a mode named box); then NAME.so, a name a
+		 * plugin may have too */
 		for (k = kind && rf_plugin_kind_name(kind) ? 0 : 1; k < 2; k++) {
 			if (k == 0)
 				rf__format(path, sizeof(path), "%.*s/%s-%s.so", (int)n, p,
@@ -170,27 +172,99 @@ rf_module_load(rf_module **mp, const char *name, unsigned kind, char *err,
 		return RF_EPLUGIN;
 	}
 	n = strlen(name);
-	rf__format(err, errlen, "unknown %s mode '%s': no %s.so in %s%s%s%s%s (-l "
-	           "lists the modes)", kind ? rf_plugin_kind_name(kind) : "plugin",
-	           name, name, *dirs ? "'" : "", *dirs ? dirs : "an empty search path",
-	           *dirs ? "'" : "",
+	kn = kind ? rf_plugin_kind_name(kind) : NULL;
+	rf__format(err, errlen, "unknown %s mode '%s': no %s%s%s%s%s.so in %s%s%s%s%s "
+	           "(-l lists the modes)", kn ? kn : "plugin", name, kn ? kn : "",
+	           kn ? "-" : "", kn ? name : "", kn ? ".so or " : "", name,
+	           *dirs ? "'" : "", *dirs ? dirs : "an empty search path", *dirs ? "'" : "",
 	           n > 3 && !strcmp(name + n - 3, ".so")
 	           ? "; a path to a file needs a '/', as in ./" : "",
 	           n > 3 && !strcmp(name + n - 3, ".so") ? name : "");
 	return RF_ENOTFOUND;
 }
 
-static int
-cmp_str(const void *a, const void *b)
+/*
+ * A file name as the search answers to it: KIND-NAME.so holds the mode
+ * NAME of that kind (a kind as rf_plugin_kind_name spells it), a plain
+ * NAME.so a mode of any kind.  Returns the kind, 0 for a plain name, and
+ * in *rest the name from the mode's on, ".so" included.
+ */
+static unsigned
+file_mode(const char *file, const char **rest)
 {
-	return strcmp(*(char *const *)a, *(char *const *)b);
+	const char *kn;
+	unsigned k;
+	size_t n;
+
+	for (k = 1; (kn = rf_plugin_kind_name(k)); k++) {
+		n = strlen(kn);
+		if (!strncmp(file, kn, n) && file[n] == '-' && strcmp(file + n + 1, ".so")) {
+			*rest = file + n + 1;
+			return k;
+		}
+	}
+	*rest = file;
+	return 0;
+}
+
+/* The order rf_module_load tries a directory's files in: a mode's
+ * KIND-NAME.so before its NAME.so, the modes by name. */
+static int
+cmp_file(const void *a, const void *b)
+{
+	const char *fa = *(char *const *)a, *fb = *(char *const *)b, *ra, *rb;
+	unsigned ka = file_mode(fa, &ra), kb = file_mode(fb, &rb);
+	int c = strcmp(ra, rb);
+
+	if (c)
+		return c;
+	if (!ka != !kb)
+		return ka ? -1 : 1;
+	return strcmp(fa, fb);
+}
+
+/*
+ * Whether rf_module_load would stop at an earlier file (seen) before it
+ * reaches this one: a plain NAME.so stops the search for NAME of every
+ * kind, KIND-NAME.so that of its kind, which for a plain file is known
+ * only once it is loaded: that is done only for such a file that a
+ * KIND-NAME.so came before.
+ */
+static int
+is_shadowed(char *const *seen, size_t nseen, const char *file, const char *path)
+{
+	const char *rest, *seen_rest;
+	unsigned kind = file_mode(file, &rest), plain_kind = 0, k;
+	int loaded = 0;
+	size_t i;
+
+	for (i = 0; i < nseen; i++) {
+		k = file_mode(seen[i], &seen_rest);
+		if (strcmp(rest, seen_rest))
+			continue;
+		if (!k || k == kind)
+			return 1;
+		if (!kind && !loaded) {
+			char why[1024];
+			rf_module *m;
+
+			loaded = 1;
+			if (rf_module_load_file(&m, path, 0, why, sizeof(why)) == 0) {
+				plain_kind = rf_module_plugin(m)->kind;
+				rf_module_unload(m);
+			}
+		}
+		if (!kind && k == plain_kind)
+			return 1;
+	}
+	return 0;
 }
 
 int
 rf_plugin_scan(rf_plugin_visit_fn fn, void *arg)
 {
 	char *dirs, *dir, *save = NULL, **seen = NULL, **files = NULL, why[1024];
-	size_t nseen = 0, nfiles = 0, ndirs = 0, i, j;
+	size_t nseen = 0, nfiles = 0, ndirs = 0, i;
 	struct stat dirst[64];
 	int rc = 0;
 
@@ -234,11 +308,11 @@ rf_plugin_scan(rf_plugin_visit_fn fn, void *arg)
 			nfiles++;
 		}
 		closedir(d);
-		qsort(files, nfiles, sizeof(*files), cmp_str);
+		qsort(files, nfiles, sizeof(*files), cmp_file);
 		for (i = 0; i < nfiles; i++) {
 			char path[4096];
 			struct stat st;
-			int shadowed = 0;
+			int shadowed;
 			char **grown;
 
 			rf__format(path, sizeof(path), "%s/%s", dir, files[i]);
@@ -248,19 +322,18 @@ rf_plugin_scan(rf_plugin_visit_fn fn, void *arg)
 			 * loaded (its constructors would run), and hides nothing. */
 			if (rf__elf_check(path, why, sizeof(why)) == RF__ELF_NOT_PLUGIN)
 				continue;
-			for (j = 0; j < nseen; j++)
-				if (!strcmp(seen[j], files[i]))
-					shadowed = 1;
-			if (!shadowed) {
-				if (!(grown = realloc(seen, (nseen + 1) * sizeof(*seen))) ||
-				    !(grown[nseen] = strdup(files[i]))) {
-					seen = grown ? grown : seen;
-					rc = RF_ENOMEM;
-					goto out;
-				}
-				seen = grown;
-				nseen++;
+			shadowed = is_shadowed(seen, nseen, files[i], path);
+			/* a shadowed file is remembered too: a plain NAME.so that
+			 * its kind's KIND-NAME.so hides still ends the search of
+			 * every other kind for NAME */
+			if (!(grown = realloc(seen, (nseen + 1) * sizeof(*seen))) ||
+			    !(grown[nseen] = strdup(files[i]))) {
+				seen = grown ? grown : seen;
+				rc = RF_ENOMEM;
+				goto out;
 			}
+			seen = grown;
+			nseen++;
 			fn(arg, path, shadowed);
 		}
 		for (i = 0; i < nfiles; i++)
