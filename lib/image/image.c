@@ -6,7 +6,7 @@
  * never touch an image file.
  *
  * PNG and scanline OpenEXR, the two types a pipeline writes, are written
- * by libreflect itself (image_png.c, image_exr.c) and never load the
+ * by libreflect itself (png.c, exr.c) and never load the
  * module: loading it would cost the last stage of every pipeline those
  * 130 MB.  OpenEXR and PNG files are read by libreflect too (exr_read.c,
  * png_read.c), the environments, references and maps a pipeline reads.

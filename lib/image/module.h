@@ -1,5 +1,5 @@
 /* Internal: the image module's table, shared by image.c (the caller,
- * in libreflect) and image_oiio.cpp (the module, which alone links
+ * in libreflect) and oiio.cpp (the module, which alone links
  * OpenImageIO). */
 #ifndef REFLECT_IMAGE_MODULE_H
 #define REFLECT_IMAGE_MODULE_H
@@ -7,7 +7,7 @@
 #include "reflect/reflect.h"
 
 /* The module's writer; image.c wraps it in an rf_image_writer, whose
- * other kinds are libreflect's own (image_writers.h). */
+ * other kinds are libreflect's own (writers.h). */
 struct rf__module_writer;
 
 #define RF_IMAGE_MODULE_NAME "reflect-oiio.so"
