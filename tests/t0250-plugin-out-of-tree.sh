@@ -89,6 +89,27 @@ test_expect_success 'pkg-config: plugindir and Cflags point inside the prefix' '
 	! grep -e -l libs
 '
 
+# Linking statically, pkg-config --static --libs reflect is all a
+# program is given: every library the shared libreflect needs must be
+# in it (libc and the dynamic loader aside).
+test_expect_success 'pkg-config --static: every library libreflect needs' '
+	pc --static --libs reflect >libs &&
+	test_grep "^-L$prefix/lib -lreflect " libs &&
+	readelf -d "$prefix/lib/libreflect.so" |
+	sed -n "s/.*(NEEDED).*\[lib\([^.]*\)\.so.*/\1/p" >needed &&
+	test_grep "^png" needed &&
+	while read lib
+	do
+		case $lib in
+		c|ld-linux*) continue ;;
+		esac &&
+		tr " " "\\n" <libs | grep -x -e "-l$lib" >/dev/null || {
+			echo "libreflect needs lib$lib: -l$lib is not in $(cat libs)" >&2 &&
+			return 1
+		}
+	done <needed
+'
+
 test_expect_success 'sphere.c builds outside the trees with only the installed header' '
 	cp "$srcdir/doc/examples/sphere.c" "$oot/" &&
 	(
