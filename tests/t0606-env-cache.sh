@@ -102,7 +102,7 @@ test_expect_success 'an entry is used only for its own environment' '
 	# the last float of level 0, before the header of level 1
 	end=$(grep -a -b -o -F "#?REFLECT1" raw.rfl | sed -n 2p | cut -d: -f1) &&
 	put edited.rfl $((end - 4)) "\000\000\040\101" &&
-	cmp -s raw.rfl edited.rfl && return 1
+	! cmp -s raw.rfl edited.rfl &&
 	test $(wc -c <edited.rfl) -eq $(wc -c <raw.rfl) &&
 	touch -r raw.rfl edited.rfl &&
 	reflect-shade -m hdrp --env=edited.rfl g.rfl >edited.out 2>err &&
@@ -127,9 +127,19 @@ test_expect_success 'an entry is used only for its own environment' '
 
 test_expect_success 'writers at once leave one whole entry; the cap drops the oldest' '
 	rm -rf cache &&
-	reflect-shade -m none --env=raw.rfl g.rfl >p1.rfl 2>/dev/null &
-	reflect-shade -m none --env=raw.rfl g.rfl >p2.rfl 2>/dev/null &
-	wait &&
+	{ reflect-shade -m none --env=raw.rfl g.rfl >p1.rfl 2>err1 & } &&
+	p1=$! &&
+	{ reflect-shade -m none --env=raw.rfl g.rfl >p2.rfl 2>err2 & } &&
+	p2=$! &&
+	s1=0 s2=0 &&
+	{ wait $p1 || s1=$?; } &&
+	{ wait $p2 || s2=$?; } &&
+	if test "$s1 $s2" != "0 0"
+	then
+		echo "the writers exited $s1 and $s2" >&2 &&
+		cat err1 err2 >&2 &&
+		false
+	fi &&
 	body p1.rfl >e && body p2.rfl >f && cmp e f &&
 	ls -A cache/reflect >all &&
 	test_line_count 1 all &&

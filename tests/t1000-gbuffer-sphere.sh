@@ -4,7 +4,7 @@ test_description='a camera looking straight at a sphere: P, N, V and depth by ha
 . "$srcdir/tests/scene-lib.sh"
 
 test_expect_success 'setup' '
-	cat >sphere.scene <<-\EOF
+	cat >sphere.scene <<-\EOF &&
 	# a unit sphere at the origin, seen from 5 m along +Z
 	probe box -10 -10 -10 10 10 10
 	camera position 0 0 5 target 0 0 0 up 0 1 0 fov 40

@@ -7,7 +7,7 @@ test_description='per-object roughness, metallic, albedo and mask'
 # (--path=line keeps the view direction), so frame k sees sphere k+1 head
 # on at P = (x, 0, 0.5).
 test_expect_success 'setup' '
-	cat >row.scene <<-\EOF
+	cat >row.scene <<-\EOF &&
 	probe box -10 -10 -10 10 10 10
 	camera position -4 0 5 target -4 0 0 fov 10
 	sphere center -4 0 0 radius 0.5 roughness 0.05
