@@ -70,11 +70,31 @@ test_run_step () {
 	return $status
 }
 
-# Runs the body in a subshell with set -e semantics left to &&-chains;
-# its output goes to the log, shown only on failure.
+# Whether every command of a body chains on to the next with &&, as git's
+# test-lib.sh checks it: after "(exit 117) &&" a whole chain is skipped
+# and the body ends with status 117, but a command that does not chain
+# on starts a list of its own, which runs, and the body ends with that
+# list's status.  The body's own run would then lose the status of
+# every command before the break: the step could pass with a failure in
+# it.  (The commands after a break run here, as they would in the step.)
+test_chain_intact () {
+	test_run_step "(exit 117) && $1
+"
+	test $? -eq 117
+}
+
+# Runs the body in a subshell with set -e semantics left to &&-chains,
+# once its chain is found whole; its output goes to the log, shown only
+# on failure.
 test_expect_success () {
 	test_count=$((test_count + 1))
-	if test_run_step "$2"
+	if ! test_chain_intact "$2"
+	then
+		test_failed=$((test_failed + 1))
+		echo "not ok $test_count - $1"
+		echo "# broken &&-chain: a command of this step does not end with &&, so a failure before it would be lost:"
+		printf '%s\n' "$2" | sed -e 's/^/#  /'
+	elif test_run_step "$2"
 	then
 		echo "ok $test_count - $1"
 	else
