@@ -181,6 +181,12 @@ test_expect_success 'a plain NAME.so of the right kind is found, as plugins of o
 	test_grep "^# $B/projection-box\.so: shadowed by $PWD/plain/box\.so, earlier in the search path$" out
 '
 
+test_expect_success 'a mode of another kind is refused naming its tool' '
+	test_expect_code 1 reflect-project -m horizon <gbuf >out 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: plugin .$B/occlusion-horizon\.so.: it is a occlusion mode, not a projection mode; use it with reflect-occlude$" err
+'
+
 test_expect_success 'NAME.so beside KIND-NAME.so (an earlier install): KIND-NAME.so wins' '
 	mkdir both &&
 	cp "$B/projection-box.so" both/ &&

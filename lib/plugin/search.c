@@ -119,6 +119,42 @@ mode_name_valid(const char *s)
 	return 1;
 }
 
+/*
+ * The mode of that name of another kind (reflect-filter -m none finds
+ * shade-none.so): loaded for its refusal, which names the tool that
+ * takes it, as a NAME.so of another kind found first is.  1 when there
+ * is none; when a file so named turns out to be of the kind wanted (a
+ * plain plugin named KIND-NAME), it is not what -m asked for either.
+ */
+static int
+other_kind(rf_module **mp, const char *dirs, const char *name, unsigned kind, char *err,
+           size_t errlen)
+{
+	char path[4096], why[512];
+	const char *p, *kn;
+	struct stat st;
+	unsigned k;
+	size_t n;
+	int rc;
+
+	for (p = dirs; *p; p += n + (p[n] == ':')) {
+		n = strcspn(p, ":");
+		for (k = 1; n && (kn = rf_plugin_kind_name(k)); k++) {
+			if (k == kind)
+				continue;
+			rf__format(path, sizeof(path), "%.*s/%s-%s.so", (int)n, p, kn, name);
+			if (stat(path, &st) < 0 || !S_ISREG(st.st_mode) ||
+			    rf__elf_check(path, why, sizeof(why)) == RF__ELF_NOT_PLUGIN)
+				continue;
+			if ((rc = rf_module_load_file(mp, path, kind, err, errlen)) < 0)
+				return rc;
+			rf_module_unload(*mp);
+			*mp = NULL;
+		}
+	}
+	return 1;
+}
+
 int
 rf_module_load(rf_module **mp, const char *name, unsigned kind, char *err,
                size_t errlen)
@@ -127,6 +163,7 @@ rf_module_load(rf_module **mp, const char *name, unsigned kind, char *err,
 	const char *dirs, *p, *kn;
 	struct stat st;
 	size_t n;
+	int rc;
 
 	*mp = NULL;
 	if (strchr(name, '/'))
@@ -167,6 +204,8 @@ rf_module_load(rf_module **mp, const char *name, unsigned kind, char *err,
 			return rf_module_load_file(mp, path, kind, err, errlen);
 		}
 	}
+	if (kind && (rc = other_kind(mp, dirs, name, kind, err, errlen)) < 0)
+		return rc;
 	if (*not_plugin) {
 		rf__format(err, errlen, "%s", not_plugin);
 		return RF_EPLUGIN;
