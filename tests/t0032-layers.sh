@@ -56,7 +56,11 @@ test_expect_success 'lib/README names the layers, and every folder of lib/ is on
 	for d in "$srcdir"/lib/*/
 	do
 		a=$(basename "$d") &&
-		test -n "$(rank "$a")" || { echo "lib/$a/ is not in lib/README'"'"'s layers"; return 1; }
+		if test -z "$(rank "$a")"
+		then
+			echo "lib/$a/ is not in lib/README'"'"'s layers" &&
+			false
+		fi || return 1
 	done
 '
 
