@@ -76,7 +76,7 @@ rf__bevel_of_probe(const struct rf_probe *probe, float radius, int grown)
 	for (i = 0; i < 3; i++) {
 		float half = 0.5f * (probe->box_max[i] - probe->box_min[i]);
 
-		b.c[i] = 0.5f * (probe->box_min[i] + probe->box_max[i]);
+		b.c[i] = 0.5f * probe->box_min[i] + 0.5f * probe->box_max[i];
 		b.s[i] = grown ? half : half - radius;
 		if (b.s[i] < 0.0f)
 			b.s[i] = 0.0f;

@@ -131,8 +131,9 @@ rf_probe_resolve(struct rf_probe *probe, const rf_header *h, const char *box_arg
 			return RF_EINVAL;
 		}
 	} else {
+		/* Halves first: bounds near FLT_MAX would sum to infinity. */
 		for (i = 0; i < 3; i++)
-			probe->center[i] = 0.5f * (probe->box_min[i] + probe->box_max[i]);
+			probe->center[i] = 0.5f * probe->box_min[i] + 0.5f * probe->box_max[i];
 	}
 	if ((v = rf_header_get(h, RF_KEY_PROBE_BEVEL))) {
 		const char *grown = strstr(v, " grown");
@@ -210,7 +211,7 @@ probe_at(const rf_header *h, size_t index, struct rf_probe *probe, float *blend)
 		probe->box_max[i] = box[i + 3];
 		if (!(box[i] < box[i + 3]))
 			return RF_EINVAL;
-		probe->center[i] = 0.5f * (box[i] + box[i + 3]);
+		probe->center[i] = 0.5f * box[i] + 0.5f * box[i + 3];
 	}
 	rf__header_probe_key(key, sizeof(key), index, RF_KEY_PROBE_CENTER);
 	if ((v = rf_header_get(h, key)) && rf__scan_floats(v, probe->center, 3) < 0)
