@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdint.h>
 
+#include "scene/mesh.h"
 #include "scene/vector.h"
 #include "util/util.h"
 #include "reflect/scene.h"
@@ -103,6 +104,11 @@ struct rf_scene {
 	int has_emission; /* anything emits: the G-buffer writes emission.* */
 	struct object *objects;
 	size_t nobjects;
+	/* mesh statements, in file order, and the lights their files hold */
+	struct rf__mesh *meshes;
+	size_t nmeshes;
+	struct rf__light *lights;
+	size_t nlights;
 	/* Normal map images, loaded once per path. */
 	rf_image **images;
 	char **image_paths;
