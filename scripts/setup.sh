@@ -8,7 +8,7 @@ setup_say () {
 
 # Debian packages the build and the tests need.
 setup_packages="autoconf automake libtool pkg-config make gcc g++ \
-libopenimageio-dev libopenexr-dev libpng-dev libzstd-dev"
+libopenimageio-dev libopenexr-dev libpng-dev libzstd-dev libembree-dev"
 # Used by some tests when present (they skip otherwise).
 setup_optional_packages="python3-numpy valgrind clang strace"
 
@@ -30,6 +30,10 @@ setup_missing () {
 	else
 		missing="$missing libopenimageio-dev libopenexr-dev libpng-dev libzstd-dev"
 	fi
+	# Embree 3 ships no pkg-config file: its header, through the
+	# preprocessor that will build against it.
+	echo '#include <embree3/rtcore.h>' | ${CC:-cc} -E - >/dev/null 2>&1 ||
+		missing="$missing libembree-dev"
 	echo $missing
 }
 
