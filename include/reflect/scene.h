@@ -69,7 +69,8 @@ RF_EXTERN int rf_scene_frame_keys(const rf_scene *s, const struct rf_camera *cam
 RF_EXTERN size_t rf_scene_nobjects(const rf_scene *s);
 
 /* Object ids, as in the objid channel: objects count from 1 in the order
- * of the file; the room's walls are negative; 0 is nothing. */
+ * of the file, then the meshes in theirs (nobjects + 1 for the first);
+ * the room's walls are negative; 0 is nothing. */
 enum {
 	RF_OBJID_NONE = 0,
 	RF_WALL_XMAX = -1, /* the wall at x = xmax (its normal is -X) */
@@ -80,7 +81,7 @@ enum {
 	RF_WALL_ZMIN = -6
 };
 
-/* "sphere", "box", "rect", "wall" or NULL, and the line the object was
+/* "sphere", "box", "rect", "mesh", "wall" or NULL, and the line the object was
  * declared on (0 when unknown). */
 RF_EXTERN const char *rf_scene_object_kind(const rf_scene *s, int objid);
 RF_EXTERN size_t rf_scene_object_line(const rf_scene *s, int objid);
@@ -101,6 +102,11 @@ struct rf_hit {
 	/* The surface tangent: the direction its texture's u grows in (a
 	 * normal map's), made perpendicular to N; unit length. */
 	double T[3];
+	/* A mesh's hit: its triangle (in the mesh's order) and the
+	 * barycentric coordinates of P for the triangle's second and third
+	 * vertices; 0 for any other hit. */
+	unsigned int prim;
+	double bary[2];
 };
 
 /* dir must be a unit vector.  Returns the hit's objid. */

@@ -33,7 +33,7 @@
 #include "probe/projection.h"
 #include "surface/surface-internal.h"
 #include "util/pool.h"
-#include "scene/scene-internal.h"
+#include "scene/accel.h"
 #include "reflect/plugin.h"
 
 /* How a face's texel (a, b) in [-1, 1]^2 lines up with the world: the
@@ -59,8 +59,10 @@ struct capture {
 	const struct rf_capture_options *o;
 	double origin[3];
 	double *k;           /* rf__trace_prepare for the origin */
-	uint32_t *visible;   /* the objects the capture sees */
+	/* the boxes of what the capture sees: its objects, its meshes */
+	struct object *visible;
 	size_t nvisible;
+	unsigned flags;      /* rf__trace's */
 	struct face_frame frames[6];
 	struct face_bounds *bounds; /* [face * nvisible + k]; a0 > a1: off the face */
 	/* the bounce before, prefiltered, for shading objects; NULL: none;
@@ -348,7 +350,7 @@ full_ray(const struct capture *c, const double d[3], float rgb[3])
 	float em[3];
 	int k;
 
-	rf__trace(c->s, c->origin, c->k, d, inv, c->visible, c->nvisible, &h);
+	rf__trace(c->s, c->origin, c->k, d, inv, c->flags, &h);
 	rf__emission(c->s, &h, em);
 	if (h.objid >= 1 && c->env) {
 		shade_object(c, &h, d, rgb);
@@ -564,19 +566,37 @@ rf_scene_capture(const rf_scene *s, size_t probe, const struct rf_capture_option
 	c.box = rf__box_of_probe(&pr);
 	make_frames(c.frames);
 	c.k = calloc(s->nobjects + 1, RF__ORIGIN_STRIDE * sizeof(double));
-	c.visible = calloc(s->nobjects + 1, sizeof(*c.visible));
-	c.bounds = calloc(6 * (s->nobjects + 1), sizeof(*c.bounds));
+	c.visible = calloc(s->nobjects + s->nmeshes + 1, sizeof(*c.visible));
+	c.bounds = calloc(6 * (s->nobjects + s->nmeshes + 1), sizeof(*c.bounds));
 	if (!c.k || !c.visible || !c.bounds) {
 		rc = RF_ENOMEM;
 		goto out;
 	}
+	if ((s->nobjects || s->nmeshes) && !rf__accel_get(s, err, errlen)) {
+		rc = RF_ENOMEM;
+		goto out;
+	}
 	rf__trace_prepare(s, c.origin, c.k);
+	c.flags = o->hide_reflective ? RF__TRACE_SKIP_REFLECTIVE : 0;
 	for (i = 0; i < s->nobjects; i++)
 		if (!(o->hide_reflective && s->objects[i].mat.mask > 0.0f))
-			c.visible[c.nvisible++] = (uint32_t)i;
+			c.visible[c.nvisible++] = s->objects[i];
+	for (i = 0; i < s->nmeshes; i++) {
+		/* a mesh is seen inside its box, a float's rounding wider */
+		struct object *box = &c.visible[c.nvisible++];
+		int j;
+
+		for (j = 0; j < 3; j++) {
+			const double pad = 1e-6 * (1.0 + fmax(fabs(s->meshes[i].bounds[j]),
+			                                      fabs(s->meshes[i].bounds[j + 3])));
+
+			box->min[j] = s->meshes[i].bounds[j] - pad;
+			box->max[j] = s->meshes[i].bounds[j + 3] + pad;
+		}
+	}
 	for (f = 0; f < 6; f++)
 		for (i = 0; i < c.nvisible; i++)
-			object_face_bounds(&c.frames[f], &s->objects[c.visible[i]], c.origin,
+			object_face_bounds(&c.frames[f], &c.visible[i], c.origin,
 			                   &c.bounds[f * c.nvisible + i]);
 	if (o->nthreads > 1)
 		rf__pool_create(&pool, o->nthreads);

@@ -8,7 +8,7 @@
  */
 #include <math.h>
 
-#include "scene/scene-internal.h"
+#include "scene/accel.h"
 
 void
 rf__pattern_default(struct pattern *pt)
@@ -411,6 +411,24 @@ rf__emission(const rf_scene *s, const struct rf_hit *hit, float rgb[3])
 
 		rf__wall_uv(2 * axis, hit->P, uv);
 		pattern_at(&s->pattern, s->objects[hit->objid - 1].mat.em.rgb, uv, rgb);
+	} else if ((size_t)hit->objid > s->nobjects && hit->objid > 0 &&
+	           (size_t)hit->objid <= s->nobjects + s->nmeshes) {
+		/* a mesh's: its material's factor times its texture */
+		const struct rf__mesh *m = &s->meshes[(size_t)hit->objid - 1 - s->nobjects];
+		const struct rf__mesh_material *mat = rf__mesh_material_of(m, hit->prim);
+		int c;
+
+		for (c = 0; c < 3; c++)
+			rgb[c] = mat->emission[c];
+		if (mat->emission_tex && (rgb[0] != 0.0f || rgb[1] != 0.0f || rgb[2] != 0.0f)) {
+			double uv[2][2];
+			float tex[4];
+
+			rf__mesh_uv(m, hit->prim, hit->bary[0], hit->bary[1], uv);
+			rf__texture_sample(mat->emission_tex, uv, tex);
+			for (c = 0; c < 3; c++)
+				rgb[c] *= tex[c];
+		}
 	} else {
 		rgb[0] = rgb[1] = rgb[2] = 0.0f;
 	}

@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "util/pool.h"
-#include "scene/scene-internal.h"
+#include "scene/accel.h"
 
 enum {
 	CH_PX, CH_PY, CH_PZ, CH_NX, CH_NY, CH_NZ, CH_NGX, CH_NGY, CH_NGZ,
@@ -41,11 +41,6 @@ static const struct {
 };
 
 
-/* Pixels (inclusive) outside of which a ray cannot meet an object. */
-struct bounds {
-	long x0, x1, y0, y1;
-};
-
 struct rf_gbuffer {
 	const rf_scene *s;
 	size_t width, height;
@@ -57,9 +52,7 @@ struct rf_gbuffer {
 	struct rf_camera cam;
 	struct camera_basis cb;
 	double *k; /* per-object constants for rays from the camera */
-	struct bounds *bounds; /* per object, where it can be on the image */
-	uint32_t *scratch;     /* per thread: the objects of a row, of a pixel */
-	double *rays;          /* per thread: a row of directions, reciprocals */
+	double *rays; /* per thread: a row of directions, reciprocals */
 	/* Kept from block to block, so that a frame of many blocks starts its
 	 * threads once; NULL for one thread or if none could be had: the
 	 * caller renders alone. */
@@ -173,10 +166,13 @@ rf_gbuffer_create(rf_gbuffer **gp, const rf_scene *s, size_t width, size_t heigh
 	 * emission */
 	g->identity &= g->nch == CH_DEFAULT || g->nch == CH_ER + 3;
 	g->k = calloc(s->nobjects + 1, RF__ORIGIN_STRIDE * sizeof(double));
-	g->bounds = calloc(s->nobjects + 1, sizeof(*g->bounds));
-	g->scratch = calloc((size_t)g->nthreads * 2 * (s->nobjects + 1), sizeof(uint32_t));
 	g->rays = malloc((size_t)g->nthreads * width * 6 * sizeof(double));
-	if (!g->k || !g->bounds || !g->scratch || !g->rays) {
+	if (!g->k || !g->rays) {
+		rf_gbuffer_destroy(g);
+		return RF_ENOMEM;
+	}
+	/* The scene's ray casting structure, now rather than in a row. */
+	if ((s->nobjects || s->nmeshes) && !rf__accel_get(s, err, errlen)) {
 		rf_gbuffer_destroy(g);
 		return RF_ENOMEM;
 	}
@@ -194,8 +190,6 @@ rf_gbuffer_destroy(rf_gbuffer *g)
 		return;
 	rf__pool_destroy(g->pool);
 	free(g->k);
-	free(g->bounds);
-	free(g->scratch);
 	free(g->rays);
 	free(g);
 }
@@ -212,66 +206,10 @@ rf_gbuffer_channel(const rf_gbuffer *g, size_t i)
 	return i < g->nch ? channel_names[g->map[i]] : NULL;
 }
 
-static long
-clamp_pixel(double v, size_t n)
-{
-	return v < -2.0 ? -2 : v > (double)n + 2.0 ? (long)n + 2 : (long)v;
-}
-
-/* The image rectangle that holds the projection of an object's bounding
- * box, a pixel wider on every side against rounding.  Rays through other
- * pixel centres cannot meet the object, since a ray's points all project
- * onto its pixel centre. */
-static void
-object_bounds(const rf_gbuffer *g, const struct object *ob, struct bounds *b)
-{
-	const struct camera_basis *cb = &g->cb;
-	double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
-	int corner, behind = 0, i;
-
-	for (corner = 0; corner < 8; corner++) {
-		double rel[3], z, x, y;
-
-		for (i = 0; i < 3; i++)
-			rel[i] = ((corner >> i) & 1 ? ob->max[i] : ob->min[i]) - g->cam.position[i];
-		z = rf__dot(rel, cb->f);
-		if (!(z > 1e-9)) {
-			behind++;
-			continue;
-		}
-		x = rf__dot(rel, cb->r) / (z * cb->tx);
-		y = rf__dot(rel, cb->u) / (z * cb->ty);
-		xmin = x < xmin ? x : xmin;
-		xmax = x > xmax ? x : xmax;
-		ymin = y < ymin ? y : ymin;
-		ymax = y > ymax ? y : ymax;
-	}
-	if (behind == 8) {
-		/* Every ray leans forward: nothing behind the eye is seen. */
-		b->x0 = b->y0 = 1;
-		b->x1 = b->y1 = 0;
-		return;
-	}
-	if (behind) {
-		b->x0 = b->y0 = -2;
-		b->x1 = (long)g->width + 2;
-		b->y1 = (long)g->height + 2;
-		return;
-	}
-	/* Pixel i's centre is at x = 2 (i + 0.5) / W - 1. */
-	b->x0 = clamp_pixel(floor((xmin + 1.0) * 0.5 * (double)g->width - 0.5) - 1.0, g->width);
-	b->x1 = clamp_pixel(ceil((xmax + 1.0) * 0.5 * (double)g->width - 0.5) + 1.0, g->width);
-	b->y0 = clamp_pixel(floor((1.0 - ymax) * 0.5 * (double)g->height - 0.5) - 1.0,
-	                    g->height);
-	b->y1 = clamp_pixel(ceil((1.0 - ymin) * 0.5 * (double)g->height - 0.5) + 1.0,
-	                    g->height);
-}
-
 int
 rf_gbuffer_set_camera(rf_gbuffer *g, const struct rf_camera *cam, char *err,
                       size_t errlen)
 {
-	size_t i;
 	int rc;
 
 	if ((rc = rf_camera_check(cam, err, errlen)) < 0)
@@ -279,8 +217,6 @@ rf_gbuffer_set_camera(rf_gbuffer *g, const struct rf_camera *cam, char *err,
 	g->cam = *cam;
 	rf__camera_basis(cam, g->width, g->height, &g->cb);
 	rf__trace_prepare(g->s, cam->position, g->k);
-	for (i = 0; i < g->s->nobjects; i++)
-		object_bounds(g, &g->s->objects[i], &g->bounds[i]);
 	return 0;
 }
 
@@ -292,18 +228,13 @@ render_row(void *arg, size_t task, int thread)
 	const rf_gbuffer *g = bk->g;
 	size_t y = bk->y + task;
 	float *out = bk->out + task * g->width * g->nch;
-	uint32_t *row_list = g->scratch + (size_t)thread * 2 * (g->s->nobjects + 1);
-	uint32_t *pixel_list = row_list + g->s->nobjects + 1;
 	double *rays = g->rays + (size_t)thread * g->width * 6;
 	const double *o = g->cam.position;
 	double sy = 1.0 - (2.0 * (double)y + 1.0) / (double)g->height;
 	float tmp[CH_COUNT], *v;
 	struct rf_hit hit;
-	size_t x, c, i, nrow = 0, npix;
+	size_t x, c;
 
-	for (i = 0; i < g->s->nobjects; i++)
-		if (g->bounds[i].y0 <= (long)y && (long)y <= g->bounds[i].y1)
-			row_list[nrow++] = (uint32_t)i;
 	/* The row's rays first: a loop of independent square roots and
 	 * divisions runs at their throughput, not at their latency. */
 	for (x = 0; x < g->width; x++) {
@@ -318,13 +249,7 @@ render_row(void *arg, size_t task, int thread)
 	for (x = 0; x < g->width; x++, out += g->nch) {
 		const double *d = rays + 6 * x;
 
-		for (i = npix = 0; i < nrow; i++) {
-			const struct bounds *b = &g->bounds[row_list[i]];
-
-			if (b->x0 <= (long)x && (long)x <= b->x1)
-				pixel_list[npix++] = row_list[i];
-		}
-		rf__trace(g->s, o, g->k, d, d + 3, pixel_list, npix, &hit);
+		rf__trace(g->s, o, g->k, d, d + 3, 0, &hit);
 		/* All channels in their order (the usual case) go straight out. */
 		v = g->identity ? out : tmp;
 		v[CH_PX] = (float)hit.P[0];

@@ -1,9 +1,10 @@
 /* Exact ray casting: spheres, boxes, rectangles and the room seen from
- * inside, nearest hit first. */
+ * inside, nearest hit first; the meshes and the search among objects
+ * through the scene's acceleration structure (accel.c). */
 #include <math.h>
 #include <stdint.h>
 
-#include "scene/scene-internal.h"
+#include "scene/accel.h"
 
 /* Hits closer than this are the origin's own surface. */
 #define T_MIN 1e-9
@@ -13,13 +14,7 @@
  * difference of infinities makes a NaN, and outside any box. */
 #define MISS_DISTANCE 1e30
 
-/* What a hit needs to be shaded. */
-struct candidate {
-	double t;
-	int index; /* object index, or -1 for the room */
-	int axis;  /* box or wall: the face's axis */
-	int upper; /* box or wall: the face at max (1) or min (0) */
-};
+#define candidate rf__candidate
 
 static void
 prepare(const struct object *ob, const double o[3], double *k)
@@ -204,8 +199,8 @@ set_material(struct rf_hit *hit, const struct material *m)
 
 /* hit->T from the texture's tangent t: its part perpendicular to the
  * (perhaps bent) normal, unit; any perpendicular when t is along N. */
-static void
-set_tangent(struct rf_hit *hit, const double t[3])
+void
+rf__hit_tangent(struct rf_hit *hit, const double t[3])
 {
 	double d = rf__dot(t, hit->N), len;
 	int i;
@@ -234,14 +229,14 @@ shade_face(const struct material *m, const double d[3], int axis, double plane,
 		hit->N[0] = hit->Ng[0];
 		hit->N[1] = hit->Ng[1];
 		hit->N[2] = hit->Ng[2];
-		set_tangent(hit, t);
+		rf__hit_tangent(hit, t);
 		return;
 	}
 	/* World-anchored coordinates: patterns line up across faces. */
 	uv[0] = rf__dot(hit->P, t);
 	uv[1] = rf__dot(hit->P, b);
 	rf__normalmap_apply(&m->nm, uv, t, b, hit->Ng, hit->N);
-	set_tangent(hit, t);
+	rf__hit_tangent(hit, t);
 }
 
 static void
@@ -274,7 +269,7 @@ shade_sphere(const struct object *ob, const double d[3], struct rf_hit *hit)
 				ng[i] = -ng[i];
 		rf__cross(ng, t, b);
 		rf__normalmap_apply(&m->nm, uv, t, b, ng, hit->N);
-		set_tangent(hit, t);
+		rf__hit_tangent(hit, t);
 		return;
 	}
 	if (flip)
@@ -282,7 +277,7 @@ shade_sphere(const struct object *ob, const double d[3], struct rf_hit *hit)
 			ng[i] = -ng[i];
 	for (i = 0; i < 3; i++)
 		hit->N[i] = ng[i];
-	set_tangent(hit, t);
+	rf__hit_tangent(hit, t);
 }
 
 static void
@@ -307,7 +302,7 @@ shade_rect(const struct object *ob, const double d[3], struct rf_hit *hit)
 	if (m->nm.kind == NM_NONE) {
 		for (i = 0; i < 3; i++)
 			hit->N[i] = hit->Ng[i];
-		set_tangent(hit, ob->t);
+		rf__hit_tangent(hit, ob->t);
 		return;
 	}
 	/* Coordinates from the corner, so that an image starts there. */
@@ -318,52 +313,76 @@ shade_rect(const struct object *ob, const double d[3], struct rf_hit *hit)
 	for (i = 0; i < 3; i++)
 		b[i] = flip ? -ob->b[i] : ob->b[i];
 	rf__normalmap_apply(&m->nm, uv, ob->t, b, hit->Ng, hit->N);
-	set_tangent(hit, ob->t);
+	rf__hit_tangent(hit, ob->t);
+}
+
+int
+rf__object_hit(const struct object *ob, const double *k, const double o[3],
+               const double d[3], const double inv[3], struct candidate *c)
+{
+	double tmp[RF__ORIGIN_STRIDE];
+
+	if (!k) {
+		prepare(ob, o, tmp);
+		k = tmp;
+	}
+	c->axis = -1;
+	c->upper = 0;
+	switch (ob->kind) {
+	case OBJ_SPHERE:
+		return hit_sphere(ob, k, d, INFINITY, &c->t);
+	case OBJ_BOX:
+		return hit_slabs(k, d, inv, INFINITY, 0, c);
+	case OBJ_RECT:
+		return hit_rect(ob, k, o, d, INFINITY, &c->t);
+	}
+	return 0;
+}
+
+/* The objects one after the other: where the scene's structure cannot
+ * be built (its error was told to whoever built it first). */
+static void
+trace_objects(const rf_scene *s, const double o[3], const double *k, const double d[3],
+              const double inv[3], unsigned flags, struct candidate *best)
+{
+	size_t i;
+
+	for (i = 0; i < s->nobjects; i++) {
+		struct candidate c;
+
+		if ((flags & RF__TRACE_SKIP_REFLECTIVE) && s->objects[i].mat.mask > 0.0f)
+			continue;
+		if (rf__object_hit(&s->objects[i], k ? k + i * RF__ORIGIN_STRIDE : NULL, o, d,
+		                   inv, &c) && c.t < best->t) {
+			*best = c;
+			best->index = (int)i;
+		}
+	}
 }
 
 int
 rf__trace(const rf_scene *s, const double o[3], const double *k, const double d[3],
-          const double *inv_d, const uint32_t *list, size_t nlist, struct rf_hit *hit)
+          const double *inv_d, unsigned flags, struct rf_hit *hit)
 {
 	double tmp[RF__ORIGIN_STRIDE], own_inv[3];
 	const double *inv = inv_d ? inv_d : own_inv;
 	struct candidate best = { INFINITY, -1, -1, 0 }, c;
+	struct rf__mesh_hit mh = { -1, 0, 0.0, 0.0, 0.0 };
 	const struct rf_scene_probe *room = s->nprobes && s->room ? &s->probes[0] : NULL;
-	size_t n = list ? nlist : s->nobjects, li;
+	const struct rf__accel *acc;
 	int j;
 
 	if (!inv_d)
 		for (j = 0; j < 3; j++)
 			own_inv[j] = 1.0 / d[j];
-	for (li = 0; li < n; li++) {
-		size_t i = list ? list[li] : li;
-		const struct object *ob = &s->objects[i];
-		const double *ko = k ? k + i * RF__ORIGIN_STRIDE : tmp;
-		double t;
-
-		if (!k)
-			prepare(ob, o, tmp);
-		switch (ob->kind) {
-		case OBJ_SPHERE:
-			if (hit_sphere(ob, ko, d, best.t, &t)) {
-				best.t = t;
-				best.index = (int)i;
-			}
-			break;
-		case OBJ_BOX:
-			if (hit_slabs(ko, d, inv, best.t, 0, &c)) {
-				best = c;
-				best.index = (int)i;
-			}
-			break;
-		case OBJ_RECT:
-			if (hit_rect(ob, ko, o, d, best.t, &t)) {
-				best.t = t;
-				best.index = (int)i;
-			}
-			break;
-		}
+	if (s->nobjects || s->nmeshes) {
+		if ((acc = rf__accel_get(s, NULL, 0)))
+			rf__accel_intersect(acc, s, o, k, d, inv, flags, &best, &mh);
+		else
+			trace_objects(s, o, k, d, inv, flags, &best);
 	}
+	if (mh.mesh >= 0)
+		best.t = mh.t;
 	if (room) {
 		const double *ko = k ? k + s->nobjects * RF__ORIGIN_STRIDE : tmp;
 
@@ -372,7 +391,14 @@ rf__trace(const rf_scene *s, const double o[3], const double *k, const double d[
 		if (hit_slabs(ko, d, inv, best.t, 1, &c)) {
 			best = c;
 			best.index = -1;
+			mh.mesh = -1;
 		}
+	}
+	hit->prim = 0;
+	hit->bary[0] = hit->bary[1] = 0.0;
+	if (mh.mesh >= 0) {
+		rf__mesh_shade(s, &mh, o, d, hit);
+		return hit->objid;
 	}
 	if (best.t == INFINITY) {
 		hit->t = INFINITY;

@@ -3,6 +3,8 @@
 #define REFLECT_SCENE_INTERNAL_H
 
 #include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdint.h>
 
 #include "scene/mesh.h"
@@ -113,6 +115,10 @@ struct rf_scene {
 	rf_image **images;
 	char **image_paths;
 	size_t nimages;
+	/* The ray casting structure (accel.c), built by the first trace
+	 * under the lock, then only read. */
+	struct rf__accel *_Atomic accel;
+	pthread_mutex_t accel_lock;
 };
 
 /* scene.c */
@@ -125,6 +131,20 @@ int rf__scene_image(rf_scene *s, const char *path, size_t min_channels, const ch
                     const rf_image **img, char *err, size_t errlen);
 /* Completes an object's derived fields (squares, bounds, frames). */
 void rf__object_prepare(struct object *o);
+/* Adds a mesh to the scene, before any ray is traced, and takes what it
+ * owns in every case (its path, arrays, materials and their names, not
+ * the textures: the scene keeps those apart): the scene's on success,
+ * freed at once on error, *m zeroed either way.  Refused, with err naming
+ * the mesh's path and the statement's line: no triangles, an index or a
+ * material number out of range, a position, normal, tangent or texture
+ * coordinate that is not finite (NaN, infinity), missing normals or
+ * tangents.  It fills bounds; objid is set when the first ray is traced
+ * (nobjects + 1 + the mesh's index: after every object, whatever the
+ * order of statements). */
+RF_EXTERN int rf__scene_add_mesh(rf_scene *s, struct rf__mesh *m, char *err,
+                                 size_t errlen);
+/* Frees what a mesh owns (not the struct). */
+void rf__mesh_free(struct rf__mesh *m);
 
 /* emission.c */
 /* The pattern's defaults: those of the path-traced references. */
@@ -166,13 +186,17 @@ const struct emission *rf__wall_emission_of(const rf_scene *s, int face);
 /* Fills k[(nobjects + 1) * RF__ORIGIN_STRIDE] for rays from o (the room
  * last). */
 void rf__trace_prepare(const rf_scene *s, const double o[3], double *k);
+/* rf__trace's flags: objects and mesh triangles whose mask is above 0
+ * (what reflects the probe) are passed through. */
+#define RF__TRACE_SKIP_REFLECTIVE 1u
 /* Nearest hit of the unit ray; k from rf__trace_prepare for the same o,
  * or NULL to work it out on the way; inv_d the reciprocals of d, or NULL.
- * Only the objects of list (indices) are tried when it is not NULL; the
- * room always is. */
+ * The room is always tried. */
 int rf__trace(const rf_scene *s, const double o[3], const double *k,
-              const double d[3], const double *inv_d, const uint32_t *list,
-              size_t nlist, struct rf_hit *hit);
+              const double d[3], const double *inv_d, unsigned flags,
+              struct rf_hit *hit);
+/* hit->T from the surface's tangent t: its part perpendicular to N. */
+void rf__hit_tangent(struct rf_hit *hit, const double t[3]);
 
 /* normalmap.c */
 /* The shading normal from the geometric frame (t, b, ng) and the surface

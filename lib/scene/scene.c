@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "scene/scene-internal.h"
+#include "scene/accel.h"
 #include "probe/probe-internal.h"
 #include "stream/stream-internal.h"
 
@@ -16,6 +16,10 @@ rf__scene_create(void)
 
 	if (!s)
 		return NULL;
+	if (pthread_mutex_init(&s->accel_lock, NULL)) {
+		free(s);
+		return NULL;
+	}
 	s->room = 1;
 	rf__material_default(&s->room_mat, 1);
 	rf__pattern_default(&s->pattern);
@@ -45,6 +49,12 @@ rf_scene_destroy(rf_scene *s)
 
 	if (!s)
 		return;
+	rf__accel_destroy(s->accel);
+	pthread_mutex_destroy(&s->accel_lock);
+	for (i = 0; i < s->nmeshes; i++)
+		rf__mesh_free(&s->meshes[i]);
+	free(s->meshes);
+	free(s->lights);
 	for (i = 0; i < s->nprobes; i++)
 		free((char *)s->probes[i].env);
 	for (i = 0; i < s->nimages; i++) {
@@ -97,6 +107,147 @@ rf__scene_image(rf_scene *s, const char *path, size_t min_channels, const char *
 	s->image_paths[s->nimages++] = copy;
 	*imgp = img;
 	return 0;
+}
+
+void
+rf__mesh_free(struct rf__mesh *m)
+{
+	size_t i;
+
+	free(m->path);
+	free(m->positions);
+	free(m->normals);
+	free(m->tangents);
+	free(m->uv[0]);
+	free(m->uv[1]);
+	free(m->indices);
+	free(m->material);
+	for (i = 0; i < m->nmaterials; i++)
+		free(m->materials[i].name);
+	free(m->materials);
+}
+
+/* Whether the n values from v are all finite; the first that is not. */
+static int
+all_finite(const float *v, size_t n, size_t *bad)
+{
+	size_t i;
+
+	for (i = 0; i < n; i++)
+		if (!isfinite(v[i])) {
+			*bad = i;
+			return 0;
+		}
+	return 1;
+}
+
+static int
+check_mesh(const struct rf__mesh *m, char *err, size_t errlen)
+{
+	const char *path = m->path ? m->path : "(mesh)";
+	static const char *const what[] = { "position", "normal", "tangent",
+	                                    "texture coordinate", "texture coordinate" };
+	const float *arrays[5];
+	const size_t per[5] = { 3, 3, 4, 2, 2 };
+	size_t i, bad;
+
+	if (!m->ntriangles || !m->nvertices || !m->positions || !m->indices) {
+		rf__format(err, errlen, "line %zu: mesh '%s' has no triangles", m->line, path);
+		return RF_EINVAL;
+	}
+	if (!m->normals || !m->tangents) {
+		rf__format(err, errlen, "line %zu: mesh '%s' has no %s", m->line, path,
+		           m->normals ? "tangents" : "normals");
+		return RF_EINVAL;
+	}
+	/* Embree numbers vertices and triangles in 32 bits. */
+	if (m->nvertices > UINT32_MAX || m->ntriangles > UINT32_MAX / 3) {
+		rf__format(err, errlen, "line %zu: mesh '%s' has %zu vertices and %zu triangles, "
+		           "expected at most %u of each", m->line, path, m->nvertices,
+		           m->ntriangles, (unsigned)(UINT32_MAX / 3));
+		return RF_ETOOBIG;
+	}
+	arrays[0] = m->positions;
+	arrays[1] = m->normals;
+	arrays[2] = m->tangents;
+	arrays[3] = m->uv[0];
+	arrays[4] = m->uv[1];
+	for (i = 0; i < 5; i++)
+		if (arrays[i] && !all_finite(arrays[i], per[i] * m->nvertices, &bad)) {
+			rf__format(err, errlen, "line %zu: mesh '%s': vertex %zu's %s is not a "
+			           "finite number (NaN or infinity): fix the file", m->line, path,
+			           bad / per[i], what[i]);
+			return RF_EINVAL;
+		}
+	for (i = 0; i < 3 * m->ntriangles; i++)
+		if (m->indices[i] >= m->nvertices) {
+			rf__format(err, errlen, "line %zu: mesh '%s': triangle %zu names vertex %u, "
+			           "expected below %zu", m->line, path, i / 3, m->indices[i],
+			           m->nvertices);
+			return RF_EINVAL;
+		}
+	for (i = 0; m->material && i < m->ntriangles; i++)
+		if (m->material[i] >= m->nmaterials) {
+			rf__format(err, errlen, "line %zu: mesh '%s': triangle %zu has material %u, "
+			           "expected below %zu", m->line, path, i, m->material[i],
+			           m->nmaterials);
+			return RF_EINVAL;
+		}
+	if (!m->material && m->nmaterials < 1) {
+		rf__format(err, errlen, "line %zu: mesh '%s' has no material", m->line, path);
+		return RF_EINVAL;
+	}
+	return 0;
+}
+
+int
+rf__scene_add_mesh(rf_scene *s, struct rf__mesh *m, char *err, size_t errlen)
+{
+	struct rf__mesh *meshes;
+	float *padded;
+	size_t i;
+	int rc, j;
+
+	if ((rc = check_mesh(m, err, errlen)) < 0)
+		goto fail;
+	/* Embree reads a vertex as four floats: one more after the last. */
+	if (!(padded = realloc(m->positions, (3 * m->nvertices + 1) * sizeof(*padded)))) {
+		rc = RF_ENOMEM;
+		goto fail;
+	}
+	m->positions = padded;
+	padded[3 * m->nvertices] = 0.0f;
+	if (!(meshes = realloc(s->meshes, (s->nmeshes + 1) * sizeof(*meshes)))) {
+		rc = RF_ENOMEM;
+		goto fail;
+	}
+	s->meshes = meshes;
+	for (j = 0; j < 3; j++) {
+		m->bounds[j] = INFINITY;
+		m->bounds[j + 3] = -INFINITY;
+	}
+	for (i = 0; i < m->nvertices; i++)
+		for (j = 0; j < 3; j++) {
+			const float v = m->positions[3 * i + j];
+
+			m->bounds[j] = v < m->bounds[j] ? v : m->bounds[j];
+			m->bounds[j + 3] = v > m->bounds[j + 3] ? v : m->bounds[j + 3];
+		}
+	/* A new mesh after a traced ray: the structure is built again. */
+	rf__accel_destroy(s->accel);
+	s->accel = NULL;
+	for (i = 0; i < m->nmaterials; i++)
+		for (j = 0; j < 3; j++)
+			s->has_emission |= m->materials[i].emission[j] > 0.0f;
+	s->meshes[s->nmeshes++] = *m;
+	memset(m, 0, sizeof(*m));
+	return 0;
+fail:
+	if (rc == RF_ENOMEM)
+		rf__format(err, errlen, "%s", rf_strerror(rc));
+	rf__mesh_free(m);
+	memset(m, 0, sizeof(*m));
+	return rc;
 }
 
 void
@@ -166,6 +317,8 @@ rf_scene_object_kind(const rf_scene *s, int objid)
 
 	if (objid > 0 && (size_t)objid <= s->nobjects)
 		return kinds[s->objects[objid - 1].kind];
+	if (objid > 0 && (size_t)objid <= s->nobjects + s->nmeshes)
+		return "mesh";
 	if (objid < 0 && objid >= RF_WALL_ZMIN && s->room && s->nprobes)
 		return "wall";
 	return NULL;
@@ -174,7 +327,11 @@ rf_scene_object_kind(const rf_scene *s, int objid)
 size_t
 rf_scene_object_line(const rf_scene *s, int objid)
 {
-	return objid > 0 && (size_t)objid <= s->nobjects ? s->objects[objid - 1].line : 0;
+	if (objid > 0 && (size_t)objid <= s->nobjects)
+		return s->objects[objid - 1].line;
+	if (objid > 0 && (size_t)objid <= s->nobjects + s->nmeshes)
+		return s->meshes[objid - 1 - s->nobjects].line;
+	return 0;
 }
 
 int
@@ -226,7 +383,7 @@ int
 rf_scene_trace(const rf_scene *s, const double origin[3], const double dir[3],
                struct rf_hit *hit)
 {
-	return rf__trace(s, origin, NULL, dir, NULL, NULL, 0, hit);
+	return rf__trace(s, origin, NULL, dir, NULL, 0, hit);
 }
 
 /* The camera's frame: forward, right and true up, all unit. */

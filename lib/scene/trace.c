@@ -25,7 +25,7 @@
 
 #include "maths/ggx.h"
 #include "util/pool.h"
-#include "scene/scene-internal.h"
+#include "scene/accel.h"
 
 struct rf_tracer {
 	const rf_scene *s;
@@ -34,8 +34,10 @@ struct rf_tracer {
 	struct camera_basis cb;
 	struct rf_camera cam;
 	double *kcam;       /* rf__trace_prepare for the camera */
-	uint32_t *seen;     /* objects reflected rays can meet */
+	/* What reflected rays can meet besides the room (objects and meshes:
+	 * 0 for the room alone), and rf__trace's flags for them. */
 	size_t nseen;
+	unsigned flags;
 	double *k;          /* per thread: rf__trace_prepare for a pixel */
 	/* cos and sin of 2 pi rf__ggx_radical_inverse(i) for a half's samples: a
 	 * pixel's rotation turns them by angle addition instead of a sincos
@@ -89,12 +91,11 @@ rf_tracer_create(struct rf_tracer **tp, const rf_scene *s, size_t width, size_t 
 	t->width = width;
 	t->height = height;
 	t->kcam = calloc(s->nobjects + 1, RF__ORIGIN_STRIDE * sizeof(double));
-	t->seen = calloc(s->nobjects + 1, sizeof(*t->seen));
 	t->k = calloc((size_t)t->o.nthreads * (s->nobjects + 1), RF__ORIGIN_STRIDE *
 	              sizeof(double));
 	/* padded to whole chunks: integrate() reads a chunk whole */
 	t->turn = calloc(((size_t)o->samples + 1) / 2 + TRACE_CHUNK, 2 * sizeof(float));
-	if (!t->kcam || !t->seen || !t->k || !t->turn) {
+	if (!t->kcam || !t->k || !t->turn) {
 		rf_tracer_destroy(t);
 		return RF_ENOMEM;
 	}
@@ -106,7 +107,13 @@ rf_tracer_create(struct rf_tracer **tp, const rf_scene *s, size_t width, size_t 
 	}
 	for (i = 0; i < s->nobjects; i++)
 		if (o->objects_visible || !(s->objects[i].mat.mask > 0.0f))
-			t->seen[t->nseen++] = (uint32_t)i;
+			t->nseen++;
+	t->nseen += s->nmeshes;
+	t->flags = o->objects_visible ? 0 : RF__TRACE_SKIP_REFLECTIVE;
+	if ((s->nobjects || s->nmeshes) && !rf__accel_get(s, err, errlen)) {
+		rf_tracer_destroy(t);
+		return RF_ENOMEM;
+	}
 	if (t->o.nthreads > 1)
 		rf__pool_create(&t->pool, t->o.nthreads);
 	rf_tracer_set_camera(t, &s->camera);
@@ -121,7 +128,6 @@ rf_tracer_destroy(struct rf_tracer *t)
 		return;
 	rf__pool_destroy(t->pool);
 	free(t->kcam);
-	free(t->seen);
 	free(t->k);
 	free(t->turn);
 	free(t);
@@ -188,7 +194,7 @@ reflected(const struct rf_tracer *t, const double p[3], const double *k, const d
 			rf__wall_emission(s, face, uv, rgb);
 		return;
 	}
-	rf__trace(s, p, k, d, NULL, t->seen, t->nseen, &h);
+	rf__trace(s, p, k, d, NULL, t->flags, &h);
 	rf__emission(s, &h, rgb);
 }
 
@@ -386,7 +392,7 @@ trace_row(void *arg, size_t task, int thread)
 		int j;
 
 		rf__camera_dir(&t->cb, (2.0 * (double)x + 1.0) / (double)t->width - 1.0, sy, d);
-		rf__trace(t->s, t->cam.position, t->kcam, d, NULL, NULL, 0, &h);
+		rf__trace(t->s, t->cam.position, t->kcam, d, NULL, 0, &h);
 		for (c = 0; c < 3; c++)
 			v[c] = -d[c];
 		rf__emission(t->s, &h, e);
