@@ -41,6 +41,12 @@ static const struct {
 };
 
 
+/* Pixels (inclusive) outside of which a ray cannot meet an object or a
+ * mesh: the rest see the room alone, without a search. */
+struct bounds {
+	long x0, x1, y0, y1;
+};
+
 struct rf_gbuffer {
 	const rf_scene *s;
 	size_t width, height;
@@ -52,7 +58,10 @@ struct rf_gbuffer {
 	struct rf_camera cam;
 	struct camera_basis cb;
 	double *k; /* per-object constants for rays from the camera */
-	double *rays; /* per thread: a row of directions, reciprocals */
+	struct bounds *bounds; /* per object then mesh, where it can be on the image */
+	size_t nbounds;
+	uint32_t *scratch;     /* per thread: the boxes of a row */
+	double *rays;          /* per thread: a row of directions, reciprocals */
 	/* Kept from block to block, so that a frame of many blocks starts its
 	 * threads once; NULL for one thread or if none could be had: the
 	 * caller renders alone. */
@@ -166,8 +175,11 @@ rf_gbuffer_create(rf_gbuffer **gp, const rf_scene *s, size_t width, size_t heigh
 	 * emission */
 	g->identity &= g->nch == CH_DEFAULT || g->nch == CH_ER + 3;
 	g->k = calloc(s->nobjects + 1, RF__ORIGIN_STRIDE * sizeof(double));
+	g->nbounds = s->nobjects + s->nmeshes;
+	g->bounds = calloc(g->nbounds + 1, sizeof(*g->bounds));
+	g->scratch = calloc((size_t)g->nthreads * (g->nbounds + 1), sizeof(uint32_t));
 	g->rays = malloc((size_t)g->nthreads * width * 6 * sizeof(double));
-	if (!g->k || !g->rays) {
+	if (!g->k || !g->bounds || !g->scratch || !g->rays) {
 		rf_gbuffer_destroy(g);
 		return RF_ENOMEM;
 	}
@@ -190,6 +202,8 @@ rf_gbuffer_destroy(rf_gbuffer *g)
 		return;
 	rf__pool_destroy(g->pool);
 	free(g->k);
+	free(g->bounds);
+	free(g->scratch);
 	free(g->rays);
 	free(g);
 }
@@ -206,10 +220,67 @@ rf_gbuffer_channel(const rf_gbuffer *g, size_t i)
 	return i < g->nch ? channel_names[g->map[i]] : NULL;
 }
 
+static long
+clamp_pixel(double v, size_t n)
+{
+	return v < -2.0 ? -2 : v > (double)n + 2.0 ? (long)n + 2 : (long)v;
+}
+
+/* The image rectangle that holds the projection of an object's bounding
+ * box, a pixel wider on every side against rounding.  Rays through other
+ * pixel centres cannot meet the object, since a ray's points all project
+ * onto its pixel centre.  A mesh's box is its bounds, a float's rounding
+ * wider. */
+static void
+box_bounds(const rf_gbuffer *g, const double bmin[3], const double bmax[3], struct bounds *b)
+{
+	const struct camera_basis *cb = &g->cb;
+	double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+	int corner, behind = 0, i;
+
+	for (corner = 0; corner < 8; corner++) {
+		double rel[3], z, x, y;
+
+		for (i = 0; i < 3; i++)
+			rel[i] = ((corner >> i) & 1 ? bmax[i] : bmin[i]) - g->cam.position[i];
+		z = rf__dot(rel, cb->f);
+		if (!(z > 1e-9)) {
+			behind++;
+			continue;
+		}
+		x = rf__dot(rel, cb->r) / (z * cb->tx);
+		y = rf__dot(rel, cb->u) / (z * cb->ty);
+		xmin = x < xmin ? x : xmin;
+		xmax = x > xmax ? x : xmax;
+		ymin = y < ymin ? y : ymin;
+		ymax = y > ymax ? y : ymax;
+	}
+	if (behind == 8) {
+		/* Every ray leans forward: nothing behind the eye is seen. */
+		b->x0 = b->y0 = 1;
+		b->x1 = b->y1 = 0;
+		return;
+	}
+	if (behind) {
+		b->x0 = b->y0 = -2;
+		b->x1 = (long)g->width + 2;
+		b->y1 = (long)g->height + 2;
+		return;
+	}
+	/* Pixel i's centre is at x = 2 (i + 0.5) / W - 1. */
+	b->x0 = clamp_pixel(floor((xmin + 1.0) * 0.5 * (double)g->width - 0.5) - 1.0, g->width);
+	b->x1 = clamp_pixel(ceil((xmax + 1.0) * 0.5 * (double)g->width - 0.5) + 1.0, g->width);
+	b->y0 = clamp_pixel(floor((1.0 - ymax) * 0.5 * (double)g->height - 0.5) - 1.0,
+	                    g->height);
+	b->y1 = clamp_pixel(ceil((1.0 - ymin) * 0.5 * (double)g->height - 0.5) + 1.0,
+	                    g->height);
+}
+
 int
 rf_gbuffer_set_camera(rf_gbuffer *g, const struct rf_camera *cam, char *err,
                       size_t errlen)
 {
+	size_t i;
 	int rc;
 
 	if ((rc = rf_camera_check(cam, err, errlen)) < 0)
@@ -217,6 +288,21 @@ rf_gbuffer_set_camera(rf_gbuffer *g, const struct rf_camera *cam, char *err,
 	g->cam = *cam;
 	rf__camera_basis(cam, g->width, g->height, &g->cb);
 	rf__trace_prepare(g->s, cam->position, g->k);
+	for (i = 0; i < g->s->nobjects; i++)
+		box_bounds(g, g->s->objects[i].min, g->s->objects[i].max, &g->bounds[i]);
+	for (i = 0; i < g->s->nmeshes; i++) {
+		const float *mb = g->s->meshes[i].bounds;
+		double lo[3], hi[3];
+		int j;
+
+		for (j = 0; j < 3; j++) {
+			const double pad = 1e-6 * (1.0 + fmax(fabs(mb[j]), fabs(mb[j + 3])));
+
+			lo[j] = mb[j] - pad;
+			hi[j] = mb[j + 3] + pad;
+		}
+		box_bounds(g, lo, hi, &g->bounds[g->s->nobjects + i]);
+	}
 	return 0;
 }
 
@@ -233,8 +319,12 @@ render_row(void *arg, size_t task, int thread)
 	double sy = 1.0 - (2.0 * (double)y + 1.0) / (double)g->height;
 	float tmp[CH_COUNT], *v;
 	struct rf_hit hit;
-	size_t x, c;
+	uint32_t *row_list = g->scratch + (size_t)thread * (g->nbounds + 1);
+	size_t x, c, i, nrow = 0;
 
+	for (i = 0; i < g->nbounds; i++)
+		if (g->bounds[i].y0 <= (long)y && (long)y <= g->bounds[i].y1)
+			row_list[nrow++] = (uint32_t)i;
 	/* The row's rays first: a loop of independent square roots and
 	 * divisions runs at their throughput, not at their latency. */
 	for (x = 0; x < g->width; x++) {
@@ -248,8 +338,17 @@ render_row(void *arg, size_t task, int thread)
 	}
 	for (x = 0; x < g->width; x++, out += g->nch) {
 		const double *d = rays + 6 * x;
+		unsigned flags = RF__TRACE_ROOM_ONLY;
 
-		rf__trace(g->s, o, g->k, d, d + 3, 0, &hit);
+		for (i = 0; i < nrow; i++) {
+			const struct bounds *b = &g->bounds[row_list[i]];
+
+			if (b->x0 <= (long)x && (long)x <= b->x1) {
+				flags = 0;
+				break;
+			}
+		}
+		rf__trace(g->s, o, g->k, d, d + 3, flags, &hit);
 		/* All channels in their order (the usual case) go straight out. */
 		v = g->identity ? out : tmp;
 		v[CH_PX] = (float)hit.P[0];

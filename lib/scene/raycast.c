@@ -375,7 +375,7 @@ rf__trace(const rf_scene *s, const double o[3], const double *k, const double d[
 	if (!inv_d)
 		for (j = 0; j < 3; j++)
 			own_inv[j] = 1.0 / d[j];
-	if (s->nobjects || s->nmeshes) {
+	if ((s->nobjects || s->nmeshes) && !(flags & RF__TRACE_ROOM_ONLY)) {
 		if ((acc = rf__accel_get(s, NULL, 0)))
 			rf__accel_intersect(acc, s, o, k, d, inv, flags, &best, &mh);
 		else

@@ -189,6 +189,9 @@ void rf__trace_prepare(const rf_scene *s, const double o[3], double *k);
 /* rf__trace's flags: objects and mesh triangles whose mask is above 0
  * (what reflects the probe) are passed through. */
 #define RF__TRACE_SKIP_REFLECTIVE 1u
+/* The caller knows that the ray meets no object and no mesh: the room
+ * alone is tried, without a search. */
+#define RF__TRACE_ROOM_ONLY 2u
 /* Nearest hit of the unit ray; k from rf__trace_prepare for the same o,
  * or NULL to work it out on the way; inv_d the reciprocals of d, or NULL.
  * The room is always tried. */
