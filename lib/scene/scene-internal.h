@@ -195,9 +195,9 @@ void rf__trace_prepare(const rf_scene *s, const double o[3], double *k);
 /* Nearest hit of the unit ray; k from rf__trace_prepare for the same o,
  * or NULL to work it out on the way; inv_d the reciprocals of d, or NULL.
  * The room is always tried. */
-int rf__trace(const rf_scene *s, const double o[3], const double *k,
-              const double d[3], const double *inv_d, unsigned flags,
-              struct rf_hit *hit);
+RF_EXTERN int rf__trace(const rf_scene *s, const double o[3], const double *k,
+                        const double d[3], const double *inv_d, unsigned flags,
+                        struct rf_hit *hit);
 /* hit->T from the surface's tangent t: its part perpendicular to N. */
 void rf__hit_tangent(struct rf_hit *hit, const double t[3]);
 

@@ -574,6 +574,57 @@ TEST(same_bytes_at_any_thread_count)
 	rf_scene_destroy(s);
 }
 
+TEST(reflective_triangles_passed_through)
+{
+	/* Quad A at z = -1, reflective; quad B at z = -2 whose lower right
+	 * triangle (below the diagonal y = 1 + x / 2) is not reflective, its
+	 * other one is (two materials: two geometries on its vertices).
+	 * Passing reflective surfaces, a ray through A meets B's first
+	 * triangle, or nothing behind the second; otherwise A. */
+	rf_scene *s = parse(AWAY "camera position 0 1 4 target 0 1 0\n"
+	                         "sphere center 0 1 -1.5 radius 0.1 reflective on\n");
+	struct rf__mesh a = quad(1), b = quad(2);
+	const double d[3] = { 0, 0, -1 };
+	const double low[3] = { 0.5, 0.7, 3 }, high[3] = { -0.5, 1.3, 3 };
+	const double mid[3] = { 0, 1, 3 };
+	struct rf_hit h;
+	int i;
+
+	ASSERT(s);
+	for (i = 0; i < 4; i++)
+		b.positions[3 * i + 2] = -2.0f;
+	free(b.materials[0].name);
+	free(b.materials);
+	b.nmaterials = 2;
+	b.materials = calloc(2, sizeof(*b.materials));
+	b.materials[0].name = strdup("matte");
+	b.materials[1].name = strdup("mirror");
+	b.materials[1].mask = 1.0f;
+	b.material[1] = 1;
+	ASSERT_EQ(add(s, &a), 0);
+	ASSERT_EQ(add(s, &b), 0);
+	ASSERT_EQ(rf__trace(s, low, NULL, d, NULL, 0, &h), 2);
+	ASSERT_NEAR(h.t, 4.0, 1e-12);
+	ASSERT_EQ(rf__trace(s, low, NULL, d, NULL, RF__TRACE_SKIP_REFLECTIVE, &h), 3);
+	ASSERT_NEAR(h.t, 5.0, 1e-12);
+	ASSERT_EQ(h.prim, 0);
+	ASSERT(h.mask == 0.0f);
+	ASSERT_EQ(rf__trace(s, high, NULL, d, NULL, 0, &h), 2);
+	ASSERT_EQ(rf__trace(s, high, NULL, d, NULL, RF__TRACE_SKIP_REFLECTIVE, &h),
+	          RF_OBJID_NONE);
+	/* the reflective sphere between them: met, or passed */
+	ASSERT_EQ(rf__trace(s, mid, NULL, d, NULL, 0, &h), 2);
+	ASSERT_EQ(rf__trace(s, mid, NULL, d, NULL, RF__TRACE_SKIP_REFLECTIVE, &h), 3);
+	{
+		const double behind[3] = { 0, 1, -1.2 };
+
+		ASSERT_EQ(rf__trace(s, behind, NULL, d, NULL, 0, &h), 1);
+		ASSERT_NEAR(h.t, 0.2, 1e-12);
+		ASSERT_EQ(rf__trace(s, behind, NULL, d, NULL, RF__TRACE_SKIP_REFLECTIVE, &h), 3);
+	}
+	rf_scene_destroy(s);
+}
+
 TEST(bad_meshes_refused)
 {
 	rf_scene *s = parse(AWAY "camera position 0 1 4 target 0 1 0\n");
@@ -607,6 +658,7 @@ main(void)
 	RUN(texture_sampling);
 	RUN(textured_material_and_emission);
 	RUN(same_bytes_at_any_thread_count);
+	RUN(reflective_triangles_passed_through);
 	RUN(bad_meshes_refused);
 	TAP_DONE();
 }
