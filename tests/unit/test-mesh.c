@@ -6,6 +6,7 @@
 #include <stdint.h>
 
 #include "scene/accel.h"
+#include "reflect/envmap.h"
 #include "reflect/scene.h"
 #include "tap.h"
 
@@ -625,6 +626,56 @@ TEST(reflective_triangles_passed_through)
 	rf_scene_destroy(s);
 }
 
+TEST(capture_sees_an_emissive_mesh)
+{
+	/* A probe at (0, 1.5, 0) in a room that emits nothing; a matte quad
+	 * emitting (2, 1, 0.5) across x in [-1, 1], y in [1, 2] at z = -1.5
+	 * fills the middle of the -Z face: its texels there are the
+	 * emission (no bounce: nothing shades it).  Made reflective and
+	 * hidden (--hide-reflective), the wall behind shows: 0. */
+	struct rf_capture_options o;
+	rf_cubemap *cube = NULL;
+	char err[256] = "";
+	size_t i, j;
+	int hide;
+
+	for (hide = 0; hide < 2; hide++) {
+		rf_scene *s = parse("probe center 0 1.5 0 box -3 0 -2 3 3 2\n"
+		                    "room emission 0 0 0\n");
+		struct rf__mesh m = quad(1);
+
+		ASSERT(s);
+		for (i = 0; i < 4; i++) {
+			m.positions[3 * i + 1] += 0.5f;
+			m.positions[3 * i + 2] = -1.5f;
+		}
+		m.materials[0].mask = (float)hide;
+		m.materials[0].emission[0] = 2.0f;
+		m.materials[0].emission[1] = 1.0f;
+		m.materials[0].emission[2] = 0.5f;
+		ASSERT_EQ(add(s, &m), 0);
+		rf_capture_options_init(&o);
+		o.size = 16;
+		o.bounces = 0;
+		o.hide_reflective = hide;
+		ASSERT_EQ(rf_scene_capture(s, 0, &o, &cube, err, sizeof(err)), 0);
+		/* the -Z face's middle 4 x 4 texels look within 0.27 rad of -Z:
+		 * inside the quad (it spans 0.59 rad to the sides, 0.32 up and
+		 * down from the probe's height 1.5) */
+		for (j = 6; j < 10; j++)
+			for (i = 6; i < 10; i++) {
+				const float *t = rf_cubemap_texel_const(cube, 0, RF_FACE_NEG_Z, i, j);
+
+				ASSERT_NEAR(t[0], hide ? 0.0 : 2.0, 1e-6);
+				ASSERT_NEAR(t[1], hide ? 0.0 : 1.0, 1e-6);
+				ASSERT_NEAR(t[2], hide ? 0.0 : 0.5, 1e-6);
+			}
+		rf_cubemap_destroy(cube);
+		cube = NULL;
+		rf_scene_destroy(s);
+	}
+}
+
 TEST(bad_meshes_refused)
 {
 	rf_scene *s = parse(AWAY "camera position 0 1 4 target 0 1 0\n");
@@ -659,6 +710,7 @@ main(void)
 	RUN(textured_material_and_emission);
 	RUN(same_bytes_at_any_thread_count);
 	RUN(reflective_triangles_passed_through);
+	RUN(capture_sees_an_emissive_mesh);
 	RUN(bad_meshes_refused);
 	TAP_DONE();
 }
