@@ -676,6 +676,49 @@ TEST(capture_sees_an_emissive_mesh)
 	}
 }
 
+TEST(trace_reflects_an_emissive_mesh)
+{
+	/* reflect-trace's truth: a near-mirror rectangle at z = -1 facing the
+	 * camera at z = 4 reflects what lies behind the camera: a matte
+	 * mesh quad at z = 6 emitting 3, wide enough to fill every reflected
+	 * lobe.  A white lobe (F = 1) of roughness 0.02 keeps nearly all of
+	 * it: each pixel between 2.9 and 3.  Without the mesh: 0. */
+	rf_scene *s = parse("room off\nprobe box 100 100 100 101 101 101\n"
+	                    "camera position 0 1 4 target 0 1 0 fov 10\n"
+	                    "rect center 0 1 -1 normal 0 0 1 size 4 4 roughness 0.02\n");
+	struct rf__mesh m = quad(3);
+	struct rf_trace_options o;
+	rf_tracer *t = NULL;
+	char err[256] = "";
+	float px[4 * 4 * 5];
+	size_t i;
+
+	ASSERT(s);
+	for (i = 0; i < 4; i++) {
+		/* x in [-10, 10], y in [-9, 11], at z = 6, facing -z */
+		m.positions[3 * i] *= 10.0f;
+		m.positions[3 * i + 1] = (m.positions[3 * i + 1] - 1.0f) * 20.0f + 1.0f;
+		m.positions[3 * i + 2] = 6.0f;
+		m.normals[3 * i + 2] = -1.0f;
+	}
+	m.materials[0].mask = 0.0f;
+	m.materials[0].emission[0] = m.materials[0].emission[1] = 3.0f;
+	m.materials[0].emission[2] = 3.0f;
+	ASSERT_EQ(add(s, &m), 0);
+	rf_trace_options_init(&o);
+	o.samples = 64;
+	ASSERT_EQ(rf_tracer_create(&t, s, 4, 4, &o, err, sizeof(err)), 0);
+	ASSERT_EQ(rf_tracer_nchannels(t), 5);
+	ASSERT_EQ(rf_tracer_render(t, px, 0, 4), 0);
+	for (i = 0; i < 16; i++) {
+		ASSERT(px[5 * i + 4] == 1.0f); /* the rectangle */
+		ASSERT(px[5 * i] > 2.9f && px[5 * i] <= 3.0f);
+		ASSERT(px[5 * i + 1] == px[5 * i] && px[5 * i + 2] == px[5 * i]);
+	}
+	rf_tracer_destroy(t);
+	rf_scene_destroy(s);
+}
+
 TEST(bad_meshes_refused)
 {
 	rf_scene *s = parse(AWAY "camera position 0 1 4 target 0 1 0\n");
@@ -711,6 +754,7 @@ main(void)
 	RUN(same_bytes_at_any_thread_count);
 	RUN(reflective_triangles_passed_through);
 	RUN(capture_sees_an_emissive_mesh);
+	RUN(trace_reflects_an_emissive_mesh);
 	RUN(bad_meshes_refused);
 	TAP_DONE();
 }
