@@ -24,12 +24,18 @@
 #define H 1080
 
 static double
-now(void)
+clock_seconds(clockid_t id)
 {
 	struct timespec t;
 
-	clock_gettime(CLOCK_MONOTONIC, &t);
+	clock_gettime(id, &t);
 	return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static double
+now(void)
+{
+	return clock_seconds(CLOCK_MONOTONIC);
 }
 
 static int
@@ -132,6 +138,21 @@ add_icosphere(rf_scene *s, const double c[3], double r, int levels, size_t line)
 	return 0;
 }
 
+/* The last minute's load average, to say how busy the machine was. */
+static double
+load(void)
+{
+	FILE *fp = fopen("/proc/loadavg", "r");
+	double l = -1;
+
+	if (fp) {
+		if (fscanf(fp, "%lf", &l) != 1)
+			l = -1;
+		fclose(fp);
+	}
+	return l;
+}
+
 static const char grid_text[] =
 	"camera position 0 6 7 target 0 0.5 0 fov 50\n"
 	"probe center 0 2 0 box -6 0 -6 6 8 8\n";
@@ -160,14 +181,16 @@ grid_scene(size_t *ntris)
 }
 
 /* Seconds from the G-buffer's creation (which builds the BVH) to its last
- * row; *build the creation alone. */
+ * row; *build the creation alone; *cpu the CPU seconds of both, every
+ * thread's (on a machine shared with other work the wall time grows, the
+ * CPU time much less). */
 static double
-gbuffer_time(const rf_scene *s, int threads, float *out, double *build)
+gbuffer_time(const rf_scene *s, int threads, float *out, double *build, double *cpu)
 {
 	struct rf_camera cam;
 	rf_gbuffer *g = NULL;
 	char err[256];
-	double t0 = now(), t1;
+	double c0 = clock_seconds(CLOCK_PROCESS_CPUTIME_ID), t0 = now(), t1;
 
 	rf_scene_camera(s, &cam);
 	if (rf_gbuffer_create(&g, s, W, H, NULL, threads, err, sizeof(err)) < 0 ||
@@ -179,16 +202,24 @@ gbuffer_time(const rf_scene *s, int threads, float *out, double *build)
 	rf_gbuffer_render(g, out, 0, H);
 	rf_gbuffer_destroy(g);
 	*build = t1 - t0;
+	*cpu = clock_seconds(CLOCK_PROCESS_CPUTIME_ID) - c0;
 	return now() - t0;
 }
 
 static void
-report(const char *name, size_t ntris, double *total, double *build)
+report(const char *name, size_t ntris, double *total, double *build, double *cpu)
 {
+	double render[RUNS];
+	int r;
+
+	for (r = 0; r < RUNS; r++)
+		render[r] = total[r] - build[r];
 	qsort(total, RUNS, sizeof(double), cmp_double);
 	qsort(build, RUNS, sizeof(double), cmp_double);
-	printf("%-28s %9zu %10.3f %10.3f %10.3f\n", name, ntris, total[RUNS / 2],
-	       build[RUNS / 2], total[RUNS / 2] - build[RUNS / 2]);
+	qsort(render, RUNS, sizeof(double), cmp_double);
+	qsort(cpu, RUNS, sizeof(double), cmp_double);
+	printf("%-20s %9zu %9.3f %9.3f %9.3f %9.3f\n", name, ntris, total[RUNS / 2],
+	       build[RUNS / 2], render[RUNS / 2], cpu[RUNS / 2]);
 }
 
 int
@@ -196,7 +227,7 @@ main(int argc, char **argv)
 {
 	int threads = 2, opt, r, a;
 	float *out = malloc((size_t)W * H * 32 * sizeof(float));
-	double total[RUNS], build[RUNS];
+	double total[RUNS], build[RUNS], cpu[RUNS];
 	size_t ntris = 0;
 
 	while ((opt = getopt(argc, argv, "j:")) != -1) {
@@ -209,15 +240,16 @@ main(int argc, char **argv)
 	if (!out)
 		return 2;
 	printf("1920x1080 G-buffer, %d threads, median of %d runs\n", threads, RUNS);
-	printf("%-28s %9s %10s %10s %10s\n", "scene", "triangles", "total s", "build s",
-	       "render s");
+	printf("load average %.2f\n", load());
+	printf("%-20s %9s %9s %9s %9s %9s\n", "scene", "triangles", "total s", "build s",
+	       "render s", "CPU s");
 	for (r = 0; r < RUNS; r++) {
 		rf_scene *s = grid_scene(&ntris);
 
-		total[r] = gbuffer_time(s, threads, out, &build[r]);
+		total[r] = gbuffer_time(s, threads, out, &build[r], &cpu[r]);
 		rf_scene_destroy(s);
 	}
-	report("7x7 icospheres", ntris, total, build);
+	report("7x7 icospheres", ntris, total, build, cpu);
 	for (a = optind; a < argc; a++) {
 		const char *base = strrchr(argv[a], '/') ? strrchr(argv[a], '/') + 1 : argv[a];
 
@@ -235,10 +267,10 @@ main(int argc, char **argv)
 				return 1;
 			}
 			fclose(fp);
-			total[r] = gbuffer_time(s, threads, out, &build[r]);
+			total[r] = gbuffer_time(s, threads, out, &build[r], &cpu[r]);
 			rf_scene_destroy(s);
 		}
-		report(base, 0, total, build);
+		report(base, 0, total, build, cpu);
 	}
 	free(out);
 	return 0;
