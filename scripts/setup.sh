@@ -8,7 +8,8 @@ setup_say () {
 
 # Debian packages the build and the tests need.
 setup_packages="autoconf automake libtool pkg-config make gcc g++ \
-libopenimageio-dev libopenexr-dev libpng-dev libzstd-dev libembree-dev"
+libopenimageio-dev libopenexr-dev libpng-dev libzstd-dev libembree-dev \
+libassimp-dev"
 # Used by some tests when present (they skip otherwise).
 setup_optional_packages="python3-numpy valgrind clang strace"
 
@@ -27,8 +28,9 @@ setup_missing () {
 		pkg-config --exists 'OpenEXR >= 3.1' || missing="$missing libopenexr-dev"
 		pkg-config --exists libpng || missing="$missing libpng-dev"
 		pkg-config --exists libzstd || missing="$missing libzstd-dev"
+		pkg-config --exists 'assimp >= 5.2' || missing="$missing libassimp-dev"
 	else
-		missing="$missing libopenimageio-dev libopenexr-dev libpng-dev libzstd-dev"
+		missing="$missing libopenimageio-dev libopenexr-dev libpng-dev libzstd-dev libassimp-dev"
 	fi
 	# Embree 3 ships no pkg-config file: its header, through the
 	# preprocessor that will build against it.
