@@ -81,8 +81,8 @@ enum {
 	RF_WALL_ZMIN = -6
 };
 
-/* "sphere", "box", "rect", "mesh", "wall" or NULL, and the line the object was
- * declared on (0 when unknown). */
+/* "sphere", "box", "rect", "mesh" (a mesh statement's triangles), "wall"
+ * or NULL, and the line the object was declared on (0 when unknown). */
 RF_EXTERN const char *rf_scene_object_kind(const rf_scene *s, int objid);
 RF_EXTERN size_t rf_scene_object_line(const rf_scene *s, int objid);
 /* The id of the first object that holds p strictly inside, or 0. */

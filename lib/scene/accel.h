@@ -56,10 +56,5 @@ RF_EXTERN void rf__mesh_uv(const struct rf__mesh *m, uint32_t prim, double b1, d
 /* The material of a mesh's triangle. */
 const struct rf__mesh_material *rf__mesh_material_of(const struct rf__mesh *m,
                                                      uint32_t prim);
-/* A texture's value at the hit (its own uv set, through its transform
- * and wrap modes), bilinear: 1 and 2 channels are grey (and alpha),
- * a missing alpha is 1. */
-RF_EXTERN void rf__texture_sample(const struct rf__texture *tex, const double uv[2][2],
-                                  float out[4]);
 
 #endif

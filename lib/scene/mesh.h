@@ -14,6 +14,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "reflect/reflect.h"
+
 /* A texture, linear values (sRGB ones decoded when loaded), read with
  * wrapping (glTF's REPEAT, MIRRORED_REPEAT, CLAMP_TO_EDGE per axis) and
  * bilinear filtering.  uv' = transform * (u, v, 1): KHR_texture_transform
@@ -27,6 +29,14 @@ struct rf__texture {
 	float transform[6]; /* row-major: u' = t0 u + t1 v + t2; v' = t3 u + t4 v + t5 */
 	int texcoord;       /* which uv set (0 or 1) */
 };
+
+/* The texture at a point whose texture coordinates are uv[0] and uv[1]
+ * (glTF's convention, as struct rf__mesh holds them: u right, v down from
+ * the image's first row): the texture's own set, through its transform
+ * and wrap modes, bilinear between texel centres.  R G B A: grey images
+ * give R = G = B, a missing alpha is 1 (meshhit.c). */
+RF_EXTERN void rf__texture_sample(const struct rf__texture *t, const double uv[2][2],
+                                  float out[4]);
 
 /* glTF 2.0's metallic-roughness material; OBJ/MTL is mapped onto it as
  * reflect-scene(5) documents.  A texture pointer is NULL where there is
@@ -48,8 +58,13 @@ struct rf__mesh_material {
 
 /* One mesh statement: its triangles, with what each vertex carries.
  * normals and tangents are always present (generated where the file has
- * none: normals by angle-weighted averaging, tangents MikkTSpace-
- * compatible); uv[1] may be NULL. */
+ * none: normals by angle-weighted averaging, flat for glTF as its
+ * specification asks, tangents MikkTSpace-compatible); uv[1] may be
+ * NULL, uv[0] is zeros where the file has none.  uv in glTF's convention
+ * (v down from the image's first row, for OBJ too); the bitangent
+ * cross(normal, tangent) * w points up the image (toward -v), as a normal
+ * map's green does.  Triangles wind counter-clockwise around the normal
+ * seen from its side, mirroring transforms included. */
 struct rf__mesh {
 	size_t line;      /* of the statement, for messages */
 	char *path;

@@ -119,6 +119,10 @@ struct rf_scene {
 	 * under the lock, then only read. */
 	struct rf__accel *_Atomic accel;
 	pthread_mutex_t accel_lock;
+	/* What the meshes' materials point to (their textures, decoded
+	 * pixels), freed with the scene. */
+	void **blocks;
+	size_t nblocks;
 };
 
 /* scene.c */
@@ -134,17 +138,67 @@ void rf__object_prepare(struct object *o);
 /* Adds a mesh to the scene, before any ray is traced, and takes what it
  * owns in every case (its path, arrays, materials and their names, not
  * the textures: the scene keeps those apart): the scene's on success,
- * freed at once on error, *m zeroed either way.  Refused, with err naming
- * the mesh's path and the statement's line: no triangles, an index or a
- * material number out of range, a position, normal, tangent or texture
- * coordinate that is not finite (NaN, infinity), missing normals or
- * tangents.  It fills bounds; objid is set when the first ray is traced
+ * freed at once on error, *m zeroed either way.  Refused, with err
+ * beginning with the mesh's path (the caller says where the statement
+ * is): no triangles, an index or a material number out of range, a
+ * position, normal, tangent or texture coordinate that is not finite
+ * (NaN, infinity), missing normals or tangents.  It fills bounds; objid is set when the first ray is traced
  * (nobjects + 1 + the mesh's index: after every object, whatever the
  * order of statements). */
 RF_EXTERN int rf__scene_add_mesh(rf_scene *s, struct rf__mesh *m, char *err,
                                  size_t errlen);
-/* Frees what a mesh owns (not the struct). */
+/* An image read by the caller, kept for the scene's life under key (a
+ * path, or a mesh file's "FILE#*N" for its embedded images); on error
+ * the image is destroyed. */
+int rf__scene_image_add(rf_scene *s, const char *key, rf_image *img);
+/* The image kept under key, or NULL. */
+const rf_image *rf__scene_image_find(const rf_scene *s, const char *key);
+/* A malloc'ed block freed with the scene; freed at once on error. */
+int rf__scene_keep(rf_scene *s, void *block);
+
+/* mesh.c: the mesh statement's file (reflect-scene(5)). */
+/* A statement's material overrides: for every material of the file, or
+ * for the one named. */
+enum {
+	RF__OVR_ROUGHNESS = 1, RF__OVR_METALLIC = 2, RF__OVR_ALBEDO = 4,
+	RF__OVR_EMISSION = 8, RF__OVR_MASK = 16
+};
+
+struct rf__mesh_override {
+	char *material; /* NULL: every material */
+	size_t col;     /* of its 'material' word, for messages */
+	unsigned set;   /* RF__OVR_* */
+	float roughness, metallic, albedo[3], emission[3], mask;
+};
+
+struct rf__mesh_request {
+	const char *path; /* as the loader opens it (relative to the scene) */
+	size_t line;
+	double matrix[16]; /* the statement's transform, row-major, last row 0 0 0 1 */
+	const struct rf__mesh_override *overrides;
+	size_t noverrides;
+};
+
+/* Loads the file into one more s->meshes (and its lights into s->lights);
+ * err names the mesh file and says what is wrong with it. */
+int rf__mesh_load(rf_scene *s, const struct rf__mesh_request *rq, char *err,
+                  size_t errlen);
 void rf__mesh_free(struct rf__mesh *m);
+
+/* gltf_check.c */
+/* Accessors without a bufferView (all zeros) hold at most this many. */
+#define RF__GLTF_COUNT_MAX (1 << 24)
+/* What the walk finds that assimp leaves out: each material's
+ * KHR_materials_emissive_strength (1 without), in the file's order. */
+struct rf__gltf_info {
+	float *emissive_strength;
+	size_t nmaterials;
+};
+/* Every size a glTF file (.gltf or .glb) claims held to the bytes behind
+ * it, before assimp allocates them: 0, or an error naming the file.
+ * info is filled (free its array) either way. */
+int rf__gltf_check(const char *path, struct rf__gltf_info *info, char *err,
+                   size_t errlen);
 
 /* emission.c */
 /* The pattern's defaults: those of the path-traced references. */

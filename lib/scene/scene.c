@@ -51,10 +51,6 @@ rf_scene_destroy(rf_scene *s)
 		return;
 	rf__accel_destroy(s->accel);
 	pthread_mutex_destroy(&s->accel_lock);
-	for (i = 0; i < s->nmeshes; i++)
-		rf__mesh_free(&s->meshes[i]);
-	free(s->meshes);
-	free(s->lights);
 	for (i = 0; i < s->nprobes; i++)
 		free((char *)s->probes[i].env);
 	for (i = 0; i < s->nimages; i++) {
@@ -63,6 +59,13 @@ rf_scene_destroy(rf_scene *s)
 	}
 	free(s->images);
 	free(s->image_paths);
+	for (i = 0; i < s->nmeshes; i++)
+		rf__mesh_free(&s->meshes[i]);
+	free(s->meshes);
+	free(s->lights);
+	for (i = 0; i < s->nblocks; i++)
+		free(s->blocks[i]);
+	free(s->blocks);
 	free(s->probes);
 	free(s->windows);
 	free(s->objects);
@@ -109,22 +112,50 @@ rf__scene_image(rf_scene *s, const char *path, size_t min_channels, const char *
 	return 0;
 }
 
-void
-rf__mesh_free(struct rf__mesh *m)
+int
+rf__scene_image_add(rf_scene *s, const char *key, rf_image *img)
+{
+	rf_image **images;
+	char **paths, *copy;
+
+	images = realloc(s->images, (s->nimages + 1) * sizeof(*images));
+	if (images)
+		s->images = images;
+	paths = realloc(s->image_paths, (s->nimages + 1) * sizeof(*paths));
+	if (paths)
+		s->image_paths = paths;
+	if (!images || !paths || !(copy = strdup(key))) {
+		rf_image_destroy(img);
+		return RF_ENOMEM;
+	}
+	s->images[s->nimages] = img;
+	s->image_paths[s->nimages++] = copy;
+	return 0;
+}
+
+const rf_image *
+rf__scene_image_find(const rf_scene *s, const char *key)
 {
 	size_t i;
 
-	free(m->path);
-	free(m->positions);
-	free(m->normals);
-	free(m->tangents);
-	free(m->uv[0]);
-	free(m->uv[1]);
-	free(m->indices);
-	free(m->material);
-	for (i = 0; i < m->nmaterials; i++)
-		free(m->materials[i].name);
-	free(m->materials);
+	for (i = 0; i < s->nimages; i++)
+		if (!strcmp(s->image_paths[i], key))
+			return s->images[i];
+	return NULL;
+}
+
+int
+rf__scene_keep(rf_scene *s, void *block)
+{
+	void **blocks = realloc(s->blocks, (s->nblocks + 1) * sizeof(*blocks));
+
+	if (!blocks) {
+		free(block);
+		return RF_ENOMEM;
+	}
+	s->blocks = blocks;
+	s->blocks[s->nblocks++] = block;
+	return 0;
 }
 
 /* Whether the n values from v are all finite; the first that is not. */
@@ -152,18 +183,18 @@ check_mesh(const struct rf__mesh *m, char *err, size_t errlen)
 	size_t i, bad;
 
 	if (!m->ntriangles || !m->nvertices || !m->positions || !m->indices) {
-		rf__format(err, errlen, "line %zu: mesh '%s' has no triangles", m->line, path);
+		rf__format(err, errlen, "'%s' has no triangles", path);
 		return RF_EINVAL;
 	}
 	if (!m->normals || !m->tangents) {
-		rf__format(err, errlen, "line %zu: mesh '%s' has no %s", m->line, path,
+		rf__format(err, errlen, "'%s' has no %s", path,
 		           m->normals ? "tangents" : "normals");
 		return RF_EINVAL;
 	}
 	/* Embree numbers vertices and triangles in 32 bits. */
 	if (m->nvertices > UINT32_MAX || m->ntriangles > UINT32_MAX / 3) {
-		rf__format(err, errlen, "line %zu: mesh '%s' has %zu vertices and %zu triangles, "
-		           "expected at most %u of each", m->line, path, m->nvertices,
+		rf__format(err, errlen, "'%s' has %zu vertices and %zu triangles, "
+		           "expected at most %u of each", path, m->nvertices,
 		           m->ntriangles, (unsigned)(UINT32_MAX / 3));
 		return RF_ETOOBIG;
 	}
@@ -174,27 +205,27 @@ check_mesh(const struct rf__mesh *m, char *err, size_t errlen)
 	arrays[4] = m->uv[1];
 	for (i = 0; i < 5; i++)
 		if (arrays[i] && !all_finite(arrays[i], per[i] * m->nvertices, &bad)) {
-			rf__format(err, errlen, "line %zu: mesh '%s': vertex %zu's %s is not a "
-			           "finite number (NaN or infinity): fix the file", m->line, path,
+			rf__format(err, errlen, "'%s': vertex %zu's %s is not a "
+			           "finite number (NaN or infinity): fix the file", path,
 			           bad / per[i], what[i]);
 			return RF_EINVAL;
 		}
 	for (i = 0; i < 3 * m->ntriangles; i++)
 		if (m->indices[i] >= m->nvertices) {
-			rf__format(err, errlen, "line %zu: mesh '%s': triangle %zu names vertex %u, "
-			           "expected below %zu", m->line, path, i / 3, m->indices[i],
+			rf__format(err, errlen, "'%s': triangle %zu names vertex %u, "
+			           "expected below %zu", path, i / 3, m->indices[i],
 			           m->nvertices);
 			return RF_EINVAL;
 		}
 	for (i = 0; m->material && i < m->ntriangles; i++)
 		if (m->material[i] >= m->nmaterials) {
-			rf__format(err, errlen, "line %zu: mesh '%s': triangle %zu has material %u, "
-			           "expected below %zu", m->line, path, i, m->material[i],
+			rf__format(err, errlen, "'%s': triangle %zu has material %u, "
+			           "expected below %zu", path, i, m->material[i],
 			           m->nmaterials);
 			return RF_EINVAL;
 		}
 	if (!m->material && m->nmaterials < 1) {
-		rf__format(err, errlen, "line %zu: mesh '%s' has no material", m->line, path);
+		rf__format(err, errlen, "'%s' has no material", path);
 		return RF_EINVAL;
 	}
 	return 0;

@@ -729,15 +729,15 @@ TEST(bad_meshes_refused)
 	m.positions[4] = NAN;
 	ASSERT_EQ(rf__scene_add_mesh(s, &m, err, sizeof(err)), RF_EINVAL);
 	printf("# %s\n", err);
-	ASSERT(strstr(err, "line 7") && strstr(err, "'test.glb'") && strstr(err, "vertex 1") &&
+	ASSERT(!strncmp(err, "'test.glb'", 10) && strstr(err, "vertex 1") &&
 	       strstr(err, "NaN"));
 	ASSERT(m.positions == NULL); /* freed */
 	n.indices[5] = 4;
 	ASSERT_EQ(rf__scene_add_mesh(s, &n, err, sizeof(err)), RF_EINVAL);
 	printf("# %s\n", err);
-	ASSERT(strstr(err, "line 8") && strstr(err, "triangle 1"));
+	ASSERT(strstr(err, "'test.glb'") && strstr(err, "triangle 1"));
 	ASSERT_EQ(rf__scene_add_mesh(s, &e, err, sizeof(err)), RF_EINVAL);
-	ASSERT(strstr(err, "line 9") && strstr(err, "no triangles"));
+	ASSERT(strstr(err, "'test.glb'") && strstr(err, "no triangles"));
 	ASSERT_EQ(s->nmeshes, 0);
 	rf_scene_destroy(s);
 }
