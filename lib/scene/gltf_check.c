@@ -14,7 +14,7 @@
  *                              without a bufferView (all zeros).
  *
  * The walker reads JSON's grammar and only keeps those few numbers, and
- * what assimp leaves out (KHR_materials_emissive_strength); it does not
+ * what assimp leaves out of the materials; it does not
  * unescape strings (URIs are checked as written, %XX decoded).
  */
 #include <errno.h>
@@ -206,70 +206,83 @@ objects(struct js *j, const char *len_key, const char *ref_key, struct claims *c
 	return lit(j, ']') ? 0 : -1;
 }
 
-/* materials[i].extensions.KHR_materials_emissive_strength.emissiveStrength,
- * which assimp 5.2 does not read: 1 where a material has none. */
+/* The number at path (keys of nested objects, NULL-terminated) in the
+ * object starting at j's position: 1 and *v, 0 without one, -1 when the
+ * JSON does not parse. */
 static int
-emissive_strengths(struct js *j, float **out, size_t *n)
+lookup(struct js *j, const char *const *path, double *v)
 {
 	const char *t;
 	size_t len;
+	int rc = 0;
+
+	if (!lit(j, '{'))
+		return skip(j, 1) < 0 ? -1 : 0;
+	if (lit(j, '}'))
+		return 0;
+	do {
+		if (string(j, &t, &len) < 0 || !lit(j, ':'))
+			return -1;
+		if (rc == 0 && key_is(t, len, path[0])) {
+			if (!path[1])
+				rc = number(j, v) < 0 ? -1 : 1;
+			else
+				rc = lookup(j, path + 1, v);
+			if (rc < 0)
+				return -1;
+		} else if (skip(j, 1) < 0)
+			return -1;
+	} while (lit(j, ','));
+	return lit(j, '}') ? rc : -1;
+}
+
+/*
+ * What assimp 5.2 does not read of each material: its
+ * KHR_materials_emissive_strength, and the texCoord of its textures'
+ * KHR_texture_transform (which overrides the texture's own).
+ */
+static int
+materials(struct js *j, struct rf__gltf_info *info)
+{
+	static const char *const strength[] = { "extensions",
+		                                "KHR_materials_emissive_strength",
+		                                "emissiveStrength", NULL };
+	static const char *const tex[RF__GLTF_TEXTURES][6] = {
+		{ "pbrMetallicRoughness", "baseColorTexture", "extensions",
+		  "KHR_texture_transform", "texCoord", NULL },
+		{ "pbrMetallicRoughness", "metallicRoughnessTexture", "extensions",
+		  "KHR_texture_transform", "texCoord", NULL },
+		{ "normalTexture", "extensions", "KHR_texture_transform", "texCoord", NULL },
+		{ "emissiveTexture", "extensions", "KHR_texture_transform", "texCoord", NULL },
+	};
 
 	if (!lit(j, '['))
 		return skip(j, 1);
 	if (lit(j, ']'))
 		return 0;
 	do {
-		float v = 1.0f, *grown;
+		struct rf__gltf_material m, *grown;
+		size_t start;
+		double v;
+		int k, rc;
 
-		if (!lit(j, '{'))
+		ws(j);
+		start = j->pos;
+		m.emissive_strength = 1.0f;
+		if ((rc = lookup(j, strength, &v)) < 0)
 			return -1;
-		if (!lit(j, '}')) {
-			do {
-				if (string(j, &t, &len) < 0 || !lit(j, ':'))
-					return -1;
-				if (!key_is(t, len, "extensions") || !lit(j, '{')) {
-					if (skip(j, 2) < 0)
-						return -1;
-					continue;
-				}
-				if (lit(j, '}'))
-					continue;
-				do {
-					if (string(j, &t, &len) < 0 || !lit(j, ':'))
-						return -1;
-					if (!key_is(t, len, "KHR_materials_emissive_strength") ||
-					    !lit(j, '{')) {
-						if (skip(j, 3) < 0)
-							return -1;
-						continue;
-					}
-					if (lit(j, '}'))
-						continue;
-					do {
-						double d;
-
-						if (string(j, &t, &len) < 0 || !lit(j, ':'))
-							return -1;
-						if (key_is(t, len, "emissiveStrength")) {
-							if (number(j, &d) < 0)
-								return -1;
-							v = (float)d;
-						} else if (skip(j, 4) < 0)
-							return -1;
-					} while (lit(j, ','));
-					if (!lit(j, '}'))
-						return -1;
-				} while (lit(j, ','));
-				if (!lit(j, '}'))
-					return -1;
-			} while (lit(j, ','));
-			if (!lit(j, '}'))
+		if (rc)
+			m.emissive_strength = (float)v;
+		for (k = 0; k < RF__GLTF_TEXTURES; k++) {
+			j->pos = start;
+			if ((rc = lookup(j, tex[k], &v)) < 0)
 				return -1;
+			m.texcoord[k] = rc && v >= 0 && v < 1e9 ? (int)v : -1;
 		}
-		if (!(grown = realloc(*out, (*n + 1) * sizeof(*grown))))
+		if (!(grown = realloc(info->materials, (info->nmaterials + 1) * sizeof(*grown))))
 			return RF_ENOMEM;
-		*out = grown;
-		(*out)[(*n)++] = v;
+		info->materials = grown;
+		info->materials[info->nmaterials++] = m;
 	} while (lit(j, ','));
 	return lit(j, ']') ? 0 : -1;
 }
@@ -474,8 +487,7 @@ rf__gltf_check(const char *path, struct rf__gltf_info *info, char *err, size_t e
 			else if (key_is(t, len, "accessors"))
 				rc = objects(&j, "count", "bufferView", &accs);
 			else if (key_is(t, len, "materials"))
-				rc = emissive_strengths(&j, &info->emissive_strength,
-				                        &info->nmaterials);
+				rc = materials(&j, info);
 			else
 				rc = skip(&j, 1);
 		} while (rc == 0 && lit(&j, ','));

@@ -501,14 +501,14 @@ rf__mesh_load(rf_scene *s, const struct rf__mesh_request *rq, char *err, size_t 
 		return RF_EIO;
 	}
 	if (ld.gltf && (rc = rf__gltf_check(rq->path, &ld.gltf_info, err, errlen)) < 0) {
-		free(ld.gltf_info.emissive_strength);
+		free(ld.gltf_info.materials);
 		return rc;
 	}
 	slash = strrchr(rq->path, '/');
 	if (!(ld.dir = strndup(rq->path, slash ? (size_t)(slash - rq->path) + 1 : 0)) ||
 	    !(props = aiCreatePropertyStore())) {
 		free(ld.dir);
-		free(ld.gltf_info.emissive_strength);
+		free(ld.gltf_info.materials);
 		return RF_ENOMEM;
 	}
 	/* Points and lines stay, in meshes of their own that give no
@@ -524,7 +524,7 @@ rf__mesh_load(rf_scene *s, const struct rf__mesh_request *rq, char *err, size_t 
 		rf__format(err, errlen, "'%s': not a mesh reflect can read (%s)", rq->path,
 		           why && *why ? why : "assimp gives no reason");
 		free(ld.dir);
-		free(ld.gltf_info.emissive_strength);
+		free(ld.gltf_info.materials);
 		return RF_EFORMAT;
 	}
 	if (!ld.sc->mRootNode || !ld.sc->mNumMeshes) {
@@ -543,7 +543,7 @@ rf__mesh_load(rf_scene *s, const struct rf__mesh_request *rq, char *err, size_t 
 	aiReleaseImport(ld.sc);
 	free(ld.dir);
 	free(ld.loaded);
-	free(ld.gltf_info.emissive_strength);
+	free(ld.gltf_info.materials);
 	m.line = rq->line;
 	if (rc == 0)
 		rc = rf__scene_add_mesh(s, &m, err, errlen);

@@ -187,23 +187,28 @@ uv_transform(const struct aiMaterial *mat, enum aiTextureType type, float out[6]
 	out[5] = (float)oy;
 }
 
-/* A material's texture of that type: NULL without one. */
+/* A material's texture of that type: NULL without one.  uvset, when not
+ * -1, is the set KHR_texture_transform names (assimp 5.2 drops it). */
 static int
 texture(struct rf__loader *ld, const struct aiMaterial *mat, enum aiTextureType type,
-        int srgb, const char *what, const char *mname, const struct rf__texture **out)
+        int srgb, const char *what, const char *mname, int uvset,
+        const struct rf__texture **out)
 {
 	struct aiString name;
 	struct rf__texture *t;
 	const rf_image *img;
 	const char *cs;
-	int rc, uvset = 0;
+	int rc;
 
 	*out = NULL;
 	if (!aiGetMaterialTextureCount(mat, type) ||
 	    aiGetMaterialTexture(mat, type, 0, &name, NULL, NULL, NULL, NULL, NULL, NULL) !=
 	            aiReturn_SUCCESS || !name.length)
 		return 0;
-	aiGetMaterialIntegerArray(mat, _AI_MATKEY_UVWSRC_BASE, type, 0, &uvset, NULL);
+	if (uvset < 0) {
+		uvset = 0;
+		aiGetMaterialIntegerArray(mat, _AI_MATKEY_UVWSRC_BASE, type, 0, &uvset, NULL);
+	}
 	if (uvset < 0 || uvset > 1)
 		return rf__format(ld->err, ld->errlen, "'%s': material '%s' reads its %s with "
 		                  "uv set %d; reflect reads sets 0 and 1", ld->rq->path, mname,
@@ -275,8 +280,10 @@ static int
 gltf_material(struct rf__loader *ld, const struct aiMaterial *am, size_t index,
               struct rf__mesh_material *mm)
 {
+	const struct rf__gltf_material *gm = index < ld->gltf_info.nmaterials
+	                                     ? &ld->gltf_info.materials[index] : NULL;
 	float e[4] = { 0, 0, 0, 1 };
-	int rc;
+	int rc, k, set[RF__GLTF_TEXTURES];
 
 	if (!get_colour(am, AI_MATKEY_BASE_COLOR, mm->base_colour))
 		get_colour(am, AI_MATKEY_COLOR_DIFFUSE, mm->base_colour);
@@ -288,22 +295,23 @@ gltf_material(struct rf__loader *ld, const struct aiMaterial *am, size_t index,
 	/* KHR_materials_emissive_strength: assimp 5.2 does not read it, the
 	 * walk of gltf_check.c does (assimp keeps the file's material order,
 	 * and adds a default material after them) */
-	e[3] = index < ld->gltf_info.nmaterials ? ld->gltf_info.emissive_strength[index]
-	                                        : 1.0f;
+	e[3] = gm ? gm->emissive_strength : 1.0f;
 	for (int i = 0; i < 3; i++)
 		mm->emission[i] = e[i] * e[3];
+	for (k = 0; k < RF__GLTF_TEXTURES; k++)
+		set[k] = gm ? gm->texcoord[k] : -1;
 	if ((rc = texture(ld, am, aiTextureType_BASE_COLOR, 1, "base colour texture",
-	                  mm->name, &mm->base_colour_tex)) < 0 ||
+	                  mm->name, set[0], &mm->base_colour_tex)) < 0 ||
 	    (!mm->base_colour_tex &&
 	     (rc = texture(ld, am, aiTextureType_DIFFUSE, 1, "base colour texture", mm->name,
-	                   &mm->base_colour_tex)) < 0) ||
+	                   set[0], &mm->base_colour_tex)) < 0) ||
 	    (rc = texture(ld, am, AI_MATKEY_GLTF_PBRMETALLICROUGHNESS_METALLICROUGHNESS_TEXTURE,
-	                  "metallic-roughness texture", mm->name,
+	                  "metallic-roughness texture", mm->name, set[1],
 	                  &mm->metallic_roughness_tex)) < 0 ||
 	    (rc = texture(ld, am, aiTextureType_NORMALS, 0, "normal texture", mm->name,
-	                  &mm->normal_tex)) < 0 ||
+	                  set[2], &mm->normal_tex)) < 0 ||
 	    (rc = texture(ld, am, aiTextureType_EMISSIVE, 1, "emissive texture", mm->name,
-	                  &mm->emission_tex)) < 0)
+	                  set[3], &mm->emission_tex)) < 0)
 		return rc;
 	return 0;
 }
@@ -342,14 +350,14 @@ obj_material(struct rf__loader *ld, const struct aiMaterial *am,
 	for (int i = 0; i < 3; i++)
 		mm->emission[i] = e[i];
 	mm->normal_scale = 1.0f;
-	if ((rc = texture(ld, am, aiTextureType_DIFFUSE, 1, "map_Kd", mm->name,
+	if ((rc = texture(ld, am, aiTextureType_DIFFUSE, 1, "map_Kd", mm->name, -1,
 	                  &mm->base_colour_tex)) < 0 ||
-	    (rc = texture(ld, am, aiTextureType_EMISSIVE, 1, "map_Ke", mm->name,
+	    (rc = texture(ld, am, aiTextureType_EMISSIVE, 1, "map_Ke", mm->name, -1,
 	                  &mm->emission_tex)) < 0 ||
-	    (rc = texture(ld, am, aiTextureType_NORMALS, 0, "norm", mm->name,
+	    (rc = texture(ld, am, aiTextureType_NORMALS, 0, "norm", mm->name, -1,
 	                  &mm->normal_tex)) < 0 ||
 	    (!mm->normal_tex && (rc = texture(ld, am, aiTextureType_HEIGHT, 0, "map_Bump",
-	                                      mm->name, &mm->normal_tex)) < 0))
+	                                      mm->name, -1, &mm->normal_tex)) < 0))
 		return rc;
 	return 0;
 }

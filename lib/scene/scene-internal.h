@@ -188,15 +188,22 @@ void rf__mesh_free(struct rf__mesh *m);
 /* gltf_check.c */
 /* Accessors without a bufferView (all zeros) hold at most this many. */
 #define RF__GLTF_COUNT_MAX (1 << 24)
-/* What the walk finds that assimp leaves out: each material's
- * KHR_materials_emissive_strength (1 without), in the file's order. */
+/* What the walk finds that assimp 5.2 leaves out, per material in the
+ * file's order: KHR_materials_emissive_strength (1 without), and the
+ * texCoord of KHR_texture_transform on its base colour, metallic-
+ * roughness, normal and emissive textures (-1 without). */
+#define RF__GLTF_TEXTURES 4
+struct rf__gltf_material {
+	float emissive_strength;
+	int texcoord[RF__GLTF_TEXTURES];
+};
 struct rf__gltf_info {
-	float *emissive_strength;
+	struct rf__gltf_material *materials;
 	size_t nmaterials;
 };
 /* Every size a glTF file (.gltf or .glb) claims held to the bytes behind
  * it, before assimp allocates them: 0, or an error naming the file.
- * info is filled (free its array) either way. */
+ * info is filled (free its materials) either way. */
 int rf__gltf_check(const char *path, struct rf__gltf_info *info, char *err,
                    size_t errlen);
 

@@ -453,6 +453,38 @@ TEST(base_colour_texture_and_transform)
 	rf_scene_destroy(s);
 }
 
+TEST(linear_textures_and_second_uv_set)
+{
+	/* The metallic-roughness and normal textures are data, read as
+	 * stored; KHR_texture_transform's texCoord picks the uv set. */
+	rf_scene *s;
+	const struct rf__mesh *m;
+	const struct rf__mesh_material *mm;
+
+	png_2x2("data.png");
+	gltf_quad("data.gltf", quad_uv, NULL, "",
+	          UV_NORMAL ",\"TEXCOORD_1\":1",
+	          "{\"name\":\"data\",\"pbrMetallicRoughness\":{\"metallicRoughnessTexture\":"
+	          "{\"index\":0,\"texCoord\":1}},"
+	          "\"normalTexture\":{\"index\":0,\"scale\":0.5,\"extensions\":"
+	          "{\"KHR_texture_transform\":{\"texCoord\":1}}}}",
+	          ",\"images\":[{\"uri\":\"data.png\"}],\"textures\":[{\"source\":0}]");
+	s = load("probe box -10 -10 -10 10 10 10\nmesh data.gltf\n");
+	ASSERT(s);
+	m = &s->meshes[0];
+	ASSERT(m->uv[1]);
+	mm = &m->materials[m->material[0]];
+	ASSERT(mm->metallic == 1.0f && mm->roughness == 1.0f);
+	ASSERT(mm->metallic_roughness_tex && mm->normal_tex);
+	ASSERT_NEAR(mm->normal_tex->pixels[9], 188 / 255.0, 1e-6);
+	ASSERT_NEAR(mm->metallic_roughness_tex->pixels[9], 188 / 255.0, 1e-6);
+	ASSERT_NEAR(mm->normal_scale, 0.5, 1e-7);
+	ASSERT_EQ(mm->metallic_roughness_tex->texcoord, 1);
+	ASSERT_EQ(mm->normal_tex->texcoord, 1);
+	ASSERT(mm->normal_tex->wrap[0] == RF__WRAP_REPEAT);
+	rf_scene_destroy(s);
+}
+
 TEST(obj_mtl_mapping)
 {
 	rf_scene *s;
@@ -697,6 +729,7 @@ main(void)
 	RUN(obj_normals_weighted_by_angle);
 	RUN(tangents_from_uv_layouts);
 	RUN(base_colour_texture_and_transform);
+	RUN(linear_textures_and_second_uv_set);
 	RUN(obj_mtl_mapping);
 	RUN(lights_in_scene_units);
 	RUN(glb_with_embedded_png);
