@@ -84,6 +84,14 @@ test_expect_success 'a missing texture' '
 	EOF
 '
 
+test_expect_success 'a missing material library' '
+	printf "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl paint\nf 1 2 3\n" >nomtl.obj &&
+	bad_mesh "${SQ}nomtl.obj${SQ}: cannot open its material library ${SQ}gone.mtl${SQ}: No such file or directory$" <<-\EOF
+	probe box -3 -3 -3 3 3 3
+	mesh nomtl.obj
+	EOF
+'
+
 test_expect_success 'a vertex that is not a number' '
 	gltf_quad "$(data_uri $NANQUAD)" >nan.gltf &&
 	bad_mesh "${SQ}nan.gltf${SQ}: vertex 2 of mesh .* is not a finite point (nan 1 0)$" <<-\EOF &&

@@ -416,6 +416,59 @@ ext_is(const char *path, const char *ext)
 	return n > e && !strcasecmp(path + n - e, ext);
 }
 
+/*
+ * An OBJ's material libraries must be there: assimp reads on without a
+ * missing one, with default materials, and the surfaces would be wrong
+ * without a word.  assimp takes the rest of the mtllib line as one file
+ * name, and so does this.
+ */
+static int
+obj_mtllibs(const char *path, const char *dir, char *err, size_t errlen)
+{
+	char line[4096], *name, *end, *file;
+	FILE *fp = fopen(path, "r");
+	size_t len;
+	int rc = 0, whole = 1;
+
+	if (!fp) {
+		rf__format(err, errlen, "cannot open '%s': %s", path, strerror(errno));
+		return RF_EIO;
+	}
+	while (rc == 0 && fgets(line, sizeof(line), fp)) {
+		/* only the start of a line can be a statement */
+		int start = whole;
+
+		len = strlen(line);
+		whole = len && line[len - 1] == '\n';
+		if (!start)
+			continue;
+		for (name = line; *name == ' ' || *name == '\t'; name++)
+			;
+		if (strncmp(name, "mtllib", 6) || (name[6] != ' ' && name[6] != '\t'))
+			continue;
+		for (name += 6; *name == ' ' || *name == '\t'; name++)
+			;
+		for (end = name + strlen(name); end > name && strchr(" \t\r\n", end[-1]); end--)
+			;
+		*end = '\0';
+		if (!*name)
+			continue;
+		if (!(file = malloc(strlen(dir) + strlen(name) + 1))) {
+			rc = RF_ENOMEM;
+			break;
+		}
+		sprintf(file, "%s%s", name[0] == '/' ? "" : dir, name);
+		if (access(file, R_OK) < 0) {
+			rf__format(err, errlen, "'%s': cannot open its material library '%s': %s",
+			           path, file, strerror(errno));
+			rc = RF_EIO;
+		}
+		free(file);
+	}
+	fclose(fp);
+	return rc;
+}
+
 static int
 build(struct rf__loader *ld, struct rf__mesh *m)
 {
@@ -510,6 +563,11 @@ rf__mesh_load(rf_scene *s, const struct rf__mesh_request *rq, char *err, size_t 
 		free(ld.dir);
 		free(ld.gltf_info.materials);
 		return RF_ENOMEM;
+	}
+	if (!ld.gltf && (rc = obj_mtllibs(rq->path, ld.dir, err, errlen)) < 0) {
+		free(ld.dir);
+		aiReleasePropertyStore(props);
+		return rc;
 	}
 	/* Points and lines stay, in meshes of their own that give no
 	 * triangle: removed, a file of lines alone would be an error of
