@@ -328,9 +328,8 @@ light_range(const struct aiNode *n)
  * KHR_lights_punctual: intensity in candela (point, spot) or lux
  * (directional), which assimp multiplies into the colour.  Converted to
  * the scene's radiometric units at 683 lm/W (the photopic peak): a light
- * of I cd gives I / 683 W/sr, so that a Blender light exported to glTF
- * comes back at its Blender strength, and one unit lights a surface as an
- * emission of one unit does.
+ * of I cd gives I / 683 W/sr, in the units of the scene's radiances, so
+ * that 683 cd at 1 m give an irradiance of 1.
  */
 static int
 load_lights(struct rf__loader *ld)
