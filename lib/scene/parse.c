@@ -11,34 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "scene/lexer.h"
-#include "scene/scene-internal.h"
+#include "scene/parser.h"
 
 #define SCENE_BYTES_MAX ((size_t)64 << 20)
-#define ATTRS_MAX 64
-
-struct parser {
-	struct rf__lexer lx; /* and the statement's tokens */
-	const char *name; /* for messages */
-	char *dir;        /* base of relative paths, or NULL */
-	rf_scene *s;
-	size_t pos; /* the statement's next token */
-	/* attribute names seen in it, for duplicates */
-	const struct rf__token *attrs[ATTRS_MAX];
-	size_t nattrs;
-	size_t camera_line, name_line, room_line, pattern_line;
-	size_t wall_line[RF__FACES];
-	/* the probes that name no env: see envless_probes() */
-	struct envless {
-		size_t probe, line, col;
-	} *envless;
-	size_t nenvless;
-};
-
-#define fail_at(p, ...) rf__lexer_fail(&(p)->lx, __VA_ARGS__)
-#define FAIL_TOK(p, t, ...) fail_at((p), (t)->line, (t)->col, __VA_ARGS__)
-#define FAIL_END(p, ...) fail_at((p), (p)->lx.end_line, (p)->lx.end_col, __VA_ARGS__)
-
 /* Reads the next statement's tokens: 1, or 0 at the end of the text. */
 static int
 next_statement(struct parser *p)
@@ -62,9 +37,6 @@ take(struct parser *p)
 	return p->pos < p->lx.ntok ? &p->lx.tok[p->pos++] : NULL;
 }
 
-/* The token shown in a message, cut to a sensible length. */
-#define TOKFMT "'%.*s%s'"
-#define TOKARG(t) (int)((t)->len > 40 ? 40 : (t)->len), (t)->text, (t)->len > 40 ? "..." : ""
 
 static int
 number(struct parser *p, const char *what, double *v)
@@ -367,6 +339,58 @@ unknown_attribute(struct parser *p, const struct rf__token *key, const char *wha
 {
 	return FAIL_TOK(p, key, "unknown %s attribute " TOKFMT " (expected %s)", what,
 	                TOKARG(key), expected);
+}
+
+/* The helpers above, for the statements parsed in files of their own
+ * (parser.h). */
+int
+rf__tok_is(const struct rf__token *t, const char *w)
+{
+	return tok_is(t, w);
+}
+
+int
+rf__parse_number(struct parser *p, const char *what, double *v)
+{
+	return number(p, what, v);
+}
+
+int
+rf__parse_numbers(struct parser *p, const char *what, double *v, int n)
+{
+	return numbers(p, what, v, n);
+}
+
+int
+rf__parse_word(struct parser *p, const char *what, const struct rf__token **t)
+{
+	return word(p, what, t);
+}
+
+int
+rf__parse_path(struct parser *p, const struct rf__token *t, char **out)
+{
+	return resolve_path(p, t, out);
+}
+
+int
+rf__parse_attribute(struct parser *p, const struct rf__token **key)
+{
+	return attribute(p, key);
+}
+
+int
+rf__parse_material_attribute(struct parser *p, const struct rf__token *key,
+                             struct material *m)
+{
+	return material_attribute(p, key, m);
+}
+
+int
+rf__parse_unknown_attribute(struct parser *p, const struct rf__token *key,
+                            const char *what, const char *expected)
+{
+	return unknown_attribute(p, key, what, expected);
 }
 
 static int
@@ -899,221 +923,6 @@ parse_object(struct parser *p, const struct rf__token *kw)
 	return rc < 0 ? rc : add_object(p, &o);
 }
 
-/* ---- mesh FILE ------------------------------------------------------------ */
-
-#define MESH_WORDS "translate, rotate, scale, matrix, roughness, smoothness, " \
-	"metallic, albedo, emission, reflective or material NAME"
-
-/* out = a b, row-major 4 x 4 */
-static void
-mat4_mul(const double a[16], const double b[16], double out[16])
-{
-	double r[16];
-	int i, j, k;
-
-	for (i = 0; i < 4; i++)
-		for (j = 0; j < 4; j++) {
-			r[4 * i + j] = 0;
-			for (k = 0; k < 4; k++)
-				r[4 * i + j] += a[4 * i + k] * b[4 * k + j];
-		}
-	memcpy(out, r, sizeof(r));
-}
-
-/* rotate DEG AX AY AZ: counter-clockwise about the axis seen from its
- * tip (right-handed), by Rodrigues' formula. */
-static int
-mesh_rotate(struct parser *p, const struct rf__token *key, double r[16])
-{
-	double v[4], c, s, t, x, y, z, len;
-	int rc;
-
-	if ((rc = numbers(p, "rotate", v, 4)) < 0)
-		return rc;
-	len = sqrt(v[1] * v[1] + v[2] * v[2] + v[3] * v[3]);
-	if (!(len > 0))
-		return FAIL_TOK(p, key, "expected a non-zero axis after the angle of "
-		                "'rotate'");
-	x = v[1] / len, y = v[2] / len, z = v[3] / len;
-	c = cos(v[0] * 3.14159265358979323846 / 180.0);
-	s = sin(v[0] * 3.14159265358979323846 / 180.0);
-	t = 1 - c;
-	memset(r, 0, 16 * sizeof(*r));
-	r[0] = t * x * x + c, r[1] = t * x * y - s * z, r[2] = t * x * z + s * y;
-	r[4] = t * x * y + s * z, r[5] = t * y * y + c, r[6] = t * y * z - s * x;
-	r[8] = t * x * z - s * y, r[9] = t * y * z + s * x, r[10] = t * z * z + c;
-	r[15] = 1;
-	return 0;
-}
-
-/* scale S, or SX SY SZ: non-zero (a negative one mirrors). */
-static int
-mesh_scale(struct parser *p, const struct rf__token *key, double sc[3])
-{
-	int rc, i;
-
-	if ((rc = number(p, "scale", &sc[0])) < 0)
-		return rc;
-	sc[1] = sc[2] = sc[0];
-	if (p->pos < p->lx.ntok && !p->lx.tok[p->pos].owned &&
-	    strchr("0123456789.+-", p->lx.tok[p->pos].text[0]))
-		if ((rc = number(p, "scale", &sc[1])) < 0 || (rc = number(p, "scale", &sc[2])) < 0)
-			return rc;
-	for (i = 0; i < 3; i++)
-		if (!(sc[i] != 0))
-			return FAIL_TOK(p, key, "expected non-zero scales, found %g %g %g", sc[0],
-			                sc[1], sc[2]);
-	return 0;
-}
-
-/* A material attribute of a mesh statement into its override. */
-static int
-mesh_material_attribute(struct parser *p, const struct rf__token *key,
-                        struct rf__mesh_override *o)
-{
-	static const char *const words[] = { "roughness", "smoothness", "metallic", "albedo",
-		                             "emission", "reflective", NULL };
-	static const unsigned bits[] = { RF__OVR_ROUGHNESS, RF__OVR_ROUGHNESS, RF__OVR_METALLIC,
-		                         RF__OVR_ALBEDO, RF__OVR_EMISSION, RF__OVR_MASK };
-	struct material m;
-	int i, rc;
-
-	for (i = 0; words[i]; i++)
-		if (tok_is(key, words[i]))
-			break;
-	if (!words[i])
-		return 0;
-	rf__material_default(&m, 0);
-	if ((rc = material_attribute(p, key, &m)) < 0)
-		return rc;
-	o->set |= bits[i];
-	if (bits[i] == RF__OVR_ROUGHNESS)
-		o->roughness = m.roughness;
-	if (bits[i] == RF__OVR_METALLIC)
-		o->metallic = m.metallic;
-	if (bits[i] == RF__OVR_ALBEDO)
-		memcpy(o->albedo, m.albedo, sizeof(o->albedo));
-	if (bits[i] == RF__OVR_EMISSION)
-		memcpy(o->emission, m.em.rgb, sizeof(o->emission));
-	if (bits[i] == RF__OVR_MASK)
-		o->mask = m.mask;
-	return 1;
-}
-
-static void
-overrides_free(struct rf__mesh_override *o, size_t n)
-{
-	size_t i;
-
-	for (i = 0; i < n; i++)
-		free(o[i].material);
-	free(o);
-}
-
-static int
-parse_mesh(struct parser *p, const struct rf__token *kw)
-{
-	struct rf__mesh_override *ovr, *grown;
-	struct rf__mesh_request rq;
-	const struct rf__token *file, *key, *t, *matrix = NULL, *trs = NULL;
-	double T[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 }, R[16], S[16], v[3];
-	size_t novr = 1;
-	char *path = NULL, msg[1024];
-	int rc;
-
-	memcpy(R, T, sizeof(R));
-	memcpy(S, T, sizeof(S));
-	memset(&rq, 0, sizeof(rq));
-	if ((rc = word(p, "a mesh file (.gltf, .glb or .obj) after 'mesh'", &file)) < 0)
-		return rc;
-	if (!(ovr = calloc(1, sizeof(*ovr))))
-		return RF_ENOMEM;
-	while ((rc = attribute(p, &key)) > 0) {
-		if (tok_is(key, "material")) {
-			if ((rc = word(p, "a material name after 'material'", &t)) < 0)
-				break;
-			if (!(grown = realloc(ovr, (novr + 1) * sizeof(*ovr)))) {
-				rc = RF_ENOMEM;
-				break;
-			}
-			ovr = grown;
-			memset(&ovr[novr], 0, sizeof(*ovr));
-			ovr[novr].col = t->col;
-			if (!(ovr[novr++].material = strndup(t->text, t->len))) {
-				rc = RF_ENOMEM;
-				break;
-			}
-			/* each material's attributes are its own: they may repeat
-			 * those of the file's or of another material */
-			p->nattrs = 0;
-			continue;
-		}
-		if (tok_is(key, "translate") || tok_is(key, "rotate") || tok_is(key, "scale") ||
-		    tok_is(key, "matrix")) {
-			if (novr > 1) {
-				rc = FAIL_TOK(p, key, "expected " TOKFMT " before the first "
-				              "'material'", TOKARG(key));
-				break;
-			}
-			if (tok_is(key, "matrix") ? trs != NULL : matrix != NULL) {
-				rc = FAIL_TOK(p, key, "expected either 'matrix' or 'translate', "
-				              "'rotate' and 'scale', not both");
-				break;
-			}
-			if (tok_is(key, "translate")) {
-				trs = key;
-				if ((rc = numbers(p, "translate", v, 3)) >= 0)
-					T[3] = v[0], T[7] = v[1], T[11] = v[2];
-			} else if (tok_is(key, "rotate")) {
-				trs = key;
-				rc = mesh_rotate(p, key, R);
-			} else if (tok_is(key, "scale")) {
-				trs = key;
-				if ((rc = mesh_scale(p, key, v)) >= 0)
-					S[0] = v[0], S[5] = v[1], S[10] = v[2];
-			} else {
-				matrix = key;
-				rc = numbers(p, "matrix", rq.matrix, 16);
-			}
-		} else if ((rc = mesh_material_attribute(p, key, &ovr[novr - 1])) == 0)
-			rc = unknown_attribute(p, key, "mesh", MESH_WORDS);
-		if (rc < 0)
-			break;
-	}
-	if (rc >= 0 && matrix) {
-		const double *m = rq.matrix;
-		double det = m[0] * (m[5] * m[10] - m[6] * m[9]) -
-		             m[1] * (m[4] * m[10] - m[6] * m[8]) +
-		             m[2] * (m[4] * m[9] - m[5] * m[8]);
-
-		if (m[12] != 0 || m[13] != 0 || m[14] != 0 || m[15] != 1)
-			rc = FAIL_TOK(p, matrix, "expected the matrix's last row to be 0 0 0 1, "
-			              "found %g %g %g %g", m[12], m[13], m[14], m[15]);
-		else if (!(fabs(det) > 1e-12))
-			rc = FAIL_TOK(p, matrix, "expected a matrix that does not flatten the "
-			              "mesh (its determinant is %g)", det);
-	} else if (rc >= 0) {
-		/* scale, then rotate, then translate */
-		mat4_mul(R, S, rq.matrix);
-		mat4_mul(T, rq.matrix, rq.matrix);
-	}
-	if (rc >= 0)
-		rc = resolve_path(p, file, &path);
-	if (rc >= 0) {
-		rq.path = path;
-		rq.line = kw->line;
-		/* the file's overrides apply first, the named ones after */
-		rq.overrides = ovr[0].set ? ovr : ovr + 1;
-		rq.noverrides = ovr[0].set ? novr : novr - 1;
-		rc = rf__mesh_load(p->s, &rq, msg, sizeof(msg));
-		if (rc < 0 && rc != RF_ENOMEM)
-			rc = FAIL_TOK(p, file, "%s", msg);
-	}
-	free(path);
-	overrides_free(ovr, novr);
-	return rc < 0 ? rc : 0;
-}
-
 /* ---- emission: the walls' pattern, each wall, windows --------------------- */
 
 #define FACE_WORDS "+x, -x, +y, -y, +z or -z"
@@ -1339,7 +1148,7 @@ statement(struct parser *p)
 	if (tok_is(kw, "window"))
 		return parse_window(p, kw);
 	if (tok_is(kw, "mesh"))
-		return parse_mesh(p, kw);
+		return rf__parse_mesh(p, kw);
 	return FAIL_TOK(p, kw, "unknown keyword " TOKFMT " (expected name, camera, "
 	                "probe, room, sphere, box, rect, mesh, pattern, wall or window)",
 	                TOKARG(kw));
