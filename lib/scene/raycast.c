@@ -339,8 +339,10 @@ rf__object_hit(const struct object *ob, const double *k, const double o[3],
 	return 0;
 }
 
-/* The objects one after the other: where the scene's structure cannot
- * be built (its error was told to whoever built it first). */
+/* The objects one after the other: in a scene without meshes, whose few
+ * objects a loop decides faster than the BVH's user geometry, and where
+ * the scene's structure cannot be built (its error was told to whoever
+ * built it first). */
 static void
 trace_objects(const rf_scene *s, const double o[3], const double *k, const double d[3],
               const double inv[3], unsigned flags, struct candidate *best)
@@ -376,7 +378,7 @@ rf__trace(const rf_scene *s, const double o[3], const double *k, const double d[
 		for (j = 0; j < 3; j++)
 			own_inv[j] = 1.0 / d[j];
 	if ((s->nobjects || s->nmeshes) && !(flags & RF__TRACE_ROOM_ONLY)) {
-		if ((acc = rf__accel_get(s, NULL, 0)))
+		if (s->nmeshes && (acc = rf__accel_get(s, NULL, 0)))
 			rf__accel_intersect(acc, s, o, k, d, inv, flags, &best, &mh);
 		else
 			trace_objects(s, o, k, d, inv, flags, &best);
