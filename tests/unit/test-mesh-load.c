@@ -9,6 +9,7 @@
 #include "reflect/scene.h"
 #include "scene/scene-internal.h"
 #include "tap.h"
+#include "gltf-write.h"
 
 /* A texture at uv, the point's two sets alike. */
 static void
@@ -17,26 +18,6 @@ sample_at(const struct rf__texture *t, const float uv[2], float out[4])
 	const double st[2][2] = { { uv[0], uv[1] }, { uv[0], uv[1] } };
 
 	rf__texture_sample(t, st, out);
-}
-
-static char dir[256];
-
-static void
-put(const char *name, const void *data, size_t n)
-{
-	char path[512];
-	FILE *fp;
-
-	snprintf(path, sizeof(path), "%s/%s", dir, name);
-	fp = fopen(path, "wb");
-	if (!fp || fwrite(data, 1, n, fp) != n || fclose(fp) != 0)
-		printf("# cannot write %s\n", path);
-}
-
-static void
-put_text(const char *name, const char *text)
-{
-	put(name, text, strlen(text));
 }
 
 static rf_scene *
@@ -64,28 +45,6 @@ load_error(const char *text, char *err, size_t errlen)
 	rc = rf_scene_parse(&s, text, strlen(text), name, err, errlen);
 	rf_scene_destroy(s);
 	return rc;
-}
-
-static char *
-b64(const void *data, size_t n)
-{
-	static const char tab[] =
-		"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-	const unsigned char *d = data;
-	char *out = malloc(4 * (n / 3 + 1) + 1), *o = out;
-	size_t i;
-
-	for (i = 0; i < n; i += 3) {
-		unsigned v = (unsigned)d[i] << 16 | (i + 1 < n ? (unsigned)d[i + 1] << 8 : 0) |
-		             (i + 2 < n ? d[i + 2] : 0);
-
-		*o++ = tab[v >> 18 & 63];
-		*o++ = tab[v >> 12 & 63];
-		*o++ = i + 1 < n ? tab[v >> 6 & 63] : '=';
-		*o++ = i + 2 < n ? tab[v & 63] : '=';
-	}
-	*o = '\0';
-	return out;
 }
 
 /* A 2 x 2 quad in z = 0 facing +z: positions, then 2 floats of uv per
