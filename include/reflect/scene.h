@@ -176,8 +176,8 @@ RF_EXTERN int rf_gbuffer_render(rf_gbuffer *g, float *out, size_t y, size_t nrow
  * edge_samples^2 where it crosses an edge of the emission,
  * object_samples^2 where it may see an object.  Objects are lit by the
  * probe from the bounce before (bounces 0: black but for their own
- * emission; earlier bounces at bounce_size texels a face); with
- * hide_reflective, objects whose mask is set are left out.  The same
+ * emission and direct light; earlier bounces at bounce_size texels a
+ * face); with hide_reflective, objects whose mask is set are left out.  The same
  * bytes at any thread count.
  */
 struct rf_capture_options {
@@ -200,7 +200,8 @@ RF_EXTERN int rf_scene_capture(const rf_scene *s, size_t probe,
 /*
  * The ground truth (reflect-trace(1)): the camera's pixel-centre rays,
  * and on reflective surfaces the one-bounce integral of a white (F = 1)
- * GGX lobe against the scene's emission, over `samples` samples of the
+ * GGX lobe against what the scene sends out (emission, and the lights'
+ * direct light on what is not reflective), over `samples` samples of the
  * visible normals a pixel; channels R G B mask objid, and with halves
  * half1.R G B and half2.R G B, the even and the odd samples' estimates.
  * Reflected rays pass through reflective objects unless objects_visible.

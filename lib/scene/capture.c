@@ -63,6 +63,8 @@ struct capture {
 	struct object *visible;
 	size_t nvisible;
 	unsigned flags;      /* rf__trace's */
+	/* lights shine on the walls too: every texel takes full rays */
+	int lit;
 	struct face_frame frames[6];
 	struct face_bounds *bounds; /* [face * nvisible + k]; a0 > a1: off the face */
 	/* the bounce before, prefiltered, for shading objects; NULL: none;
@@ -351,7 +353,7 @@ full_ray(const struct capture *c, const double d[3], float rgb[3])
 	int k;
 
 	rf__trace(c->s, c->origin, c->k, d, inv, c->flags, &h);
-	rf__emission(c->s, &h, em);
+	rf__radiance(c->s, &h, em);
 	if (h.objid >= 1 && c->env) {
 		shade_object(c, &h, d, rgb);
 		for (k = 0; k < 3; k++)
@@ -426,7 +428,7 @@ capture_row(void *arg, size_t task, int thread)
 		size_t m;
 		int k, face = q[0]->face, same = face >= 0;
 
-		if (texel_meets_object(c, (int)f, a0, a1, b0, b1)) {
+		if (c->lit || texel_meets_object(c, (int)f, a0, a1, b0, b1)) {
 			object_texel(c, f, i, j, no, out);
 			continue;
 		}
@@ -578,6 +580,7 @@ rf_scene_capture(const rf_scene *s, size_t probe, const struct rf_capture_option
 	}
 	rf__trace_prepare(s, c.origin, c.k);
 	c.flags = o->hide_reflective ? RF__TRACE_SKIP_REFLECTIVE : 0;
+	c.lit = s->nlights > 0;
 	for (i = 0; i < s->nobjects; i++)
 		if (!(o->hide_reflective && s->objects[i].mat.mask > 0.0f))
 			c.visible[c.nvisible++] = s->objects[i];

@@ -375,7 +375,7 @@ render_row(void *arg, size_t task, int thread)
 		if (g->emission) {
 			float e[3];
 
-			rf__emission(g->s, &hit, e);
+			rf__radiance(g->s, &hit, e);
 			v[CH_ER] = e[0];
 			v[CH_EG] = e[1];
 			v[CH_EB] = e[2];

@@ -611,5 +611,8 @@ rf__mesh_load(rf_scene *s, const struct rf__mesh_request *rq, char *err, size_t 
 			rf__format(err, errlen, "'%s': %s", rq->path, rf_strerror(rc));
 		return rc;
 	}
+	/* lit surfaces send light out as emitting ones do */
+	if (s->nlights)
+		s->has_emission = 1;
 	return 0;
 }

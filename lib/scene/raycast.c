@@ -363,6 +363,32 @@ trace_objects(const rf_scene *s, const double o[3], const double *k, const doubl
 }
 
 int
+rf__occluded(const rf_scene *s, const double o[3], const double d[3], double tmax)
+{
+	double inv[3], k[RF__ORIGIN_STRIDE];
+	struct candidate best = { INFINITY, -1, -1, 0 }, c;
+	struct rf__mesh_hit mh = { -1, 0, 0.0, 0.0, 0.0 };
+	const struct rf__accel *acc;
+	int j;
+
+	for (j = 0; j < 3; j++)
+		inv[j] = 1.0 / d[j];
+	if (s->nobjects || s->nmeshes) {
+		if (s->nmeshes && (acc = rf__accel_get(s, NULL, 0)))
+			rf__accel_intersect(acc, s, o, NULL, d, inv, 0, &best, &mh);
+		else
+			trace_objects(s, o, NULL, d, inv, 0, &best);
+		if (best.t < tmax || (mh.mesh >= 0 && mh.t < tmax))
+			return 1;
+	}
+	if (s->nprobes && s->room) {
+		prepare_room(&s->probes[0], o, k);
+		return hit_slabs(k, d, inv, tmax, 1, &c);
+	}
+	return 0;
+}
+
+int
 rf__trace(const rf_scene *s, const double o[3], const double *k, const double d[3],
           const double *inv_d, unsigned flags, struct rf_hit *hit)
 {

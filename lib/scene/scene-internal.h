@@ -207,6 +207,15 @@ struct rf__gltf_info {
 int rf__gltf_check(const char *path, struct rf__gltf_info *info, char *err,
                    size_t errlen);
 
+/* light.c */
+/* What the surface of a hit sends back along the ray: rf__emission, plus
+ * on what does not reflect, Lambert's share of the lights' direct light
+ * with shadows (rf__direct_light). */
+RF_EXTERN void rf__radiance(const rf_scene *s, const struct rf_hit *hit, float rgb[3]);
+/* (1 - mask) (1 - metallic) albedo / pi times the sum of the lights'
+ * irradiance at the hit, each 0 where a shadow ray is blocked. */
+void rf__direct_light(const rf_scene *s, const struct rf_hit *hit, float rgb[3]);
+
 /* emission.c */
 /* The pattern's defaults: those of the path-traced references. */
 void rf__pattern_default(struct pattern *pt);
@@ -259,6 +268,9 @@ void rf__trace_prepare(const rf_scene *s, const double o[3], double *k);
 RF_EXTERN int rf__trace(const rf_scene *s, const double o[3], const double *k,
                         const double d[3], const double *inv_d, unsigned flags,
                         struct rf_hit *hit);
+/* Whether the room, an object or a triangle lies on the unit ray from o
+ * along d nearer than tmax (INFINITY: anywhere): a shadow ray. */
+int rf__occluded(const rf_scene *s, const double o[3], const double d[3], double tmax);
 /* hit->T from the surface's tangent t: its part perpendicular to N. */
 void rf__hit_tangent(struct rf_hit *hit, const double t[3]);
 

@@ -195,7 +195,7 @@ reflected(const struct rf_tracer *t, const double p[3], const double *k, const d
 		return;
 	}
 	rf__trace(s, p, k, d, NULL, t->flags, &h);
-	rf__emission(s, &h, rgb);
+	rf__radiance(s, &h, rgb);
 }
 
 /* The lobe's integral at a hit seen along -v over a Hammersley set of K
@@ -395,7 +395,7 @@ trace_row(void *arg, size_t task, int thread)
 		rf__trace(t->s, t->cam.position, t->kcam, d, NULL, 0, &h);
 		for (c = 0; c < 3; c++)
 			v[c] = -d[c];
-		rf__emission(t->s, &h, e);
+		rf__radiance(t->s, &h, e);
 		out[3] = h.mask;
 		out[4] = (float)h.objid;
 		if (h.mask > 0.0f && rf__dot(h.N, v) > 0.0) {
