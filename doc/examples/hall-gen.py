@@ -45,10 +45,14 @@ SIDES = 16        # sides of a column
 ARCH_SEGMENTS = 24
 
 # Light intensities in glTF's units (candela for point and spot lights,
-# lux for the directional one); reflect-scene(5) says how they convert.
-SUN_LUX = 6.0
-LAMP_CD = 30.0
-SCONCE_CD = 8.0
+# lux for the directional one); reflect divides them by 683 lm/W
+# (reflect-scene(5)), so that beside windows of radiance 12 (a bright
+# overcast sky, some 8000 cd/m2) the sun is a low winter sun through
+# glass (40000 lux: irradiance 59), the lamp a strong reading spot and
+# the sconces bright bulbs.
+SUN_LUX = 40000.0
+LAMP_CD = 3000.0
+SCONCE_CD = 1500.0
 # Emissive surfaces: emissiveFactor times KHR_materials_emissive_strength
 WINDOW_STRENGTH = 12.0
 LAMP_STRENGTH = 20.0
