@@ -13,7 +13,7 @@ bad_scene () {
 }
 
 test_expect_success 'unknown keyword' '
-	bad_scene "3:1: unknown keyword .spehre. (expected name, camera, probe, room, sphere, box, rect, mesh, pattern, wall or window)$" <<-\EOF
+	bad_scene "3:1: unknown keyword .spehre. (expected name, camera, probe, room, sphere, box, rect, mesh, sky, pattern, wall or window)$" <<-\EOF
 	probe box -3 0 -2 3 3 2
 	# a typo follows
 	spehre center 0 1 0 radius 1

@@ -63,7 +63,8 @@ struct capture {
 	struct object *visible;
 	size_t nvisible;
 	unsigned flags;      /* rf__trace's */
-	/* lights shine on the walls too: every texel takes full rays */
+	/* lights and the sky shine on the walls too, and the sky is seen
+	 * where no wall is: every texel takes full rays */
 	int lit;
 	struct face_frame frames[6];
 	struct face_bounds *bounds; /* [face * nvisible + k]; a0 > a1: off the face */
@@ -580,7 +581,7 @@ rf_scene_capture(const rf_scene *s, size_t probe, const struct rf_capture_option
 	}
 	rf__trace_prepare(s, c.origin, c.k);
 	c.flags = o->hide_reflective ? RF__TRACE_SKIP_REFLECTIVE : 0;
-	c.lit = s->nlights > 0;
+	c.lit = s->nlights > 0 || s->sky;
 	for (i = 0; i < s->nobjects; i++)
 		if (!(o->hide_reflective && s->objects[i].mat.mask > 0.0f))
 			c.visible[c.nvisible++] = s->objects[i];

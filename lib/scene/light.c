@@ -115,13 +115,25 @@ rf__direct_light(const rf_scene *s, const struct rf_hit *hit, float rgb[3])
 void
 rf__radiance(const rf_scene *s, const struct rf_hit *hit, float rgb[3])
 {
-	float direct[3];
+	float more[3];
 	int c;
 
-	rf__emission(s, hit, rgb);
-	if (!s->nlights)
+	if (hit->objid == RF_OBJID_NONE) {
+		/* a miss: N is the ray's way back */
+		const double d[3] = { -hit->N[0], -hit->N[1], -hit->N[2] };
+
+		rf__sky_radiance(s, d, rgb);
 		return;
-	rf__direct_light(s, hit, direct);
-	for (c = 0; c < 3; c++)
-		rgb[c] += direct[c];
+	}
+	rf__emission(s, hit, rgb);
+	if (s->nlights) {
+		rf__direct_light(s, hit, more);
+		for (c = 0; c < 3; c++)
+			rgb[c] += more[c];
+	}
+	if (s->sky) {
+		rf__sky_diffuse(s, hit, more);
+		for (c = 0; c < 3; c++)
+			rgb[c] += more[c];
+	}
 }

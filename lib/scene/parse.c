@@ -1149,8 +1149,11 @@ statement(struct parser *p)
 		return parse_window(p, kw);
 	if (tok_is(kw, "mesh"))
 		return rf__parse_mesh(p, kw);
+	if (tok_is(kw, "sky"))
+		return rf__parse_sky(p, kw);
 	return FAIL_TOK(p, kw, "unknown keyword " TOKFMT " (expected name, camera, "
-	                "probe, room, sphere, box, rect, mesh, pattern, wall or window)",
+	                "probe, room, sphere, box, rect, mesh, sky, pattern, wall or "
+	                "window)",
 	                TOKARG(kw));
 }
 

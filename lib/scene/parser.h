@@ -53,5 +53,7 @@ int rf__parse_unknown_attribute(struct parser *p, const struct rf__token *key,
 
 /* parse_mesh.c: the mesh statement, after its keyword kw. */
 int rf__parse_mesh(struct parser *p, const struct rf__token *kw);
+/* sky.c: the sky statement, after its keyword kw. */
+int rf__parse_sky(struct parser *p, const struct rf__token *kw);
 
 #endif

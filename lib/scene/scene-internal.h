@@ -111,6 +111,12 @@ struct rf_scene {
 	size_t nmeshes;
 	struct rf__light *lights;
 	size_t nlights;
+	/* the sky statement's environment (NULL: none), its strength, and
+	 * its irradiance (rf__sh9_quadratic, strength included) */
+	struct rf_cubemap *sky;
+	float sky_strength;
+	float sky_q[3][9];
+	size_t sky_line;
 	/* Normal map images, loaded once per path. */
 	rf_image **images;
 	char **image_paths;
@@ -215,6 +221,12 @@ RF_EXTERN void rf__radiance(const rf_scene *s, const struct rf_hit *hit, float r
 /* (1 - mask) (1 - metallic) albedo / pi times the sum of the lights'
  * irradiance at the hit, each 0 where a shadow ray is blocked. */
 void rf__direct_light(const rf_scene *s, const struct rf_hit *hit, float rgb[3]);
+
+/* sky.c */
+/* What a ray leaving the scene along unit d sees of the sky (0 without). */
+void rf__sky_radiance(const rf_scene *s, const double d[3], float rgb[3]);
+/* Lambert's share of the sky's irradiance at a hit, times 1 - mask. */
+void rf__sky_diffuse(const rf_scene *s, const struct rf_hit *hit, float rgb[3]);
 
 /* emission.c */
 /* The pattern's defaults: those of the path-traced references. */

@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "reflect/envmap.h"
 #include "scene/accel.h"
 #include "probe/probe-internal.h"
 #include "stream/stream-internal.h"
@@ -50,6 +51,7 @@ rf_scene_destroy(rf_scene *s)
 	if (!s)
 		return;
 	rf__accel_destroy(s->accel);
+	rf_cubemap_destroy(s->sky);
 	pthread_mutex_destroy(&s->accel_lock);
 	for (i = 0; i < s->nprobes; i++)
 		free((char *)s->probes[i].env);

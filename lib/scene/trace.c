@@ -34,8 +34,8 @@ struct rf_tracer {
 	struct camera_basis cb;
 	struct rf_camera cam;
 	double *kcam;       /* rf__trace_prepare for the camera */
-	/* What reflected rays can meet besides the room (objects and meshes:
-	 * 0 for the room alone), and rf__trace's flags for them. */
+	/* What reflected rays can meet besides the room (objects, meshes and
+	 * the sky: 0 for the room alone), and rf__trace's flags for them. */
 	size_t nseen;
 	unsigned flags;
 	double *k;          /* per thread: rf__trace_prepare for a pixel */
@@ -109,6 +109,8 @@ rf_tracer_create(struct rf_tracer **tp, const rf_scene *s, size_t width, size_t 
 		if (o->objects_visible || !(s->objects[i].mat.mask > 0.0f))
 			t->nseen++;
 	t->nseen += s->nmeshes;
+	/* rays that leave the room alone see the sky: the general path */
+	t->nseen += s->sky != NULL;
 	t->flags = o->objects_visible ? 0 : RF__TRACE_SKIP_REFLECTIVE;
 	if ((s->nobjects || s->nmeshes) && !rf__accel_get(s, err, errlen)) {
 		rf_tracer_destroy(t);

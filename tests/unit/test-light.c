@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "reflect/envmap.h"
+#include "reflect/image.h"
 #include "reflect/scene.h"
 #include "scene/scene-internal.h"
 #include "tap.h"
@@ -355,6 +356,99 @@ TEST(gbuffer_trace_and_capture_agree)
 	rf_scene_destroy(s);
 }
 
+/* A lat-long sky of w x w/2 texels whose radiance at each texel's centre
+ * direction d is a + b d.y: linear in d, so that its irradiance is
+ * exactly E(n) = pi a + (2 pi / 3) b n.y (the l = 0 and 1 bands). */
+static void
+sky_linear(const char *name, size_t w, float a, float b)
+{
+	const size_t h = w / 2;
+	float *px = malloc(w * h * 3 * sizeof(float));
+	rf_image_writer *wr;
+	char path[512], err[256];
+	size_t i, j;
+
+	for (j = 0; j < h; j++)
+		for (i = 0; i < w; i++) {
+			float d[3];
+
+			rf_latlong_direction(((float)i + 0.5f) / (float)w,
+			                     ((float)j + 0.5f) / (float)h, d);
+			px[3 * (j * w + i)] = px[3 * (j * w + i) + 1] =
+				px[3 * (j * w + i) + 2] = a + b * d[1];
+		}
+	snprintf(path, sizeof(path), "%s/%s", dir, name);
+	if (rf_image_writer_open(&wr, path, w, h, 3, NULL, RF_PIXEL_FLOAT, err,
+	                         sizeof(err)) < 0 ||
+	    rf_image_writer_write_rows(wr, 0, h, px) < 0 ||
+	    rf_image_writer_close(wr, err, sizeof(err)) < 0)
+		printf("# sky: %s\n", err);
+	free(px);
+}
+
+/* Under a sky of radiance 1 + d.y a matte floor facing up receives
+ * pi (1 + 2/3) and sends back albedo 5/3; facing down (from below) it
+ * receives pi (1 - 2/3); rays that leave see the sky itself. */
+TEST(sky_lights_and_is_seen)
+{
+	rf_scene *s;
+	struct rf_hit h;
+	const double up[3] = { 0, 1, 0 }, side[3] = { 1, 0, 0 }, o[3] = { 0, 5, 0 };
+	float rgb[3];
+
+	sky_linear("sky.exr", 256, 1.0f, 1.0f);
+	gltf_square("plain.gltf", 10, 0, FLOOR_MATERIAL, "", "");
+	s = load("probe box -10 -1 -10 10 6 10 center 0 1 0\nroom off\nmesh plain.gltf\n"
+	         "sky sky.exr strength 2\n");
+	ASSERT(s);
+	floor_at(s, 3.0, -2.0, 0, rgb);
+	ASSERT_LAMBERT(rgb, 2.0 * PI * 5.0 / 3.0, 1e-3);
+	floor_at(s, 3.0, -2.0, 1, rgb);
+	ASSERT_LAMBERT(rgb, 2.0 * PI / 3.0, 2e-3);
+	/* the sky straight up is 2 (1 + 1), sideways 2 */
+	ASSERT(rf_scene_trace(s, o, up, &h) == RF_OBJID_NONE);
+	rf__radiance(s, &h, rgb);
+	ASSERT_NEAR(rgb[0], 4.0, 2e-2);
+	ASSERT(rf_scene_trace(s, o, side, &h) == RF_OBJID_NONE);
+	rf__radiance(s, &h, rgb);
+	ASSERT_NEAR(rgb[1], 2.0, 1e-2);
+	rf_scene_destroy(s);
+
+	/* a reflective floor takes none of it */
+	s = load("probe box -10 -1 -10 10 6 10 center 0 1 0\nroom off\n"
+	         "mesh plain.gltf reflective on\nsky sky.exr\n");
+	ASSERT(s);
+	floor_at(s, 0.0, 0.0, 0, rgb);
+	ASSERT(rgb[0] == 0.0f && rgb[1] == 0.0f && rgb[2] == 0.0f);
+	rf_scene_destroy(s);
+}
+
+static int
+scene_error(const char *text, const char *want)
+{
+	char err[1024] = "", name[512];
+	rf_scene *s = NULL;
+	int rc;
+
+	snprintf(name, sizeof(name), "%s/test.scene", dir);
+	rc = rf_scene_parse(&s, text, strlen(text), name, err, sizeof(err));
+	rf_scene_destroy(s);
+	printf("# %s\n", err);
+	return rc < 0 && strstr(err, want) != NULL;
+}
+
+TEST(sky_errors)
+{
+	ASSERT(scene_error("probe box -1 -1 -1 1 1 1\nsky nowhere.exr\n",
+	                   "test.scene:2:5: cannot open"));
+	ASSERT(scene_error("probe box -1 -1 -1 1 1 1\nsky sky.exr strength -1\n",
+	                   "test.scene:2:13: expected a strength of 0 or more"));
+	ASSERT(scene_error("probe box -1 -1 -1 1 1 1\nsky sky.exr glow 1\n", "'glow'"));
+	ASSERT(scene_error("probe box -1 -1 -1 1 1 1\nsky sky.exr\nsky sky.exr\n",
+	                   "test.scene:3:1: a second 'sky' (the first is on line 2)"));
+	ASSERT(scene_error("probe box -1 -1 -1 1 1 1\nsky plain.gltf\n", "test.scene:2:5:"));
+}
+
 int
 main(void)
 {
@@ -371,6 +465,8 @@ main(void)
 	RUN(shadows_from_objects_and_triangles);
 	RUN(reflective_and_metal_take_no_direct_light);
 	RUN(gbuffer_trace_and_capture_agree);
+	RUN(sky_lights_and_is_seen);
+	RUN(sky_errors);
 	{
 		char cmd[512];
 
