@@ -5,6 +5,7 @@
 #include <stdint.h>
 #include <unistd.h>
 
+#include "reflect/envmap.h"
 #include "reflect/image.h"
 #include "reflect/scene.h"
 #include "scene/scene-internal.h"
@@ -644,6 +645,84 @@ TEST(glb_with_embedded_png)
 	rf_scene_destroy(s);
 }
 
+/* An 8 x 8 float texture of four 4 x 4 quadrants, each one colour. */
+static const float quadrant_rgb[4][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 1, 1, 1 } };
+
+static void
+exr_quadrants(const char *name)
+{
+	float px[8 * 8 * 3];
+	rf_image_writer *w;
+	char path[512], err[256];
+	int x, y, c;
+
+	for (y = 0; y < 8; y++)
+		for (x = 0; x < 8; x++)
+			for (c = 0; c < 3; c++)
+				px[3 * (8 * y + x) + c] = quadrant_rgb[2 * (y / 4) + x / 4][c];
+	snprintf(path, sizeof(path), "%s/%s", dir, name);
+	if (rf_image_writer_open(&w, path, 8, 8, 3, NULL, RF_PIXEL_FLOAT, err, sizeof(err)) <
+	            0 ||
+	    rf_image_writer_write_rows(w, 0, 8, px) < 0 ||
+	    rf_image_writer_close(w, err, sizeof(err)) < 0)
+		printf("# exr: %s\n", err);
+}
+
+/* A probe 1 m in front of a textured emissive quad (2 x 2 m, z = 0)
+ * sees it fill its -Z face: each texel well inside a quadrant of the
+ * texture (half a texture texel from every edge of it, where bilinear
+ * filtering is constant) is the quadrant's colour times the emission
+ * strength, exactly. */
+TEST(captured_texels_are_the_texture)
+{
+	struct rf_capture_options co;
+	rf_cubemap *cube = NULL;
+	rf_scene *s;
+	char err[256];
+	size_t i, j, n = 16, checked = 0;
+
+	exr_quadrants("quadrants.exr");
+	gltf_quad("wall.gltf", quad_uv, NULL, "", UV_NORMAL,
+	          "{\"name\":\"wall\",\"emissiveFactor\":[1,1,1],"
+	          "\"emissiveTexture\":{\"index\":0},\"extensions\":"
+	          "{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":4}}}",
+	          ",\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"quadrants.exr\"}]");
+	s = load("probe box -10 -10 -10 10 10 10 center 0 0 1\nroom off\nmesh wall.gltf\n");
+	ASSERT(s);
+	rf_capture_options_init(&co);
+	co.size = n;
+	co.bounces = 0;
+	ASSERT(rf_scene_capture(s, 0, &co, &cube, err, sizeof(err)) == 0);
+	for (j = 0; j < n; j++)
+		for (i = 0; i < n; i++) {
+			const float *tx = rf_cubemap_texel(cube, 0, RF_FACE_NEG_Z, i, j);
+			float d[3];
+			double x, y, ax, ay;
+			int q;
+
+			rf_cube_direction(RF_FACE_NEG_Z, ((float)i + 0.5f) / (float)n,
+			                  ((float)j + 0.5f) / (float)n, d);
+			/* where the texel's centre ray meets the quad, 1 m away */
+			x = d[0] / -d[2];
+			y = d[1] / -d[2];
+			ax = fabs(x);
+			ay = fabs(y);
+			/* the footprint is 1/8 m wide, a texture texel 1/4 m: of the 16
+			 * texels a row, 6 on each side of the middle */
+			if (ax - 0.0625 < 0.125 || 1.0 - ax - 0.0625 < 0.125 ||
+			    ay - 0.0625 < 0.125 || 1.0 - ay - 0.0625 < 0.125)
+				continue;
+			/* the image's top row at y = +1, its left column at x = -1 */
+			q = 2 * (y < 0) + (x > 0);
+			ASSERT_VEC(tx, 4 * quadrant_rgb[q][0], 4 * quadrant_rgb[q][1],
+			           4 * quadrant_rgb[q][2], 1e-6);
+			checked++;
+		}
+	ASSERT_EQ(checked, 144);
+	rf_cubemap_destroy(cube);
+	rf_scene_destroy(s);
+}
+
 TEST(errors_name_the_files)
 {
 	char err[1024];
@@ -692,6 +771,7 @@ main(void)
 	RUN(obj_mtl_mapping);
 	RUN(lights_in_scene_units);
 	RUN(glb_with_embedded_png);
+	RUN(captured_texels_are_the_texture);
 	RUN(errors_name_the_files);
 	{
 		char cmd[512];
