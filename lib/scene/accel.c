@@ -69,6 +69,7 @@ struct ctx {
 	const double *o, *k, *d, *inv;
 	unsigned flags;
 	struct rf__candidate *best;
+	double tmax; /* an occlusion query's end */
 };
 
 static float
@@ -133,6 +134,22 @@ object_intersect(const struct RTCIntersectFunctionNArguments *args)
 		rh->hit.geomID = args->geomID;
 		rh->hit.primID = args->primID;
 	}
+}
+
+/* A shadow ray: any object before its end stops it. */
+static void
+object_occluded(const struct RTCOccludedFunctionNArguments *args)
+{
+	const struct ctx *c = (const struct ctx *)args->context;
+	const struct object *ob = &c->s->objects[args->primID];
+	struct RTCRay *ray = (struct RTCRay *)args->ray;
+	struct rf__candidate cand;
+
+	/* rtcOccluded1 only: one ray, valid */
+	if (!args->valid[0])
+		return;
+	if (rf__object_hit(ob, NULL, c->o, c->d, c->inv, &cand) && cand.t < c->tmax)
+		ray->tfar = -INFINITY; /* Embree's mark of an occluded ray */
 }
 
 void
@@ -314,6 +331,7 @@ build(const rf_scene *s, struct rf__accel **ap, char *err, size_t errlen)
 		rtcSetGeometryUserData(g, a);
 		rtcSetGeometryBoundsFunction(g, object_bounds, NULL);
 		rtcSetGeometryIntersectFunction(g, object_intersect);
+		rtcSetGeometryOccludedFunction(g, object_occluded);
 		rtcSetGeometryMask(g, GMASK_OTHER | GMASK_REFLECTIVE);
 		rtcCommitGeometry(g);
 		a->user_id = rtcAttachGeometry(a->scene, g);
@@ -432,4 +450,41 @@ rf__accel_intersect(const struct rf__accel *a, const rf_scene *s, const double o
 		if (best->t <= mh->t)
 			mh->mesh = -1;
 	}
+}
+
+int
+rf__accel_occluded(const struct rf__accel *a, const rf_scene *s, const double o[3],
+                   const double d[3], const double inv[3], double tmax)
+{
+	struct ctx c;
+	struct RTCRay ray;
+	double reach = fmax(fabs(o[0]), fmax(fabs(o[1]), fabs(o[2])));
+
+	rtcInitIntersectContext(&c.rtc);
+	c.s = s;
+	c.o = o;
+	c.k = NULL;
+	c.d = d;
+	c.inv = inv;
+	c.flags = 0;
+	c.best = NULL;
+	c.tmax = tmax;
+	ray.org_x = (float)o[0];
+	ray.org_y = (float)o[1];
+	ray.org_z = (float)o[2];
+	ray.dir_x = (float)d[0];
+	ray.dir_y = (float)d[1];
+	ray.dir_z = (float)d[2];
+	/* the margin of rf__accel_intersect's rays, off the surface left */
+	ray.tnear = (float)(MARGIN_REL * (1.0 + reach));
+	/* triangles are decided in float: a rounding short of the end */
+	ray.tfar = tmax < (double)FLT_MAX ? round_down(tmax) : INFINITY;
+	ray.time = 0.0f;
+	ray.mask = GMASK_OTHER | GMASK_REFLECTIVE;
+	ray.id = 0;
+	ray.flags = 0;
+	if (!(ray.tfar > ray.tnear))
+		return 0;
+	rtcOccluded1(a->scene, &c.rtc, &ray);
+	return ray.tfar == -INFINITY;
 }

@@ -41,6 +41,12 @@ void rf__accel_intersect(const struct rf__accel *a, const rf_scene *s, const dou
                          unsigned flags, struct rf__candidate *best,
                          struct rf__mesh_hit *mh);
 
+/* Whether an object or a triangle lies on the unit ray from o along d
+ * nearer than tmax (INFINITY: anywhere): Embree's occlusion query, which
+ * stops at the first thing found. */
+int rf__accel_occluded(const struct rf__accel *a, const rf_scene *s, const double o[3],
+                       const double d[3], const double inv[3], double tmax);
+
 /* raycast.c: object ob's nearest crossing past the origin's own surface
  * (k from rf__trace_prepare for o, or NULL), whatever its distance. */
 int rf__object_hit(const struct object *ob, const double *k, const double o[3],

@@ -367,18 +367,17 @@ rf__occluded(const rf_scene *s, const double o[3], const double d[3], double tma
 {
 	double inv[3], k[RF__ORIGIN_STRIDE];
 	struct candidate best = { INFINITY, -1, -1, 0 }, c;
-	struct rf__mesh_hit mh = { -1, 0, 0.0, 0.0, 0.0 };
 	const struct rf__accel *acc;
 	int j;
 
 	for (j = 0; j < 3; j++)
 		inv[j] = 1.0 / d[j];
-	if (s->nobjects || s->nmeshes) {
-		if (s->nmeshes && (acc = rf__accel_get(s, NULL, 0)))
-			rf__accel_intersect(acc, s, o, NULL, d, inv, 0, &best, &mh);
-		else
-			trace_objects(s, o, NULL, d, inv, 0, &best);
-		if (best.t < tmax || (mh.mesh >= 0 && mh.t < tmax))
+	if (s->nmeshes && (acc = rf__accel_get(s, NULL, 0))) {
+		if (rf__accel_occluded(acc, s, o, d, inv, tmax))
+			return 1;
+	} else if (s->nobjects || s->nmeshes) {
+		trace_objects(s, o, NULL, d, inv, 0, &best);
+		if (best.t < tmax)
 			return 1;
 	}
 	if (s->nprobes && s->room) {
