@@ -79,16 +79,11 @@ int
 rf__scene_image(rf_scene *s, const char *path, size_t min_channels, const char *what,
                 const rf_image **imgp, char *err, size_t errlen)
 {
-	rf_image **images, *img;
-	char **paths, *copy;
-	size_t i;
+	rf_image *img;
 	int rc;
 
-	for (i = 0; i < s->nimages; i++)
-		if (!strcmp(s->image_paths[i], path)) {
-			*imgp = s->images[i];
-			return 0;
-		}
+	if ((*imgp = rf__scene_image_find(s, path)))
+		return 0;
 	if ((rc = rf_image_read(&img, path, err, errlen)) < 0)
 		return rc;
 	if (rf_image_nchannels(img) < min_channels) {
@@ -98,18 +93,8 @@ rf__scene_image(rf_scene *s, const char *path, size_t min_channels, const char *
 		rf_image_destroy(img);
 		return RF_EIMAGE;
 	}
-	images = realloc(s->images, (s->nimages + 1) * sizeof(*images));
-	if (images)
-		s->images = images;
-	paths = realloc(s->image_paths, (s->nimages + 1) * sizeof(*paths));
-	if (paths)
-		s->image_paths = paths;
-	if (!images || !paths || !(copy = strdup(path))) {
-		rf_image_destroy(img);
-		return RF_ENOMEM;
-	}
-	s->images[s->nimages] = img;
-	s->image_paths[s->nimages++] = copy;
+	if ((rc = rf__scene_image_add(s, path, img)) < 0)
+		return rc;
 	*imgp = img;
 	return 0;
 }
