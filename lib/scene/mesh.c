@@ -27,22 +27,6 @@
 /* The most vertices a mesh statement takes: indices are 32-bit. */
 #define VERTICES_MAX ((size_t)UINT32_MAX)
 
-/* Row-major 4 x 4 products: out = a b (out may be a or b). */
-static void
-mat_mul(const double a[16], const double b[16], double out[16])
-{
-	double r[16];
-	int i, j, k;
-
-	for (i = 0; i < 4; i++)
-		for (j = 0; j < 4; j++) {
-			r[4 * i + j] = 0;
-			for (k = 0; k < 4; k++)
-				r[4 * i + j] += a[4 * i + k] * b[4 * k + j];
-		}
-	memcpy(out, r, sizeof(r));
-}
-
 static void
 mat_from_ai(const struct aiMatrix4x4 *m, double out[16])
 {
@@ -65,7 +49,7 @@ node_world(const struct rf__mesh_request *rq, const struct aiNode *n, double out
 		return;
 	node_world(rq, n->mParent, out);
 	mat_from_ai(&n->mTransformation, m);
-	mat_mul(out, m, out);
+	rf__mat4_mul(out, m, out);
 }
 
 /* The frame of one instance: positions by the matrix, normals by its

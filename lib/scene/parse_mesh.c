@@ -11,22 +11,6 @@
 #define MESH_WORDS "translate, rotate, scale, matrix, roughness, smoothness, " \
 	"metallic, albedo, emission, reflective or material NAME"
 
-/* out = a b, row-major 4 x 4 */
-static void
-mat4_mul(const double a[16], const double b[16], double out[16])
-{
-	double r[16];
-	int i, j, k;
-
-	for (i = 0; i < 4; i++)
-		for (j = 0; j < 4; j++) {
-			r[4 * i + j] = 0;
-			for (k = 0; k < 4; k++)
-				r[4 * i + j] += a[4 * i + k] * b[4 * k + j];
-		}
-	memcpy(out, r, sizeof(r));
-}
-
 /* rotate DEG AX AY AZ: counter-clockwise about the axis seen from its
  * tip (right-handed), by Rodrigues' formula. */
 static int
@@ -203,8 +187,8 @@ rf__parse_mesh(struct parser *p, const struct rf__token *kw)
 			              "mesh (its determinant is %g)", det);
 	} else if (rc >= 0) {
 		/* scale, then rotate, then translate */
-		mat4_mul(R, S, rq.matrix);
-		mat4_mul(T, rq.matrix, rq.matrix);
+		rf__mat4_mul(R, S, rq.matrix);
+		rf__mat4_mul(T, rq.matrix, rq.matrix);
 	}
 	if (rc >= 0)
 		rc = rf__parse_path(p, file, &path);

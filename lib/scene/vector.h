@@ -22,6 +22,23 @@ rf__cross(const double a[3], const double b[3], double out[3])
 	out[2] = z;
 }
 
+/* out = a b, row-major 4 x 4 matrices (out may be a or b). */
+static inline void
+rf__mat4_mul(const double a[16], const double b[16], double out[16])
+{
+	double r[16];
+	int i, j, k;
+
+	for (i = 0; i < 4; i++)
+		for (j = 0; j < 4; j++) {
+			r[4 * i + j] = 0;
+			for (k = 0; k < 4; k++)
+				r[4 * i + j] += a[4 * i + k] * b[4 * k + j];
+		}
+	for (i = 0; i < 16; i++)
+		out[i] = r[i];
+}
+
 /* Normalises v in place; returns its former length (0 leaves v alone). */
 static inline double
 rf__normalize(double v[3])
