@@ -1,12 +1,15 @@
 /* Writing the glTF files the scene tests load: a scratch folder, files
- * in it, and base64 for buffers held in data URIs.  Static, for the
- * unit tests that include it (after tap.h). */
+ * in it, base64 for buffers held in data URIs, and a scene read as if
+ * from a file in that folder.  Static, for the unit tests that include
+ * it (after tap.h). */
 #ifndef REFLECT_TESTS_GLTF_WRITE_H
 #define REFLECT_TESTS_GLTF_WRITE_H
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "reflect/scene.h"
 
 /* The test's scratch folder (mkdtemp'ed by main). */
 static char dir[256];
@@ -49,6 +52,20 @@ b64(const void *data, size_t n)
 	}
 	*o = '\0';
 	return out;
+}
+
+/* A scene from its text, relative paths taken from the scratch folder;
+ * NULL, the message printed as a TAP comment, when it is refused. */
+static rf_scene *
+load(const char *text)
+{
+	char err[1024] = "", name[512];
+	rf_scene *s = NULL;
+
+	snprintf(name, sizeof(name), "%s/test.scene", dir);
+	if (rf_scene_parse(&s, text, strlen(text), name, err, sizeof(err)) < 0)
+		printf("# parse: %s\n", err);
+	return s;
 }
 
 #endif

@@ -86,18 +86,6 @@ gltf_square(const char *name, double h, double y, const char *material,
 	"0.7071067811865476],\"extensions\":{\"KHR_lights_punctual\":{\"light\":" \
 	#i "}}}"
 
-static rf_scene *
-load(const char *text)
-{
-	char err[1024] = "", name[512];
-	rf_scene *s = NULL;
-
-	snprintf(name, sizeof(name), "%s/test.scene", dir);
-	if (rf_scene_parse(&s, text, strlen(text), name, err, sizeof(err)) < 0)
-		printf("# parse: %s\n", err);
-	return s;
-}
-
 /* The floor's radiance at (x, 0, z), seen from above (or below). */
 static void
 floor_at(const rf_scene *s, double x, double z, int from_below, float rgb[3])

@@ -21,18 +21,6 @@ sample_at(const struct rf__texture *t, const float uv[2], float out[4])
 	rf__texture_sample(t, st, out);
 }
 
-static rf_scene *
-load(const char *text)
-{
-	char err[1024] = "", name[512];
-	rf_scene *s = NULL;
-
-	snprintf(name, sizeof(name), "%s/test.scene", dir);
-	if (rf_scene_parse(&s, text, strlen(text), name, err, sizeof(err)) < 0)
-		printf("# parse: %s\n", err);
-	return s;
-}
-
 /* The error a scene gets. */
 static int
 load_error(const char *text, char *err, size_t errlen)
