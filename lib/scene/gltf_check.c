@@ -206,9 +206,27 @@ objects(struct js *j, const char *len_key, const char *ref_key, struct claims *c
 	return lit(j, ']') ? 0 : -1;
 }
 
-/* The number at path (keys of nested objects, NULL-terminated) in the
- * object starting at j's position: 1 and *v, 0 without one, -1 when the
- * JSON does not parse. */
+/* A number, or true (1) or false (0). */
+static int
+scalar(struct js *j, double *v)
+{
+	ws(j);
+	if (j->n - j->pos >= 4 && !memcmp(j->s + j->pos, "true", 4)) {
+		j->pos += 4;
+		*v = 1;
+		return 0;
+	}
+	if (j->n - j->pos >= 5 && !memcmp(j->s + j->pos, "false", 5)) {
+		j->pos += 5;
+		*v = 0;
+		return 0;
+	}
+	return number(j, v);
+}
+
+/* The number or boolean at path (keys of nested objects, NULL-terminated)
+ * in the object starting at j's position: 1 and *v, 0 without one, -1
+ * when the JSON does not parse. */
 static int
 lookup(struct js *j, const char *const *path, double *v)
 {
@@ -225,7 +243,7 @@ lookup(struct js *j, const char *const *path, double *v)
 			return -1;
 		if (rc == 0 && key_is(t, len, path[0])) {
 			if (!path[1])
-				rc = number(j, v) < 0 ? -1 : 1;
+				rc = scalar(j, v) < 0 ? -1 : 1;
 			else
 				rc = lookup(j, path + 1, v);
 			if (rc < 0)
@@ -238,8 +256,9 @@ lookup(struct js *j, const char *const *path, double *v)
 
 /*
  * What assimp 5.2 does not read of each material: its
- * KHR_materials_emissive_strength, and the texCoord of its textures'
- * KHR_texture_transform (which overrides the texture's own).
+ * KHR_materials_emissive_strength, the texCoord of its textures'
+ * KHR_texture_transform (which overrides the texture's own), and
+ * reflect's own extras.reflect.mirror.
  */
 static int
 materials(struct js *j, struct rf__gltf_info *info)
@@ -255,6 +274,7 @@ materials(struct js *j, struct rf__gltf_info *info)
 		{ "normalTexture", "extensions", "KHR_texture_transform", "texCoord", NULL },
 		{ "emissiveTexture", "extensions", "KHR_texture_transform", "texCoord", NULL },
 	};
+	static const char *const mirror[] = { "extras", "reflect", "mirror", NULL };
 
 	if (!lit(j, '['))
 		return skip(j, 1);
@@ -279,6 +299,10 @@ materials(struct js *j, struct rf__gltf_info *info)
 				return -1;
 			m.texcoord[k] = rc && v >= 0 && v < 1e9 ? (int)v : -1;
 		}
+		j->pos = start;
+		if ((rc = lookup(j, mirror, &v)) < 0)
+			return -1;
+		m.mirror = rc ? v != 0 : -1;
 		if (!(grown = realloc(info->materials, (info->nmaterials + 1) * sizeof(*grown))))
 			return RF_ENOMEM;
 		info->materials = grown;

@@ -260,8 +260,9 @@ get_colour(const struct aiMaterial *mat, const char *key, unsigned type, unsigne
 /*
  * Which surfaces show the probe's reflection (the G-buffer's mask):
  * those whose material's name starts with "mirror" or "reflective" (any
- * case), a name being what every exporter keeps; the statement's
- * `reflective on|off` overrides it.
+ * case), a name being what every exporter keeps, unless a glTF
+ * material's extras say "reflect": { "mirror": true or false }; the
+ * statement's `reflective on|off` overrides both.
  */
 static float
 mask_of(const char *name)
@@ -436,6 +437,9 @@ rf__mesh_materials(struct rf__loader *ld, struct rf__mesh *m)
 		if (rc < 0)
 			return rc;
 		mm->mask = mask_of(mm->name);
+		if (ld->gltf && i < ld->gltf_info.nmaterials &&
+		    ld->gltf_info.materials[i].mirror >= 0)
+			mm->mask = (float)ld->gltf_info.materials[i].mirror;
 	}
 	for (k = 0; k < m->ntriangles; k++)
 		if (m->material[k] >= m->nmaterials)

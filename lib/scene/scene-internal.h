@@ -202,6 +202,7 @@ void rf__mesh_free(struct rf__mesh *m);
 struct rf__gltf_material {
 	float emissive_strength;
 	int texcoord[RF__GLTF_TEXTURES];
+	int mirror; /* extras.reflect.mirror: 1 true, 0 false, -1 not there */
 };
 struct rf__gltf_info {
 	struct rf__gltf_material *materials;

@@ -563,6 +563,39 @@ le32(unsigned char *b, uint32_t v)
 	b[2] = (unsigned char)(v >> 16), b[3] = (unsigned char)(v >> 24);
 }
 
+/* glTF extras decide which materials reflect, over their names; the
+ * statement's reflective attribute over both. */
+TEST(reflective_from_extras)
+{
+	static const struct {
+		const char *material;
+		float mask;
+	} cases[] = {
+		{ "{\"name\":\"plain\",\"extras\":{\"reflect\":{\"mirror\":true}}}", 1 },
+		{ "{\"name\":\"mirror-glass\",\"extras\":{\"reflect\":{\"mirror\":false}}}", 0 },
+		{ "{\"name\":\"mirror-floor\",\"extras\":{\"author\":\"x\"}}", 1 },
+		{ "{\"name\":\"stone\",\"extras\":{\"reflect\":{\"mirror\":0}}}", 0 },
+		{ "{\"name\":\"stone\",\"extras\":{\"reflect\":{\"mirror\":1}}}", 1 },
+	};
+	rf_scene *s;
+	size_t i;
+
+	for (i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
+		gltf_quad("extras.gltf", quad_uv, NULL, "", UV_NORMAL, cases[i].material, "");
+		s = load("probe box -10 -10 -10 10 10 10\nmesh extras.gltf\n");
+		ASSERT(s);
+		ASSERT(s->meshes[0].nmaterials >= 1);
+		ASSERT_EQ(s->meshes[0].materials[0].mask, cases[i].mask);
+		rf_scene_destroy(s);
+	}
+	/* the statement's attribute decides over the extras */
+	gltf_quad("extras.gltf", quad_uv, NULL, "", UV_NORMAL, cases[0].material, "");
+	s = load("probe box -10 -10 -10 10 10 10\nmesh extras.gltf reflective off\n");
+	ASSERT(s);
+	ASSERT(s->meshes[0].materials[0].mask == 0.0f);
+	rf_scene_destroy(s);
+}
+
 TEST(glb_with_embedded_png)
 {
 	struct quad q;
@@ -758,6 +791,7 @@ main(void)
 	RUN(linear_textures_and_second_uv_set);
 	RUN(obj_mtl_mapping);
 	RUN(lights_in_scene_units);
+	RUN(reflective_from_extras);
 	RUN(glb_with_embedded_png);
 	RUN(captured_texels_are_the_texture);
 	RUN(errors_name_the_files);
