@@ -254,6 +254,33 @@ lookup(struct js *j, const char *const *path, double *v)
 	return lit(j, '}') ? rc : -1;
 }
 
+/* The string member key of the object starting at j's position: 1 and
+ * its raw text, 0 without one, -1 when the JSON does not parse. */
+static int
+member_string(struct js *j, const char *key, const char **t, size_t *len)
+{
+	const char *k;
+	size_t klen;
+	int rc = 0;
+
+	if (!lit(j, '{'))
+		return skip(j, 1) < 0 ? -1 : 0;
+	if (lit(j, '}'))
+		return 0;
+	do {
+		if (string(j, &k, &klen) < 0 || !lit(j, ':'))
+			return -1;
+		ws(j);
+		if (rc == 0 && key_is(k, klen, key) && j->pos < j->n && j->s[j->pos] == '"') {
+			if (string(j, t, len) < 0)
+				return -1;
+			rc = 1;
+		} else if (skip(j, 1) < 0)
+			return -1;
+	} while (lit(j, ','));
+	return lit(j, '}') ? rc : -1;
+}
+
 /*
  * What assimp 5.2 does not read of each material: its
  * KHR_materials_emissive_strength, the texCoord of its textures'
@@ -282,7 +309,8 @@ materials(struct js *j, struct rf__gltf_info *info)
 		return 0;
 	do {
 		struct rf__gltf_material m, *grown;
-		size_t start;
+		const char *t;
+		size_t start, len;
 		double v;
 		int k, rc;
 
@@ -303,8 +331,16 @@ materials(struct js *j, struct rf__gltf_info *info)
 		if ((rc = lookup(j, mirror, &v)) < 0)
 			return -1;
 		m.mirror = rc ? v != 0 : -1;
-		if (!(grown = realloc(info->materials, (info->nmaterials + 1) * sizeof(*grown))))
+		j->pos = start;
+		m.name = NULL;
+		if ((rc = member_string(j, "name", &t, &len)) < 0)
+			return -1;
+		if (rc && !(m.name = strndup(t, len)))
 			return RF_ENOMEM;
+		if (!(grown = realloc(info->materials, (info->nmaterials + 1) * sizeof(*grown)))) {
+			free(m.name);
+			return RF_ENOMEM;
+		}
 		info->materials = grown;
 		info->materials[info->nmaterials++] = m;
 	} while (lit(j, ','));
@@ -536,4 +572,31 @@ rf__gltf_check(const char *path, struct rf__gltf_info *info, char *err, size_t e
 	free(accs.v);
 	free(text);
 	return rc;
+}
+
+void
+rf__gltf_info_free(struct rf__gltf_info *info)
+{
+	size_t i;
+
+	for (i = 0; i < info->nmaterials; i++)
+		free(info->materials[i].name);
+	free(info->materials);
+	info->materials = NULL;
+	info->nmaterials = 0;
+}
+
+const struct rf__gltf_material *
+rf__gltf_material_named(const struct rf__gltf_info *info, const char *name)
+{
+	const struct rf__gltf_material *found = NULL;
+	size_t i;
+
+	for (i = 0; i < info->nmaterials; i++)
+		if (info->materials[i].name && !strcmp(info->materials[i].name, name)) {
+			if (found)
+				return NULL;
+			found = &info->materials[i];
+		}
+	return found;
 }

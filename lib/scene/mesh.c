@@ -537,14 +537,14 @@ rf__mesh_load(rf_scene *s, const struct rf__mesh_request *rq, char *err, size_t 
 		return RF_EIO;
 	}
 	if (ld.gltf && (rc = rf__gltf_check(rq->path, &ld.gltf_info, err, errlen)) < 0) {
-		free(ld.gltf_info.materials);
+		rf__gltf_info_free(&ld.gltf_info);
 		return rc;
 	}
 	slash = strrchr(rq->path, '/');
 	if (!(ld.dir = strndup(rq->path, slash ? (size_t)(slash - rq->path) + 1 : 0)) ||
 	    !(props = aiCreatePropertyStore())) {
 		free(ld.dir);
-		free(ld.gltf_info.materials);
+		rf__gltf_info_free(&ld.gltf_info);
 		return RF_ENOMEM;
 	}
 	if (!ld.gltf && (rc = obj_mtllibs(rq->path, ld.dir, err, errlen)) < 0) {
@@ -565,7 +565,7 @@ rf__mesh_load(rf_scene *s, const struct rf__mesh_request *rq, char *err, size_t 
 		rf__format(err, errlen, "'%s': not a mesh reflect can read (%s)", rq->path,
 		           why && *why ? why : "assimp gives no reason");
 		free(ld.dir);
-		free(ld.gltf_info.materials);
+		rf__gltf_info_free(&ld.gltf_info);
 		return RF_EFORMAT;
 	}
 	if (!ld.sc->mRootNode || !ld.sc->mNumMeshes) {
@@ -584,7 +584,7 @@ rf__mesh_load(rf_scene *s, const struct rf__mesh_request *rq, char *err, size_t 
 	aiReleaseImport(ld.sc);
 	free(ld.dir);
 	free(ld.loaded);
-	free(ld.gltf_info.materials);
+	rf__gltf_info_free(&ld.gltf_info);
 	m.line = rq->line;
 	if (rc == 0)
 		rc = rf__scene_add_mesh(s, &m, err, errlen);

@@ -278,11 +278,10 @@ clamp01(float x)
 }
 
 static int
-gltf_material(struct rf__loader *ld, const struct aiMaterial *am, size_t index,
+gltf_material(struct rf__loader *ld, const struct aiMaterial *am,
               struct rf__mesh_material *mm)
 {
-	const struct rf__gltf_material *gm = index < ld->gltf_info.nmaterials
-	                                     ? &ld->gltf_info.materials[index] : NULL;
+	const struct rf__gltf_material *gm = rf__gltf_material_named(&ld->gltf_info, mm->name);
 	float e[4] = { 0, 0, 0, 1 };
 	int rc, k, set[RF__GLTF_TEXTURES];
 
@@ -431,15 +430,19 @@ rf__mesh_materials(struct rf__loader *ld, struct rf__mesh *m)
 			return RF_ENOMEM;
 		mm->base_colour[0] = mm->base_colour[1] = mm->base_colour[2] = 1.0f;
 		mm->base_colour[3] = 1.0f;
-		rc = ld->gltf ? gltf_material(ld, am, i, mm) : obj_material(ld, am, mm);
+		rc = ld->gltf ? gltf_material(ld, am, mm) : obj_material(ld, am, mm);
 		if (rc == 0)
 			rc = material_valid(ld, mm);
 		if (rc < 0)
 			return rc;
 		mm->mask = mask_of(mm->name);
-		if (ld->gltf && i < ld->gltf_info.nmaterials &&
-		    ld->gltf_info.materials[i].mirror >= 0)
-			mm->mask = (float)ld->gltf_info.materials[i].mirror;
+		if (ld->gltf) {
+			const struct rf__gltf_material *gm =
+				rf__gltf_material_named(&ld->gltf_info, mm->name);
+
+			if (gm && gm->mirror >= 0)
+				mm->mask = (float)gm->mirror;
+		}
 	}
 	for (k = 0; k < m->ntriangles; k++)
 		if (m->material[k] >= m->nmaterials)

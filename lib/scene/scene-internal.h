@@ -200,6 +200,7 @@ void rf__mesh_free(struct rf__mesh *m);
  * roughness, normal and emissive textures (-1 without). */
 #define RF__GLTF_TEXTURES 4
 struct rf__gltf_material {
+	char *name; /* as the JSON writes it, escapes kept; NULL without */
 	float emissive_strength;
 	int texcoord[RF__GLTF_TEXTURES];
 	int mirror; /* extras.reflect.mirror: 1 true, 0 false, -1 not there */
@@ -210,9 +211,15 @@ struct rf__gltf_info {
 };
 /* Every size a glTF file (.gltf or .glb) claims held to the bytes behind
  * it, before assimp allocates them: 0, or an error naming the file.
- * info is filled (free its materials) either way. */
+ * info is filled (rf__gltf_info_free) either way. */
 int rf__gltf_check(const char *path, struct rf__gltf_info *info, char *err,
                    size_t errlen);
+void rf__gltf_info_free(struct rf__gltf_info *info);
+/* The entry of the material assimp names name: assimp orders a file's
+ * materials its own way (as meshes first use them), so they are matched
+ * by name; NULL unless exactly one has it. */
+const struct rf__gltf_material *rf__gltf_material_named(const struct rf__gltf_info *info,
+                                                        const char *name);
 
 /* light.c */
 /* What the surface of a hit sends back along the ray: rf__emission, plus

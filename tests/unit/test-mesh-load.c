@@ -596,6 +596,48 @@ TEST(reflective_from_extras)
 	rf_scene_destroy(s);
 }
 
+/* assimp orders a file's materials as meshes first use them, not as the
+ * file lists them: what it leaves out (emission strength, extras) is
+ * matched by name.  The quad uses the second of three materials. */
+TEST(materials_matched_by_name)
+{
+	char path[512], *text, *at;
+	rf_scene *s;
+	const struct rf__mesh_material *mm;
+	FILE *fp;
+	long n;
+
+	gltf_quad("order.gltf", quad_uv, NULL, "", UV_NORMAL,
+	          "{\"name\":\"first\",\"emissiveFactor\":[1,1,1],\"extensions\":"
+	          "{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":3}}},"
+	          "{\"name\":\"glow\",\"emissiveFactor\":[1,0.5,0.25],\"extensions\":"
+	          "{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":8}},"
+	          "\"extras\":{\"reflect\":{\"mirror\":true}}},"
+	          "{\"name\":\"last\"}", "");
+	/* the primitive's material: the second */
+	snprintf(path, sizeof(path), "%s/order.gltf", dir);
+	fp = fopen(path, "rb");
+	ASSERT(fp);
+	fseek(fp, 0, SEEK_END);
+	n = ftell(fp);
+	rewind(fp);
+	text = calloc(1, (size_t)n + 1);
+	ASSERT(text && fread(text, 1, (size_t)n, fp) == (size_t)n);
+	fclose(fp);
+	at = strstr(text, "\"material\":0");
+	ASSERT(at);
+	at[strlen("\"material\":")] = '1';
+	put_text("order.gltf", text);
+	free(text);
+	s = load("probe box -10 -10 -10 10 10 10\nmesh order.gltf\n");
+	ASSERT(s);
+	mm = &s->meshes[0].materials[s->meshes[0].material[0]];
+	ASSERT_STR_EQ(mm->name, "glow");
+	ASSERT_VEC(mm->emission, 8, 4, 2, 1e-6);
+	ASSERT(mm->mask == 1.0f);
+	rf_scene_destroy(s);
+}
+
 TEST(glb_with_embedded_png)
 {
 	struct quad q;
@@ -792,6 +834,7 @@ main(void)
 	RUN(obj_mtl_mapping);
 	RUN(lights_in_scene_units);
 	RUN(reflective_from_extras);
+	RUN(materials_matched_by_name);
 	RUN(glb_with_embedded_png);
 	RUN(captured_texels_are_the_texture);
 	RUN(errors_name_the_files);
