@@ -119,10 +119,9 @@ static const struct cli_stage_tool tool = {
 	.spec = "mean",
 	.optstring = "a",
 	.long_options = long_options,
-	.help = "Combines the frames of a stream value by value (noise rendered\n"
-	        "frame after frame). See reflect-accumulate(1).\n"
-	        "  -m MODE[:K=V...]  accumulate mode (default mean); -l lists them\n"
-	        "  -a  the running result after every frame (else one at the end)\n"
+	.about = "Combines the frames of a stream value by value (noise rendered\n"
+	         "frame after frame). See reflect-accumulate(1).\n",
+	.help = "  -a  the running result after every frame (else one at the end)\n"
 	        "  --channels=LIST  what is combined (default spec.* and R G B)\n"
 	        "  --stats  standard errors as NAME.se channels\n"
 	        "  --reset=KEYS  start afresh when one of these header keys changes\n",

@@ -76,6 +76,10 @@ void cli_plugin_crash(int sig);
 /* Where the stream goes: stdout, or once a mode is loaded the descriptor
  * that standard output was (mode_load). */
 FILE *cli_stdout(void);
+/* From now on standard output (fd 1) leads to standard error, for
+ * whatever plugin code prints, and cli_stdout() is what it was: before
+ * plugin code runs, for a stream or a listing. */
+void cli_keep_stdout(void);
 
 /* Stream options every stream tool takes: -f a|f, -h, -H -x -y -c. */
 struct cli_io {
@@ -191,6 +195,12 @@ struct cli_mode {
 	double *values;
 };
 CLI_NORETURN void mode_list(unsigned kind);
+/* -m MODE --help: the mode's summary, file and where it was found,
+ * channels, parameters and man page, on standard output. */
+CLI_NORETURN void mode_help(unsigned kind, const char *spec);
+/* --help's line for -m: the modes of the kind the search path holds,
+ * and the default. */
+void mode_help_line(unsigned kind, const char *def);
 /* Loads a mode: its file found and checked, its parameters parsed (dies
  * with the reason).  Plugin code may print: from the first load on,
  * standard output (fd 1) leads to standard error, and the stream goes
@@ -221,7 +231,9 @@ struct cli_stage_tool {
 	 * long options, --help (CLI_OPT_HELP) among them. */
 	const char *optstring;
 	const struct option *long_options;
-	/* --help's lines between "usage:" and the common options. */
+	/* --help: what the tool does (after "usage:"), then the tool's own
+	 * options (after -m's line, before the common options). */
+	const char *about;
 	const char *help;
 	void (*usage)(void);
 	/* Takes one of the tool's own options: 1, or 0 for a usage error. */

@@ -22,6 +22,48 @@ base_name(const char *path)
 	return slash ? slash + 1 : path;
 }
 
+/* The stream once plugin code may run: its own descriptor. */
+static FILE *stream_out;
+
+FILE *
+cli_stdout(void)
+{
+	return stream_out ? stream_out : stdout;
+}
+
+/*
+ * A plugin that prints (a printf left in while debugging, a library that
+ * logs) would write into the stream, and the next tool would read its
+ * text as pixels, or refuse the stream, after this one exited 0.  So the
+ * stream keeps standard output's descriptor under another number, and
+ * fd 1 leads to standard error for whatever else writes to it, plugin
+ * code and its constructors alike.  A closed fd 1 is left closed.
+ */
+void
+cli_keep_stdout(void)
+{
+	int fd;
+
+	if (stream_out)
+		return;
+	fflush(stdout);
+	if ((fd = fcntl(STDOUT_FILENO, F_DUPFD_CLOEXEC, 3)) < 0) {
+		if (errno == EBADF)
+			return;
+		die_sys("cannot keep standard output from the plugins:");
+	}
+	if (!(stream_out = fdopen(fd, "wb")))
+		die_sys("cannot keep standard output from the plugins:");
+	if (dup2(STDERR_FILENO, STDOUT_FILENO) < 0) {
+		/* no standard error: what plugins print goes nowhere */
+		int null = open("/dev/null", O_WRONLY | O_CLOEXEC);
+
+		if (null < 0 || dup2(null, STDOUT_FILENO) < 0)
+			die_sys("cannot keep standard output from the plugins:");
+		close(null);
+	}
+}
+
 static void
 remember(struct listing *l, const char *path)
 {
@@ -75,14 +117,14 @@ print_param(const struct rf_param *q)
 	char range[96];
 
 	if (q->flags & RF_PARAM_STRING) {
-		printf("    %s=%s\t%s (a string)\n", q->name, q->choices ? q->choices : "",
-		       q->help);
+		fprintf(cli_stdout(), "    %s=%s\t%s (a string)\n", q->name, q->choices ? q->choices : "",
+		        q->help);
 		return;
 	}
 	if (q->flags & RF_PARAM_CHOICE) {
-		printf("    %s=", q->name);
-		print_choice(stdout, q, q->def);
-		printf("\t%s (%s)\n", q->help, q->choices);
+		fprintf(cli_stdout(), "    %s=", q->name);
+		print_choice(cli_stdout(), q, q->def);
+		fprintf(cli_stdout(), "\t%s (%s)\n", q->help, q->choices);
 		return;
 	}
 	if (q->flags & RF_PARAM_BOOL)
@@ -92,7 +134,7 @@ print_param(const struct rf_param *q)
 		         q->flags & RF_PARAM_INTEGER ? "integer " : "",
 		         isinf(q->min) ? "(" : "[", q->min, q->max,
 		         isinf(q->max) ? ")" : "]");
-	printf("    %s=%g\t%s (%s)\n", q->name, q->def, q->help, range);
+	fprintf(cli_stdout(), "    %s=%g\t%s (%s)\n", q->name, q->def, q->help, range);
 }
 
 static void
@@ -100,10 +142,49 @@ print_channels(const char *what, const char *const *list)
 {
 	size_t i;
 
-	printf("  %s:", what);
+	fprintf(cli_stdout(), "  %s:", what);
 	for (i = 0; list[i]; i++)
-		printf(" %s", list[i]);
-	printf("%s\n", list[0] ? "" : " (none)");
+		fprintf(cli_stdout(), " %s", list[i]);
+	fprintf(cli_stdout(), "%s\n", list[0] ? "" : " (none)");
+}
+
+/* A mode as -l and -m MODE --help show it: what it is, where it was
+ * found, what it reads and writes, its parameters and its man page. */
+static void
+print_mode(const char *path, const struct rf_plugin *p)
+{
+	const char *const *optional = rf_plugin_optional_inputs(p);
+	const char *origin = rf_plugin_dir_origin(path);
+	char page[4096];
+	uint32_t i;
+
+	fprintf(cli_stdout(), "%s\t%s\n", p->name, p->summary);
+	fprintf(cli_stdout(), "  file: %s (version %s, plugin ABI %u.%u, %s, %s)\n", path,
+	        p->version, p->abi_major, p->abi_minor, p->author, p->license);
+	fprintf(cli_stdout(), "  found in: %s\n", origin ? origin : "a path given to -m");
+	if (p->kind == RF_KIND_FILTER) {
+		/* it filters values of any channel, guided by its inputs */
+		print_channels("guided by", p->inputs);
+	} else if (p->kind == RF_KIND_ACCUMULATE) {
+		/* it combines values of any channel; its outputs are its state */
+		print_channels("state of each value", p->outputs);
+	} else {
+		print_channels("reads", p->inputs);
+	}
+	if (optional && optional[0])
+		print_channels("reads when present", optional);
+	if (p->kind != RF_KIND_FILTER && p->kind != RF_KIND_ACCUMULATE)
+		print_channels("writes", p->outputs);
+	if (p->nparams) {
+		fprintf(cli_stdout(), "  parameters:\n");
+		for (i = 0; i < p->nparams; i++)
+			print_param(&p->params[i]);
+	}
+	if (rf_plugin_man_page(path, p, page, sizeof(page)) == 0)
+		fprintf(cli_stdout(), "  man page: %s\n", page);
+	else
+		fprintf(cli_stdout(), "  man page: none beside the file (reflect-plugin(7) says where "
+		        "one goes)\n");
 }
 
 static void
@@ -114,7 +195,6 @@ list_one(void *arg, const char *path, int shadowed)
 	char err[1024];
 	rf_module *m;
 	const struct rf_plugin *p;
-	uint32_t i;
 
 	if (!shadowed)
 		remember(l, path);
@@ -129,30 +209,13 @@ list_one(void *arg, const char *path, int shadowed)
 	}
 	if (shadowed) {
 		first = winner(l, p);
-		printf("# %s: shadowed by %s, earlier in the search path\n", path,
-		       first ? first : "an earlier file");
+		fprintf(cli_stdout(), "# %s: shadowed by %s, earlier in the search path\n", path,
+		        first ? first : "an earlier file");
 		rf_module_unload(m);
 		return;
 	}
 	l->count++;
-	printf("%s\t%s\n", p->name, p->summary);
-	printf("  file: %s (version %s, plugin ABI %u.%u, %s, %s)\n", path,
-	       p->version, p->abi_major, p->abi_minor, p->author, p->license);
-	if (p->kind == RF_KIND_FILTER) {
-		/* it filters values of any channel, guided by its inputs */
-		print_channels("guided by", p->inputs);
-	} else if (p->kind == RF_KIND_ACCUMULATE) {
-		/* it combines values of any channel; its outputs are its state */
-		print_channels("state of each value", p->outputs);
-	} else {
-		print_channels("reads", p->inputs);
-		print_channels("writes", p->outputs);
-	}
-	if (p->nparams) {
-		printf("  parameters:\n");
-		for (i = 0; i < p->nparams; i++)
-			print_param(&p->params[i]);
-	}
+	print_mode(path, p);
 	rf_module_unload(m);
 }
 
@@ -177,6 +240,8 @@ mode_list(unsigned kind)
 	size_t i;
 	int rc;
 
+	/* what a plugin's code prints while it is listed stays out */
+	cli_keep_stdout();
 	check_search_path();
 	rc = rf_plugin_scan(list_one, &l);
 
@@ -190,50 +255,98 @@ mode_list(unsigned kind)
 		warn("no %s modes in %s%s%s", rf_plugin_kind_name(kind),
 		     *dirs ? "'" : "", *dirs ? dirs : "an empty search path",
 		     *dirs ? "'" : "");
-	fshut(stdout, "<stdout>");
+	fshut(cli_stdout(), "<stdout>");
 	exit(l.count ? 0 : EXIT_BAD_INPUT);
 }
 
-/* The stream once plugin code may run: its own descriptor. */
-static FILE *stream_out;
+/* The names of the modes of a kind that -m reaches, for the help. */
+struct names {
+	unsigned kind;
+	char **name;
+	size_t n;
+};
 
-FILE *
-cli_stdout(void)
+static void
+name_one(void *arg, const char *path, int shadowed)
 {
-	return stream_out ? stream_out : stdout;
+	struct names *l = arg;
+	char err[1024];
+	rf_module *m;
+
+	if (shadowed || rf_module_load_file(&m, path, 0, err, sizeof(err)) < 0)
+		return;
+	if (rf_module_plugin(m)->kind == l->kind) {
+		l->name = realloc(l->name, (l->n + 1) * sizeof(*l->name));
+		if (!l->name)
+			die_sys("out of memory");
+		l->name[l->n++] = estrdup(rf_module_plugin(m)->name);
+	}
+	rf_module_unload(m);
 }
 
-/*
- * A plugin that prints (a printf left in while debugging, a library that
- * logs) would write into the stream, and the next tool would read its
- * text as pixels, or refuse the stream, after this one exited 0.  So the
- * stream keeps standard output's descriptor under another number, and
- * fd 1 leads to standard error for whatever else writes to it, plugin
- * code and its constructors alike.  A closed fd 1 is left closed.
- */
-static void
-keep_stdout_from_plugins(void)
+static int
+cmp_name(const void *a, const void *b)
 {
-	int fd;
+	return strcmp(*(char *const *)a, *(char *const *)b);
+}
 
-	if (stream_out)
-		return;
-	fflush(stdout);
-	if ((fd = fcntl(STDOUT_FILENO, F_DUPFD_CLOEXEC, 3)) < 0) {
-		if (errno == EBADF)
-			return;
-		die_sys("cannot keep standard output from the plugins:");
-	}
-	if (!(stream_out = fdopen(fd, "wb")))
-		die_sys("cannot keep standard output from the plugins:");
-	if (dup2(STDERR_FILENO, STDOUT_FILENO) < 0) {
-		/* no standard error: what plugins print goes nowhere */
-		int null = open("/dev/null", O_WRONLY | O_CLOEXEC);
+void
+mode_help_line(unsigned kind, const char *def)
+{
+	struct names l = { kind, NULL, 0 };
+	size_t i, col;
 
-		if (null < 0 || dup2(null, STDOUT_FILENO) < 0)
-			die_sys("cannot keep standard output from the plugins:");
-		close(null);
+	cli_keep_stdout();
+	/* what is installed, not a list written once: a plugin added is
+	 * named, one taken away is not */
+	rf_plugin_scan(name_one, &l);
+	if (l.n)
+		qsort(l.name, l.n, sizeof(*l.name), cmp_name);
+	fprintf(cli_stdout(), "  -m MODE[:K=V...]  the %s mode, default %s; -m MODE --help tells\n"
+	        "      one, -l lists them all. Modes:", rf_plugin_kind_name(kind), def);
+	col = 36;
+	for (i = 0; i < l.n; i++) {
+		size_t w = strlen(l.name[i]) + (i + 1 < l.n ? 1 : 0);
+
+		if (col + 1 + w > 78) {
+			fprintf(cli_stdout(), "\n     ");
+			col = 5;
+		}
+		fprintf(cli_stdout(), " %s%s", l.name[i], i + 1 < l.n ? "," : "");
+		col += 1 + w;
+		free(l.name[i]);
 	}
+	fprintf(cli_stdout(), "%s\n", l.n ? "" : " none found (-l says where they are looked for)");
+	free(l.name);
+}
+
+void
+mode_help(unsigned kind, const char *spec)
+{
+	char err[1024], *name = estrdup(spec), *colon;
+	rf_module *m;
+	int rc;
+
+	/* the parameters given do not matter to the help (a path may hold
+	 * ':' only before its last '/') */
+	colon = strchr(strrchr(name, '/') ? strrchr(name, '/') : name, ':');
+	if (colon)
+		*colon = '\0';
+	cli_keep_stdout();
+	if (!strchr(name, '/'))
+		check_search_path();
+	if ((rc = rf_module_load(&m, name, kind, err, sizeof(err))) < 0) {
+		free(name);
+		die_status(rc == RF_ENOMEM ? rc : RF_EPLUGIN, err);
+	}
+	fprintf(cli_stdout(), "usage: %s -m %s[:KEY=VALUE...] [options] [file]\n", argv0,
+	       rf_module_plugin(m)->name);
+	print_mode(rf_module_path(m), rf_module_plugin(m));
+	fprintf(cli_stdout(), "(%s --help: the tool's options)\n", argv0);
+	rf_module_unload(m);
+	free(name);
+	fshut(cli_stdout(), "<stdout>");
+	exit(0);
 }
 
 void
@@ -244,7 +357,7 @@ mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose)
 	char *colon;
 	int rc;
 
-	keep_stdout_from_plugins();
+	cli_keep_stdout();
 	cli_guard_plugins();
 	if (!strchr(spec, '/'))
 		check_search_path();

@@ -10,11 +10,15 @@
 static void
 help(const struct cli_stage_tool *t)
 {
-	printf("usage: %s [options] [file]\n%s"
-	       "  -j N  threads   -v  say which plugin   -V  versions\n"
-	       "  -f a|f  output format   -h  no output header\n"
-	       "  -H -x W -y H -c CHANNELS  headerless input\n", argv0, t->help);
-	fshut(stdout, "<stdout>");
+	/* the modes' list runs plugin code: what it prints stays out */
+	cli_keep_stdout();
+	fprintf(cli_stdout(), "usage: %s [options] [file]\n%s", argv0, t->about);
+	mode_help_line(t->kind, t->spec);
+	fprintf(cli_stdout(), "%s"
+	        "  -j N  threads   -v  say which plugin   -V  versions\n"
+	        "  -f a|f  output format   -h  no output header\n"
+	        "  -H -x W -y H -c CHANNELS  headerless input\n", t->help);
+	fshut(cli_stdout(), "<stdout>");
 }
 
 int
@@ -24,7 +28,7 @@ cli_stage_main(int argc, char **argv, const struct cli_stage_tool *t)
 	const char *threads = NULL;
 	const rf_header *in;
 	char optstring[32];
-	int c, list = 0, verbose = 0, rc;
+	int c, list = 0, verbose = 0, want_help = 0, rc;
 
 	cli_init(argc, argv);
 	snprintf(optstring, sizeof(optstring), "%slvVm:j:" CLI_IO_OPTSTRING,
@@ -39,13 +43,18 @@ cli_stage_main(int argc, char **argv, const struct cli_stage_tool *t)
 		case 'V': print_version(); break;
 		case 'm': r.spec = optarg; break;
 		case 'j': threads = optarg; break;
-		case CLI_OPT_HELP:
-			help(t);
-			return 0;
+		case CLI_OPT_HELP: want_help = 1; break;
 		default:
 			if (!t->option || !t->option(&r, c, optarg))
 				t->usage();
 		}
+	}
+	/* -m MODE --help, in either order: that mode's help */
+	if (want_help && r.spec != t->spec)
+		mode_help(t->kind, r.spec);
+	if (want_help) {
+		help(t);
+		return 0;
 	}
 	if (argc - optind > 1)
 		t->usage();

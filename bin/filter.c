@@ -86,10 +86,9 @@ static const struct cli_stage_tool tool = {
 	.kind = RF_KIND_FILTER,
 	.spec = "atrous",
 	.long_options = long_options,
-	.help = "Filters the shaded values of a stream across pixels, guided by\n"
-	        "its G-buffer. See reflect-filter(1).\n"
-	        "  -m MODE[:K=V...]  filter mode (default atrous); -l lists them\n"
-	        "  --channels=LIST  what is filtered (default spec.* and R G B)\n",
+	.about = "Filters the shaded values of a stream across pixels, guided by\n"
+	         "its G-buffer. See reflect-filter(1).\n",
+	.help = "  --channels=LIST  what is filtered (default spec.* and R G B)\n",
 	.usage = usage,
 	.option = option,
 	.start = start,

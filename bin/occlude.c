@@ -42,11 +42,10 @@ static const struct cli_stage_tool tool = {
 	.kind = RF_KIND_OCCLUSION,
 	.spec = "box",
 	.long_options = long_options,
-	.help = "Darkens the reflection (spec.R G B, and R G B) of a shaded stream\n"
-	        "by a specular occlusion term, written as the channel occlusion.\n"
-	        "See reflect-occlude(1).\n"
-	        "  -m MODE[:K=V...]  occlusion mode (default box); -l lists them\n"
-	        "  --invalid=error|clamp|zero  NaN and Inf in what the mode reads\n",
+	.about = "Darkens the reflection (spec.R G B, and R G B) of a shaded stream\n"
+	         "by a specular occlusion term, written as the channel occlusion.\n"
+	         "See reflect-occlude(1).\n",
+	.help = "  --invalid=error|clamp|zero  NaN and Inf in what the mode reads\n",
 	.usage = usage,
 	.option = option,
 	.frame = frame,

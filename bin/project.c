@@ -60,10 +60,9 @@ static const struct cli_stage_tool tool = {
 	.kind = RF_KIND_PROJECTION,
 	.spec = "box",
 	.long_options = long_options,
-	.help = "Adds R (reflection vector), D (lookup direction), hit.dist and\n"
-	        "probe.dist to a G-buffer stream (P, N, V). See reflect-project(1).\n"
-	        "  -m MODE[:K=V...]  projection mode (default box); -l lists them\n"
-	        "  --box=...  --center=X,Y,Z  --box-projection=on|off  the probe\n"
+	.about = "Adds R (reflection vector), D (lookup direction), hit.dist and\n"
+	         "probe.dist to a G-buffer stream (P, N, V). See reflect-project(1).\n",
+	.help = "  --box=...  --center=X,Y,Z  --box-projection=on|off  the probe\n"
 	        "  --invalid=error|clamp|zero  NaN, Inf, zero vectors in P N V\n",
 	.usage = usage,
 	.option = option,

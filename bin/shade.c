@@ -197,7 +197,7 @@ main(int argc, char **argv)
 	const char *threads = NULL, *spec = "approx";
 	const rf_header *in;
 	rf_shader *shader;
-	int c, idx, list = 0, verbose = 0, no_cache = 0, rc;
+	int c, idx, list = 0, verbose = 0, no_cache = 0, want_help = 0, mode_given = 0, rc;
 
 	cli_init(argc, argv);
 	rf_shader_options_init(&so);
@@ -210,7 +210,7 @@ main(int argc, char **argv)
 		case 'l': list = 1; break;
 		case 'v': verbose = 1; break;
 		case 'V': print_version(); break;
-		case 'm': spec = optarg; break;
+		case 'm': spec = optarg; mode_given = 1; break;
 		case 'j': threads = optarg; break;
 		case OPT_ENVMAP:
 			envmap_opts_parse(&env, long_options[idx].name, optarg);
@@ -285,37 +285,44 @@ main(int argc, char **argv)
 			} else
 				die("--fallback: '%s' is not infinite, none or sky:FILE", optarg);
 			break;
-		case OPT_HELP:
-			printf("usage: %s [options] [file]\n"
-			       "Samples the environment through each pixel's lobe: a mode gives\n"
-			       "the effective roughness (roughness.eff), the environment's mapping\n"
-			       "its lod, and D (from reflect-project) the direction; adds spec.R\n"
-			       "spec.G spec.B. See reflect-shade(1).\n"
-			       "  -m MODE[:K=V...]  none, approx (default), hdrp, godot; -l lists them\n"
-			       "  --env=FILE  environment (else PROBE_ENV, else the embedded room);\n"
-			       "      raw ones are prefiltered on the fly (--samples=N) and kept in\n"
-			       "      $XDG_CACHE_HOME/reflect for the next run (--no-cache: not)\n"
-			       "  --prefiltered --layout=L --srgb= --rgbm= --intensity= --size=N\n"
-			       "  --nonfinite=error|zero  a NaN or Inf texel refused (error) or 0\n"
-			       "  --mapping=unity|linear|exact --steps=N  roughness to lod\n"
-			       "  --final[=split-sum|unity|hdrp]  also R G B: spec x the split sum's\n"
-			       "      F0 A + B, Unity Standard's or HDRP's term\n"
-			       "  --box=... --center=X,Y,Z --box-projection=on|off  the probe (off:\n"
-			       "      every mode the classic lookup along R)\n"
-			       "  --lod=L  every mirror read at lod L (the mips' debug view)\n"
-			       "  --diffuse=on|off  with --final, albedo (1 - metallic) E(N) / pi too (on)\n"
-			       "  --diffuse-projection=off|box  E at N, or box-projected from P\n"
-			       "  --seed=N  for modes that draw samples\n"
-			       "  --blend=on|off  blend the frame's probes (on), --max-probes=N (2)\n"
-			       "      a pixel, --normal-fade, --fallback=infinite|none|sky:FILE\n"
-			       "  --invalid=error|clamp|zero  NaN, Inf, roughness out of [0, 1]\n"
-			       "  -j N  threads   -v  say which plugin and environment   -V  versions\n"
-			       "  -f a|f  output format   -h  no output header\n"
-			       "  -H -x W -y H -c CHANNELS  headerless input\n", argv0);
-			fshut(stdout, "<stdout>");
-			return 0;
+		case OPT_HELP: want_help = 1; break;
 		default: usage();
 		}
+	}
+	/* -m MODE --help, in either order: that mode's help */
+	if (want_help && mode_given)
+		mode_help(RF_KIND_SHADE, spec);
+	if (want_help) {
+		/* the modes' list runs plugin code: what it prints stays out */
+		cli_keep_stdout();
+		fprintf(cli_stdout(), "usage: %s [options] [file]\n"
+		        "Samples the environment through each pixel's lobe: a mode gives\n"
+		        "the effective roughness (roughness.eff), the environment's mapping\n"
+		        "its lod, and D (from reflect-project) the direction; adds spec.R\n"
+		        "spec.G spec.B. See reflect-shade(1).\n", argv0);
+		mode_help_line(RF_KIND_SHADE, "approx");
+		fprintf(cli_stdout(), "  --env=FILE  environment (else PROBE_ENV, else the embedded room);\n"
+		        "      raw ones are prefiltered on the fly (--samples=N) and kept in\n"
+		        "      $XDG_CACHE_HOME/reflect for the next run (--no-cache: not)\n"
+		        "  --prefiltered --layout=L --srgb= --rgbm= --intensity= --size=N\n"
+		        "  --nonfinite=error|zero  a NaN or Inf texel refused (error) or 0\n"
+		        "  --mapping=unity|linear|exact --steps=N  roughness to lod\n"
+		        "  --final[=split-sum|unity|hdrp]  also R G B: spec x the split sum's\n"
+		        "      F0 A + B, Unity Standard's or HDRP's term\n"
+		        "  --box=... --center=X,Y,Z --box-projection=on|off  the probe (off:\n"
+		        "      every mode the classic lookup along R)\n"
+		        "  --lod=L  every mirror read at lod L (the mips' debug view)\n"
+		        "  --diffuse=on|off  with --final, albedo (1 - metallic) E(N) / pi too (on)\n"
+		        "  --diffuse-projection=off|box  E at N, or box-projected from P\n"
+		        "  --seed=N  for modes that draw samples\n"
+		        "  --blend=on|off  blend the frame's probes (on), --max-probes=N (2)\n"
+		        "      a pixel, --normal-fade, --fallback=infinite|none|sky:FILE\n"
+		        "  --invalid=error|clamp|zero  NaN, Inf, roughness out of [0, 1]\n"
+		        "  -j N  threads   -v  say which plugin and environment   -V  versions\n"
+		        "  -f a|f  output format   -h  no output header\n"
+		        "  -H -x W -y H -c CHANNELS  headerless input\n");
+		fshut(cli_stdout(), "<stdout>");
+		return 0;
 	}
 	if (argc - optind > 1)
 		usage();

@@ -34,20 +34,27 @@ test_expect_success '-l lists bevel, box and infinite: summary, file, channels' 
 	cat >expect <<-EOF &&
 	bevel${tab}box projection onto the probe box with its edges and corners rounded
 	  file: $B/projection-bevel.so (version 1.0, plugin ABI 1.1, reflect developers, MIT)
+	  found in: REFLECT_PLUGIN_PATH
 	  reads: P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z
+	  reads when present: roughness
 	  writes: R.X R.Y R.Z D.X D.Y D.Z hit.dist probe.dist
 	  parameters:
 	    radius=0.5${tab}rounding radius of the box${sq}s edges and corners, world units ([0, inf))
 	    offset=0${tab}grow the rounded box beyond the probe box (the write-up${sq}s shape) instead of keeping its faces on it (0 or 1)
 	    roughen=0${tab}radius added per width of the lobe at the hit (0: a fixed radius) ([0, inf))
+	  man page: none beside the file (reflect-plugin(7) says where one goes)
 	box${tab}box projection: look up where the reflected ray leaves the probe box
 	  file: $B/projection-box.so (version 1.0, plugin ABI 1.1, reflect developers, MIT)
+	  found in: REFLECT_PLUGIN_PATH
 	  reads: P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z
 	  writes: R.X R.Y R.Z D.X D.Y D.Z hit.dist probe.dist
+	  man page: none beside the file (reflect-plugin(7) says where one goes)
 	infinite${tab}no parallax: look up the reflection vector itself (distant environment)
 	  file: $B/projection-infinite.so (version 1.0, plugin ABI 1.1, reflect developers, MIT)
+	  found in: REFLECT_PLUGIN_PATH
 	  reads: N.X N.Y N.Z V.X V.Y V.Z
 	  writes: R.X R.Y R.Z D.X D.Y D.Z hit.dist probe.dist
+	  man page: none beside the file (reflect-plugin(7) says where one goes)
 	EOF
 	diff -u expect listed
 '
@@ -59,6 +66,7 @@ test_expect_success '-l lists parameters with default, help and range' '
 	cat >expect <<-EOF &&
 	echo_params${tab}test: echoes its parameters into its output channels
 	  file: $P/echo_params.so (version 1.0, plugin ABI 1.1, reflect tests, MIT)
+	  found in: REFLECT_PLUGIN_PATH
 	  reads: N.X
 	  writes: echo.scale echo.offset echo.count echo.invert echo.shape echo.nx echo.y echo.frame
 	  parameters:
@@ -67,6 +75,7 @@ test_expect_success '-l lists parameters with default, help and range' '
 	    count=3${tab}an integer (integer [1, 8])
 	    invert=0${tab}a switch (0 or 1)
 	    shape=round${tab}a choice; fail makes create fail (round|square|fail)
+	  man page: none beside the file (reflect-plugin(7) says where one goes)
 	EOF
 	diff -u expect echo
 '
@@ -81,7 +90,11 @@ test_expect_success '-l warns about every broken plugin and lists the rest' '
 		test_grep "^reflect-project: ignoring plugin .$P/$p\.so.: " err ||
 		return 1
 	done &&
-	test_line_count 17 err &&
+	# what a plugin prints while it is listed goes to stderr, never
+	# into the listing
+	test_grep "^print_stdout: loaded$" err &&
+	! grep "print_stdout: loaded" out &&
+	test_line_count 18 err &&
 	! grep "no_entry\|not_plugin" err &&
 	test_grep "^box$tab" out &&
 	test_grep "^infinite$tab" out &&

@@ -276,6 +276,20 @@ RF_EXTERN const char *rf_module_path(const rf_module *m);
 /* The directories searched, in order, as one ':'-separated string owned
  * by the library (valid until the next call). */
 RF_EXTERN const char *rf_plugin_search_path(void);
+/* Directory i (from 0) of the search path, and where it comes from
+ * ("REFLECT_PLUGIN_PATH", "REFLECT_PLUGIN_SYSTEM_PATH", "the installed
+ * plugin directory"): 1, or 0 past the last.  Both are the library's, valid until the next call. */
+RF_EXTERN int rf_plugin_search_dir(size_t i, const char **dir, const char **origin);
+/* Where in the search path a plugin file lies: the origin of the first
+ * directory that holds it, as rf_plugin_search_dir names it, or NULL
+ * (a path given to -m). */
+RF_EXTERN const char *rf_plugin_dir_origin(const char *path);
+/* The man page of the mode p loaded from path: reflect-mode-KIND-NAME.7
+ * or reflect-mode-NAME.7 beside the file, or for a mode of the installed
+ * plugin directory in the installation's man7; its path into buf and 0,
+ * else RF_ENOTFOUND. */
+RF_EXTERN int rf_plugin_man_page(const char *path, const struct rf_plugin *p, char *buf,
+                                 size_t len);
 
 /* Checks the directories of REFLECT_PLUGIN_PATH and of
  * REFLECT_PLUGIN_SYSTEM_PATH (or the installed one): RF_EPLUGIN, with err

@@ -103,10 +103,19 @@ unknown_param(const struct rf_plugin *p, const char *name, char *err, size_t err
 	size_t k = 0;
 	uint32_t i;
 
+	const char *names[256];
+	int close;
+
 	for (i = 0; i < p->nparams && k + 2 < sizeof(known); i++)
 		k += (size_t)snprintf(known + k, sizeof(known) - k, "%s%s",
 		                      i ? ", " : "", p->params[i].name);
-	if (p->nparams)
+	for (i = 0; i < p->nparams && i < 256; i++)
+		names[i] = p->params[i].name;
+	close = rf__closest(name, names, i);
+	if (close >= 0)
+		rf__format(err, errlen, "mode '%s' has no parameter '%s'; did you mean "
+		           "'%s'? (it has: %s)", p->name, name, names[close], known);
+	else if (p->nparams)
 		rf__format(err, errlen, "mode '%s' has no parameter '%s' (it has: %s)",
 		           p->name, name, known);
 	else

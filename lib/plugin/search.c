@@ -40,18 +40,97 @@ installed_plugindir(void)
 	return REFLECT_PLUGINDIR;
 }
 
+/* The lists of the search path in order, each with the name of where it
+ * comes from (for messages and listings). */
+struct dir_list {
+	const char *list;
+	const char *origin;
+};
+
+static size_t
+search_lists(struct dir_list lists[2])
+{
+	const char *sys = getenv("REFLECT_PLUGIN_SYSTEM_PATH");
+
+	lists[0].list = getenv("REFLECT_PLUGIN_PATH");
+	lists[0].origin = "REFLECT_PLUGIN_PATH";
+	lists[1].list = sys ? sys : installed_plugindir();
+	lists[1].origin = sys ? "REFLECT_PLUGIN_SYSTEM_PATH" : "the installed plugin directory";
+	return 2;
+}
+
 const char *
 rf_plugin_search_path(void)
 {
-	static __thread char buf[8192];
-	const char *user = getenv("REFLECT_PLUGIN_PATH");
-	const char *sys = getenv("REFLECT_PLUGIN_SYSTEM_PATH");
+	static __thread char buf[16384];
+	struct dir_list lists[2];
+	size_t i, n = search_lists(lists), used = 0;
 
-	if (!sys)
-		sys = installed_plugindir();
-	rf__format(buf, sizeof(buf), "%s%s%s", user && *user ? user : "",
-	           user && *user && *sys ? ":" : "", sys);
+	*buf = '\0';
+	for (i = 0; i < n; i++) {
+		const char *l = lists[i].list;
+
+		if (!l || !*l)
+			continue;
+		snprintf(buf + used, sizeof(buf) - used, "%s%s", used ? ":" : "", l);
+		used = strlen(buf);
+	}
 	return buf;
+}
+
+int
+rf_plugin_search_dir(size_t i, const char **dir, const char **origin)
+{
+	static __thread char buf[4096];
+	struct dir_list lists[2];
+	size_t k, n = search_lists(lists), len;
+	const char *p;
+
+	for (k = 0; k < n; k++)
+		for (p = lists[k].list; p && *p; p += len + (p[len] == ':')) {
+			len = strcspn(p, ":");
+			if (!len || i--)
+				continue;
+			snprintf(buf, sizeof(buf), "%.*s", (int)len, p);
+			*dir = buf;
+			*origin = lists[k].origin;
+			return 1;
+		}
+	return 0;
+}
+
+/* Whether a and b name the same directory: the same text (trailing
+ * slashes aside), or the same inode. */
+static int
+same_dir(const char *a, size_t alen, const char *b)
+{
+	size_t blen = strlen(b);
+	struct stat sa, sb;
+	char pa[4096];
+
+	while (alen > 1 && a[alen - 1] == '/')
+		alen--;
+	while (blen > 1 && b[blen - 1] == '/')
+		blen--;
+	if (alen == blen && !strncmp(a, b, alen))
+		return 1;
+	snprintf(pa, sizeof(pa), "%.*s", (int)alen, a);
+	return stat(pa, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+	       sa.st_ino == sb.st_ino;
+}
+
+const char *
+rf_plugin_dir_origin(const char *path)
+{
+	const char *slash = strrchr(path, '/'), *dir, *origin;
+	size_t i;
+
+	if (!slash)
+		return NULL;
+	for (i = 0; rf_plugin_search_dir(i, &dir, &origin); i++)
+		if (same_dir(path, slash == path ? 1 : (size_t)(slash - path), dir))
+			return origin;
+	return NULL;
 }
 
 /*
@@ -155,10 +234,60 @@ other_kind(rf_module **mp, const char *dirs, const char *name, unsigned kind, ch
 	return 1;
 }
 
+static unsigned file_mode(const char *file, const char **rest);
+
+/*
+ * A mode of the kind (any kind for 0) in the search path whose name is
+ * closest to a misspelt one, into near (empty when none is close): the
+ * names are read from the files' names, nothing is loaded.
+ */
+static void
+closest_mode(const char *dirs, const char *name, unsigned kind, char *near, size_t len)
+{
+	const char *names[512], *p, *rest;
+	char *store[512];
+	size_t n, count = 0, i;
+	int best;
+
+	*near = '\0';
+	for (p = dirs; *p && count < 512; p += n + (p[n] == ':')) {
+		char dir[4096];
+		struct dirent *e;
+		DIR *d;
+
+		n = strcspn(p, ":");
+		if (!n)
+			continue;
+		snprintf(dir, sizeof(dir), "%.*s", (int)n, p);
+		if (!(d = opendir(dir)))
+			continue;
+		while ((e = readdir(d)) && count < 512) {
+			size_t l = strlen(e->d_name);
+			unsigned k;
+
+			if (l <= 3 || strcmp(e->d_name + l - 3, ".so"))
+				continue;
+			k = file_mode(e->d_name, &rest);
+			if (k && kind && k != kind)
+				continue;
+			if (!(store[count] = strndup(rest, strlen(rest) - 3)))
+				break;
+			names[count] = store[count];
+			count++;
+		}
+		closedir(d);
+	}
+	if ((best = rf__closest(name, names, count)) >= 0)
+		snprintf(near, len, "%s", names[best]);
+	for (i = 0; i < count; i++)
+		free(store[i]);
+}
+
 int
 rf_module_load(rf_module **mp, const char *name, unsigned kind, char *err,
                size_t errlen)
 {
+	char near[256];
 	char path[4096], why[512], not_plugin[1024] = "";
 	const char *dirs, *p, *kn;
 	struct stat st;
@@ -212,13 +341,15 @@ rf_module_load(rf_module **mp, const char *name, unsigned kind, char *err,
 	}
 	n = strlen(name);
 	kn = kind ? rf_plugin_kind_name(kind) : NULL;
-	rf__format(err, errlen, "unknown %s mode '%s': no %s%s%s%s%s.so in %s%s%s%s%s "
+	closest_mode(dirs, name, kind, near, sizeof(near));
+	rf__format(err, errlen, "unknown %s mode '%s': no %s%s%s%s%s.so in %s%s%s%s%s%s%s%s "
 	           "(-l lists the modes)", kn ? kn : "plugin", name, kn ? kn : "",
 	           kn ? "-" : "", kn ? name : "", kn ? ".so or " : "", name,
 	           *dirs ? "'" : "", *dirs ? dirs : "an empty search path", *dirs ? "'" : "",
 	           n > 3 && !strcmp(name + n - 3, ".so")
 	           ? "; a path to a file needs a '/', as in ./" : "",
-	           n > 3 && !strcmp(name + n - 3, ".so") ? name : "");
+	           n > 3 && !strcmp(name + n - 3, ".so") ? name : "",
+	           *near ? "; did you mean '" : "", near, *near ? "'?" : "");
 	return RF_ENOTFOUND;
 }
 
@@ -388,4 +519,51 @@ out:
 	free(files);
 	free(dirs);
 	return rc;
+}
+
+#ifndef REFLECT_MANDIR
+#define REFLECT_MANDIR "/usr/local/share/man"
+#endif
+
+/* page, when it is a regular file, into buf: 0, else RF_ENOTFOUND. */
+static int
+page_at(char *buf, size_t len, const char *dir, size_t dirlen, const char *sub,
+        const char *kn, const char *name)
+{
+	struct stat st;
+
+	if (kn) {
+		snprintf(buf, len, "%.*s%s/reflect-mode-%s-%s.7", (int)dirlen, dir, sub, kn,
+		         name);
+		if (stat(buf, &st) == 0 && S_ISREG(st.st_mode))
+			return 0;
+	}
+	snprintf(buf, len, "%.*s%s/reflect-mode-%s.7", (int)dirlen, dir, sub, name);
+	return stat(buf, &st) == 0 && S_ISREG(st.st_mode) ? 0 : RF_ENOTFOUND;
+}
+
+int
+rf_plugin_man_page(const char *path, const struct rf_plugin *p, char *buf, size_t len)
+{
+	const char *slash = strrchr(path, '/'), *kn = rf_plugin_kind_name(p->kind);
+	size_t dirlen = slash ? (size_t)(slash - path) : 1;
+	Dl_info info;
+
+	if (!slash)
+		path = ".";
+	/* beside the plugin, as a third party installs it */
+	if (page_at(buf, len, path, dirlen, "", kn, p->name) == 0)
+		return 0;
+	/* the modes of the installed plugin directory: the installation's
+	 * manual, beside the library when the tree was moved, else where
+	 * it was built for */
+	if (!same_dir(path, dirlen, installed_plugindir()))
+		return RF_ENOTFOUND;
+	if (*REFLECT_PLUGINDIR_REL && dladdr((void *)rf_plugin_search_path, &info) &&
+	    info.dli_fname && (slash = strrchr(info.dli_fname, '/')) &&
+	    page_at(buf, len, info.dli_fname, (size_t)(slash - info.dli_fname),
+	            "/../share/man/man7", kn, p->name) == 0)
+		return 0;
+	return page_at(buf, len, REFLECT_MANDIR, strlen(REFLECT_MANDIR), "/man7", kn,
+	               p->name);
 }

@@ -11,6 +11,10 @@
 #define RF__PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
 #define RF__PRINTF(a, b)
+/* The index of the name among names[n] that word most likely misspells
+ * (a few edits away, the fewest; not word itself), or -1. */
+int rf__closest(const char *word, const char *const *names, size_t n);
+
 #endif
 
 /* Writes a message into buf: one printable line whatever its arguments
@@ -41,5 +45,9 @@ int rf__scan_doubles(const char *s, double *out, int n);
 int rf__scan_floats(const char *s, float *out, int n);
 /* What a file of this st_mode is, for messages: "a directory", "a FIFO"... */
 const char *rf__file_kind(unsigned mode);
+
+/* The index of the name among names[n] that word most likely misspells
+ * (a few edits away, the fewest; not word itself), or -1. */
+int rf__closest(const char *word, const char *const *names, size_t n);
 
 #endif
