@@ -198,6 +198,9 @@ CLI_NORETURN void mode_list(unsigned kind);
 /* -m MODE --help: the mode's summary, file and where it was found,
  * channels, parameters and man page, on standard output. */
 CLI_NORETURN void mode_help(unsigned kind, const char *spec);
+/* reflect-info --plugins: the search path's directories, each mode of
+ * every kind with its file and where that lies, the shadowed files. */
+CLI_NORETURN void mode_list_all(void);
 /* --help's line for -m: the modes of the kind the search path holds,
  * and the default. */
 void mode_help_line(unsigned kind, const char *def);

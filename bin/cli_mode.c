@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <math.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -257,6 +258,64 @@ mode_list(unsigned kind)
 		     *dirs ? "'" : "");
 	fshut(cli_stdout(), "<stdout>");
 	exit(l.count ? 0 : EXIT_BAD_INPUT);
+}
+
+/* reflect-info --plugins: every mode of every kind, by kind, and where
+ * each was found. */
+static void
+all_one(void *arg, const char *path, int shadowed)
+{
+	struct listing *l = arg;
+	const char *first, *origin;
+	char err[1024];
+	rf_module *m;
+	const struct rf_plugin *p;
+
+	if (!shadowed)
+		remember(l, path);
+	if (rf_module_load_file(&m, path, 0, err, sizeof(err)) < 0) {
+		warn("ignoring %s", err);
+		return;
+	}
+	p = rf_module_plugin(m);
+	if (shadowed) {
+		first = winner(l, p);
+		fprintf(cli_stdout(), "# %s: shadowed by %s, earlier in the search path\n", path,
+		        first ? first : "an earlier file");
+	} else {
+		origin = rf_plugin_dir_origin(path);
+		l->count++;
+		fprintf(cli_stdout(), "%s\t%s\t%s\t%s\n", rf_plugin_kind_name(p->kind), p->name,
+		        path, origin ? origin : "");
+	}
+	rf_module_unload(m);
+}
+
+void
+mode_list_all(void)
+{
+	struct listing l = { 0, 0, NULL, 0 };
+	const char *dir, *origin;
+	struct stat st;
+	size_t i;
+	int rc;
+
+	cli_keep_stdout();
+	check_search_path();
+	fprintf(cli_stdout(), "search path, in order (a mode's first file wins):\n");
+	for (i = 0; rf_plugin_search_dir(i, &dir, &origin); i++)
+		fprintf(cli_stdout(), "  %s\t%s%s\n", dir, origin,
+		        stat(dir, &st) == 0 && S_ISDIR(st.st_mode) ? "" : " (not there)");
+	if (!i)
+		fprintf(cli_stdout(), "  (empty)\n");
+	fprintf(cli_stdout(), "modes (kind, name, file, where it was found):\n");
+	if ((rc = rf_plugin_scan(all_one, &l)) < 0)
+		die_status(rc, NULL);
+	for (i = 0; i < l.nfirst; i++)
+		free(l.first[i]);
+	free(l.first);
+	fshut(cli_stdout(), "<stdout>");
+	exit(0);
 }
 
 /* The names of the modes of a kind that -m reaches, for the help. */

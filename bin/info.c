@@ -8,7 +8,8 @@
 static void
 usage(void)
 {
-	fprintf(stderr, "usage: %s [-sV] [-H -x W -y H -c CHANNELS] [file]\n", argv0);
+	fprintf(stderr, "usage: %s [-sV] [-H -x W -y H -c CHANNELS] [file]\n"
+	        "       %s --plugins\n", argv0, argv0);
 	exit(EXIT_BAD_INPUT);
 }
 
@@ -107,11 +108,12 @@ main(int argc, char **argv)
 {
 	static const struct option long_options[] = {
 		{ "help", no_argument, NULL, 'Q' },
+		{ "plugins", no_argument, NULL, 'P' },
 		{ NULL, 0, NULL, 0 },
 	};
 	struct cli_io io = { 0 };
 	const rf_header *h;
-	int c, stats = 0;
+	int c, stats = 0, plugins = 0;
 
 	cli_init(argc, argv);
 	while ((c = getopt_long(argc, argv, "sVHx:y:c:", long_options, NULL)) != -1) {
@@ -119,24 +121,30 @@ main(int argc, char **argv)
 			continue;
 		switch (c) {
 		case 's': stats = 1; break;
+		case 'P': plugins = 1; break;
 		case 'V': print_version(); break;
 		case 'Q':
 			printf("usage: %s [-sV] [-H -x W -y H -c CHANNELS] [file]\n"
+			       "       %s --plugins\n"
 			       "Prints the header of every frame of a stream (stdin when no file\n"
 			       "or '-'). See reflect-info(1).\n"
 			       "  -s  per-channel min, max and mean of the finite values, and\n"
 			       "      the counts of NaN and Inf\n"
 			       "  -H -x W -y H -c CHANNELS  headerless float input of W x H\n"
 			       "      pixels; CHANNELS is a list of names or a count\n"
-			       "  -V  versions of the tool, the library and the plugin ABI\n",
-			       argv0);
+			       "  -V  versions of the tool, the library and the plugin ABI\n"
+			       "  --plugins  the plugin search path, and every mode in it: its\n"
+			       "      kind, name, file and where that was found\n",
+			       argv0, argv0);
 			fshut(stdout, "<stdout>");
 			return 0;
 		default: usage();
 		}
 	}
-	if (argc - optind > 1)
+	if (argc - optind > 1 || (plugins && argc > optind))
 		usage();
+	if (plugins)
+		mode_list_all();
 	cli_io_open(&io, optind < argc ? argv[optind] : NULL);
 	while (cli_io_next(&io, &h)) {
 		print_header(h, rf_reader_frame_index(io.reader));

@@ -23,6 +23,10 @@ cd "$TRASH" || exit 1
 # never the user's, empty at the start of every test
 XDG_CACHE_HOME="$TRASH/.cache"
 export XDG_CACHE_HOME
+# the user plugin directory ($XDG_DATA_HOME/reflect/plugins): the test's
+# own, never the user's
+XDG_DATA_HOME="$TRASH/.local/share"
+export XDG_DATA_HOME
 test_log="$TRASH/.log"
 
 # Seconds a step may take before it is killed and fails: a hang must

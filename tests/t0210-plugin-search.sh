@@ -373,4 +373,75 @@ test_expect_success 'without -v nothing goes to stderr' '
 	test_line_count 0 err
 '
 
+# The user plugin directory, $XDG_DATA_HOME/reflect/plugins (else
+# ~/.local/share/reflect/plugins), is searched last, when it exists.
+test_expect_success 'the user plugin directory: searched after the others, by default' '
+	mkdir -p xdg/reflect/plugins &&
+	cp "$P/echo_params.so" xdg/reflect/plugins/ &&
+	test_expect_code 1 env XDG_DATA_HOME="$PWD/nowhere" \
+		reflect-project -m echo_params <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: unknown projection mode .echo_params.: no projection-echo_params\.so or echo_params\.so in .$B. (-l lists the modes)$" err &&
+	XDG_DATA_HOME="$PWD/xdg" reflect-project -v -m echo_params <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .echo_params. from .$PWD/xdg/reflect/plugins/echo_params\.so. " err &&
+	XDG_DATA_HOME="$PWD/xdg" reflect-project -l >out &&
+	awk -v t="$tab" "\$0 ~ \"^echo_params\" t { on = 1; print; next }
+		on && /^[^ ]/ { on = 0 } on" out >echo &&
+	test_grep "^  file: $PWD/xdg/reflect/plugins/echo_params\.so " echo &&
+	test_grep "^  found in: the user plugin directory$" echo
+'
+
+test_expect_success 'without XDG_DATA_HOME (or a relative one): ~/.local/share/reflect/plugins' '
+	mkdir -p home/.local/share/reflect/plugins &&
+	cp "$P/echo_params.so" home/.local/share/reflect/plugins/ &&
+	(
+		unset XDG_DATA_HOME &&
+		HOME="$PWD/home" reflect-project -v -m echo_params <gbuf >/dev/null 2>err
+	) &&
+	test_grep "from .$PWD/home/.local/share/reflect/plugins/echo_params\.so. " err &&
+	XDG_DATA_HOME=xdg HOME="$PWD/home" reflect-project -v -m echo_params \
+		<gbuf >/dev/null 2>err &&
+	test_grep "from .$PWD/home/.local/share/reflect/plugins/echo_params\.so. " err
+'
+
+# The first directory wins: a mode of the user's own never replaces an
+# installed one of the same kind and name; -l says which file wins.
+test_expect_success 'the user plugin directory shadows nothing before it' '
+	cp "$B/projection-box.so" xdg/reflect/plugins/ &&
+	XDG_DATA_HOME="$PWD/xdg" reflect-project -v -m box <gbuf >/dev/null 2>err &&
+	test_grep "^reflect-project: mode .box. from .$B/projection-box\.so.$" err &&
+	XDG_DATA_HOME="$PWD/xdg" reflect-project -l >out &&
+	test_grep "^# $PWD/xdg/reflect/plugins/projection-box\.so: shadowed by $B/projection-box\.so, earlier in the search path$" out &&
+	rm xdg/reflect/plugins/projection-box.so
+'
+
+test_expect_success 'a user plugin directory anyone may write to is refused' '
+	mkdir -p open/reflect/plugins &&
+	chmod 777 open/reflect/plugins &&
+	test_expect_code 1 env XDG_DATA_HOME="$PWD/open" \
+		reflect-project -m box <gbuf >/dev/null 2>err &&
+	test_one_line_message reflect-project err &&
+	test_grep "^reflect-project: plugin directory .$PWD/open/reflect/plugins. in the user plugin directory is writable by every user (mode 0777)" err &&
+	chmod 755 open/reflect/plugins
+'
+
+test_expect_success 'reflect-info --plugins: the search path, and where each mode was found' '
+	XDG_DATA_HOME="$PWD/xdg" reflect-info --plugins >out 2>err &&
+	test_line_count 0 err &&
+	cat >expect <<-EOF &&
+	search path, in order (a mode${sq}s first file wins):
+	  $B${tab}REFLECT_PLUGIN_PATH
+	  $PWD/xdg/reflect/plugins${tab}the user plugin directory
+	modes (kind, name, file, where it was found):
+	EOF
+	head -n 4 out >head &&
+	diff -u expect head &&
+	test_grep "^projection${tab}box${tab}$B/projection-box\.so${tab}REFLECT_PLUGIN_PATH$" out &&
+	test_grep "^shade${tab}approx${tab}$B/shade-approx\.so${tab}REFLECT_PLUGIN_PATH$" out &&
+	test_grep "^projection${tab}echo_params${tab}$PWD/xdg/reflect/plugins/echo_params\.so${tab}the user plugin directory$" out &&
+	XDG_DATA_HOME="$PWD/nowhere" reflect-info --plugins >out &&
+	test_grep "^  $PWD/nowhere/reflect/plugins${tab}the user plugin directory (not there)$" out &&
+	test_expect_code 1 reflect-info --plugins gbuf 2>err &&
+	test_grep "^usage: reflect-info" err
+'
+
 test_done

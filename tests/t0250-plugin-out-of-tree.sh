@@ -307,6 +307,49 @@ test_expect_success 'the installed reflect-shade runs taps: a uniform sky, a mir
 	test_cmp_numbers a b 1e-5
 '
 
+# The installed tools with nothing set but XDG_DATA_HOME: the plugins
+# beside the library, the user plugin directory under $oot/xdg.
+user () {
+	env -u REFLECT_PLUGIN_PATH -u REFLECT_PLUGIN_SYSTEM_PATH -u LD_LIBRARY_PATH \
+		XDG_DATA_HOME="$oot/xdg" "$prefix/bin/$@"
+}
+
+test_expect_success 'make install-user: the installed tools find the examples, nothing set' '
+	(unset MAKEFLAGS MFLAGS MAKELEVEL && XDG_DATA_HOME="$oot/xdg" \
+		make -C "$oot/ex" PKG_CONFIG="$oot/pc" install-user >make.log 2>&1) &&
+	u="$oot/xdg/reflect/plugins" &&
+	test -f "$u/sphere.so" && test -f "$u/ratio.so" && test -f "$u/taps.so" &&
+	user reflect-project -m sphere --help >out 2>err &&
+	test_line_count 0 err &&
+	test_grep "^  file: $u/sphere\.so (version 1\.0, plugin ABI 1\.1, reflect developers, public domain)$" out &&
+	test_grep "^  found in: the user plugin directory$" out &&
+	user reflect-project -fa -m sphere:radius=2 --box=-10,-10,-10,10,10,10 \
+		--center=0,0,0 gbuf >out3 &&
+	data out3 >got3 &&
+	test_cmp_numbers full got3 0 &&
+	user reflect-shade -fa -m ratio rgb >out 2>/dev/null &&
+	data out | cut -f7 >got &&
+	printf "%s\n" 0.353553 0.5 0.8 0 >expect &&
+	test_cmp_numbers expect got 1e-6 &&
+	user reflect-info --plugins >out &&
+	tab=$(printf "\t") &&
+	test_grep "^  $u${tab}the user plugin directory$" out &&
+	test_grep "^projection${tab}sphere${tab}$u/sphere\.so${tab}the user plugin directory$" out &&
+	test_grep "^shade${tab}taps${tab}$u/taps\.so${tab}the user plugin directory$" out &&
+	test_grep "^projection${tab}box${tab}.*/lib/reflect-1/projection-box\.so${tab}the installed plugin directory$" out
+'
+
+# The modes installed with reflect: their man pages in the prefix's man7.
+test_expect_success '-m MODE --help names an installed mode.s installed man page' '
+	user reflect-shade -m approx --help >out &&
+	test_grep "^  found in: the installed plugin directory$" out &&
+	test_grep "^  man page: $prefix/share/man/man7/reflect-mode-approx\.7$" out &&
+	user reflect-occlude -m box --help >out &&
+	test_grep "^  man page: $prefix/share/man/man7/reflect-mode-occlusion-box\.7$" out &&
+	user reflect-project -m box --help >out &&
+	test_grep "^  man page: $prefix/share/man/man7/reflect-mode-box\.7$" out
+'
+
 test_expect_success 'clean up the out-of-tree directory' '
 	rm -rf "$oot"
 '

@@ -274,11 +274,16 @@ RF_EXTERN const struct rf_plugin *rf_module_plugin(const rf_module *m);
 RF_EXTERN const char *rf_module_path(const rf_module *m);
 
 /* The directories searched, in order, as one ':'-separated string owned
- * by the library (valid until the next call). */
+ * by the library (valid until the next call): REFLECT_PLUGIN_PATH's,
+ * REFLECT_PLUGIN_SYSTEM_PATH's (when set) or the installed directory,
+ * then the user's own, $XDG_DATA_HOME/reflect/plugins (else
+ * ~/.local/share/reflect/plugins) when it is a directory. */
 RF_EXTERN const char *rf_plugin_search_path(void);
 /* Directory i (from 0) of the search path, and where it comes from
  * ("REFLECT_PLUGIN_PATH", "REFLECT_PLUGIN_SYSTEM_PATH", "the installed
- * plugin directory"): 1, or 0 past the last.  Both are the library's, valid until the next call. */
+ * plugin directory", "the user plugin directory", the last one even
+ * when it is not made yet): 1, or 0 past the last.  Both are the
+ * library's, valid until the next call. */
 RF_EXTERN int rf_plugin_search_dir(size_t i, const char **dir, const char **origin);
 /* Where in the search path a plugin file lies: the origin of the first
  * directory that holds it, as rf_plugin_search_dir names it, or NULL

@@ -40,6 +40,39 @@ installed_plugindir(void)
 	return REFLECT_PLUGINDIR;
 }
 
+/* The user's own plugin directory, $XDG_DATA_HOME/reflect/plugins, or
+ * ~/.local/share/reflect/plugins when XDG_DATA_HOME is unset or not
+ * absolute (as the XDG base directory rules have it); "" without HOME,
+ * or for a directory whose name holds a ':', which no search path can
+ * hold. */
+static const char *
+user_plugindir(void)
+{
+	static __thread char dir[4096];
+	const char *xdg = getenv("XDG_DATA_HOME"), *home = getenv("HOME");
+
+	if (xdg && *xdg == '/')
+		snprintf(dir, sizeof(dir), "%s/reflect/plugins", xdg);
+	else if (home && *home == '/')
+		snprintf(dir, sizeof(dir), "%s/.local/share/reflect/plugins", home);
+	else
+		*dir = '\0';
+	if (strchr(dir, ':'))
+		*dir = '\0';
+	return dir;
+}
+
+/* The user plugin directory when it is one: a directory not made yet
+ * is left out of the search path and its messages. */
+static const char *
+user_plugindir_present(void)
+{
+	const char *dir = user_plugindir();
+	struct stat st;
+
+	return *dir && stat(dir, &st) == 0 && S_ISDIR(st.st_mode) ? dir : "";
+}
+
 /* The lists of the search path in order, each with the name of where it
  * comes from (for messages and listings). */
 struct dir_list {
@@ -48,7 +81,7 @@ struct dir_list {
 };
 
 static size_t
-search_lists(struct dir_list lists[2])
+search_lists(struct dir_list lists[3], int all)
 {
 	const char *sys = getenv("REFLECT_PLUGIN_SYSTEM_PATH");
 
@@ -56,15 +89,17 @@ search_lists(struct dir_list lists[2])
 	lists[0].origin = "REFLECT_PLUGIN_PATH";
 	lists[1].list = sys ? sys : installed_plugindir();
 	lists[1].origin = sys ? "REFLECT_PLUGIN_SYSTEM_PATH" : "the installed plugin directory";
-	return 2;
+	lists[2].list = all ? user_plugindir() : user_plugindir_present();
+	lists[2].origin = "the user plugin directory";
+	return 3;
 }
 
 const char *
 rf_plugin_search_path(void)
 {
 	static __thread char buf[16384];
-	struct dir_list lists[2];
-	size_t i, n = search_lists(lists), used = 0;
+	struct dir_list lists[3];
+	size_t i, n = search_lists(lists, 0), used = 0;
 
 	*buf = '\0';
 	for (i = 0; i < n; i++) {
@@ -82,8 +117,8 @@ int
 rf_plugin_search_dir(size_t i, const char **dir, const char **origin)
 {
 	static __thread char buf[4096];
-	struct dir_list lists[2];
-	size_t k, n = search_lists(lists), len;
+	struct dir_list lists[3];
+	size_t k, n = search_lists(lists, 1), len;
 	const char *p;
 
 	for (k = 0; k < n; k++)
@@ -182,9 +217,12 @@ rf_plugin_path_check(char *err, size_t errlen, char *warning, size_t warnlen)
 	if ((rc = check_list(getenv("REFLECT_PLUGIN_PATH"), "REFLECT_PLUGIN_PATH", err, errlen,
 	                     warning, warnlen)) < 0)
 		return rc;
-	return check_list(sys ? sys : installed_plugindir(),
-	                  sys ? "REFLECT_PLUGIN_SYSTEM_PATH" : "the installed plugin directory",
-	                  err, errlen, warning, warnlen);
+	if ((rc = check_list(sys ? sys : installed_plugindir(),
+	                     sys ? "REFLECT_PLUGIN_SYSTEM_PATH"
+	                         : "the installed plugin directory",
+	                     err, errlen, warning, warnlen)) < 0)
+		return rc;
+	return check_list(user_plugindir(), "the user plugin directory", err, errlen, NULL, 0);
 }
 
 static int
@@ -531,15 +569,24 @@ page_at(char *buf, size_t len, const char *dir, size_t dirlen, const char *sub,
         const char *kn, const char *name)
 {
 	struct stat st;
+	char *real;
 
 	if (kn) {
 		snprintf(buf, len, "%.*s%s/reflect-mode-%s-%s.7", (int)dirlen, dir, sub, kn,
 		         name);
 		if (stat(buf, &st) == 0 && S_ISREG(st.st_mode))
-			return 0;
+			goto found;
 	}
 	snprintf(buf, len, "%.*s%s/reflect-mode-%s.7", (int)dirlen, dir, sub, name);
-	return stat(buf, &st) == 0 && S_ISREG(st.st_mode) ? 0 : RF_ENOTFOUND;
+	if (stat(buf, &st) < 0 || !S_ISREG(st.st_mode))
+		return RF_ENOTFOUND;
+found:
+	/* lib/../share/man, as a moved tree finds it, said plainly */
+	if (strstr(buf, "/../") && (real = realpath(buf, NULL))) {
+		snprintf(buf, len, "%s", real);
+		free(real);
+	}
+	return 0;
 }
 
 int
