@@ -166,40 +166,71 @@ cli_put_quoted(FILE *fp, const char *s)
 	fputc('\'', fp);
 }
 
+/* The message, strerror appended after a format ending in ':', into
+ * buf; written to stderr after the tool's name. */
 static void
-vmessage(const char *fmt, va_list ap)
+vmessage(char *buf, size_t size, const char *fmt, va_list ap)
 {
-	size_t n = strlen(fmt);
+	size_t n = strlen(fmt), len;
 	int e = errno;
-	char buf[4096];
 
-	vsnprintf(buf, sizeof(buf), fmt, ap);
+	vsnprintf(buf, size, fmt, ap);
+	len = strlen(buf);
+	if (n && fmt[n - 1] == ':')
+		snprintf(buf + len, size - len, " %s", strerror(e));
 	cli_message_start();
 	put_clean(stderr, buf);
-	if (n && fmt[n - 1] == ':')
-		fprintf(stderr, " %s", strerror(e));
 	fputc('\n', stderr);
+}
+
+/* The stream the tool writes, ended as failed when it dies. */
+static rf_writer *guarded_stream;
+
+void
+cli_guard_stream(rf_writer *w)
+{
+	guarded_stream = w;
+}
+
+/* A tool that dies after its stream began ends it with a trailer that
+ * every reader refuses (rf_writer_fail): the stream may stop at the end
+ * of a frame's rows, which a reader would take for a whole stream. */
+static void
+end_stream_failed(const char *msg)
+{
+	static atomic_flag ended = ATOMIC_FLAG_INIT;
+	char line[RF_HEADER_LINE_MAX];
+
+	if (!guarded_stream || atomic_flag_test_and_set(&ended))
+		return;
+	snprintf(line, sizeof(line), "%s: %s", argv0, msg);
+	/* a stream that cannot take it is broken already, and said so */
+	(void)rf_writer_fail(guarded_stream, line);
 }
 
 void
 die(const char *fmt, ...)
 {
+	char buf[4096];
 	va_list ap;
 
 	va_start(ap, fmt);
-	vmessage(fmt, ap);
+	vmessage(buf, sizeof(buf), fmt, ap);
 	va_end(ap);
+	end_stream_failed(buf);
 	exit(EXIT_BAD_INPUT);
 }
 
 void
 die_sys(const char *fmt, ...)
 {
+	char buf[4096];
 	va_list ap;
 
 	va_start(ap, fmt);
-	vmessage(fmt, ap);
+	vmessage(buf, sizeof(buf), fmt, ap);
 	va_end(ap);
+	end_stream_failed(buf);
 	exit(EXIT_SYSTEM);
 }
 
@@ -208,9 +239,11 @@ die_status(int status, const char *msg)
 {
 	if (status == RF_EIO && errno == EPIPE)
 		exit(EXIT_SYSTEM); /* downstream closed: no message */
+	msg = msg && *msg ? msg : rf_strerror(status);
 	cli_message_start();
-	put_clean(stderr, msg && *msg ? msg : rf_strerror(status));
+	put_clean(stderr, msg);
 	fputc('\n', stderr);
+	end_stream_failed(msg);
 	exit(status == RF_EIO || status == RF_ENOMEM ? EXIT_SYSTEM : EXIT_BAD_INPUT);
 }
 
@@ -226,10 +259,11 @@ die_header_key(int rc)
 void
 warn(const char *fmt, ...)
 {
+	char buf[4096];
 	va_list ap;
 
 	va_start(ap, fmt);
-	vmessage(fmt, ap);
+	vmessage(buf, sizeof(buf), fmt, ap);
 	va_end(ap);
 }
 

@@ -38,6 +38,10 @@ CLI_NORETURN void die_status(int status, const char *msg);
 /* Dies for a header key the library refused (rc): a value too long for
  * a header line, or out of memory. */
 CLI_NORETURN void die_header_key(int rc);
+/* The stream w (NULL: none) is ended as failed (rf_writer_fail, with
+ * the message) when the tool dies after it began: cli_io_open guards
+ * the stream it opens. */
+void cli_guard_stream(rf_writer *w);
 void warn(const char *fmt, ...) CLI_PRINTF(1, 2);
 /* For a message written in pieces: "tool: ", and a name in quotes; both
  * write control bytes as '?', as every message does. */
@@ -95,6 +99,9 @@ struct cli_io {
 	rf_writer *writer;
 	size_t frames;          /* read so far: the current one's number */
 	enum rf_invalid invalid; /* --invalid, for the stages that check input */
+	/* A file the tool made of the last frame (NULL: none), removed
+	 * when a failed stream's trailer follows that frame. */
+	const char *made;
 };
 
 /* An input's first bytes, read without taking them from it (cli_sniff.c). */

@@ -191,6 +191,7 @@ cli_io_open(struct cli_io *io, const char *path)
 		die_status(rc, NULL);
 	if ((rc = rf_writer_open(&io->writer, cli_stdout(), "<stdout>", &wopt)) < 0)
 		die_status(rc, NULL);
+	cli_guard_stream(io->writer);
 }
 
 int
@@ -198,6 +199,11 @@ cli_io_next(struct cli_io *io, const rf_header **h)
 {
 	int rc = rf_reader_next_frame(io->reader, h);
 
+	/* the frame before a failed stream's trailer is not whole: a file
+	 * made of it goes, as a file of a tool that fails does */
+	if (rc == RF_EFAILED && io->made && *io->made && unlink(io->made) == 0)
+		die("%s; '%s', made of that frame, is removed", rf_reader_error(io->reader),
+		    io->made);
 	if (rc < 0)
 		die_status(rc, rf_reader_error(io->reader));
 	io->frames += rc == 1;
@@ -281,6 +287,7 @@ void
 cli_io_close(struct cli_io *io)
 {
 	rf_reader_close(io->reader);
+	cli_guard_stream(NULL);
 	rf_writer_close(io->writer);
 	if (io->input && io->input != stdin)
 		fclose(io->input);

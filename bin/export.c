@@ -388,6 +388,11 @@ export_frame(struct cli_io *io, const struct export_opts *o, const rf_header *h,
 	if (o->to_stdout) {
 		copy_out(path);
 		rf_output_discard(scratch);
+	} else {
+		static char made[4096];
+
+		snprintf(made, sizeof(made), "%s", path);
+		io->made = made;
 	}
 }
 

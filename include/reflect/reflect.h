@@ -50,7 +50,8 @@ extern "C" {
 	X(INVAL, "invalid argument")                                      \
 	X(PLUGIN, "plugin refused")                                       \
 	X(NOTFOUND, "not found")                                          \
-	X(IMAGE, "image error")
+	X(IMAGE, "image error")                                           \
+	X(FAILED, "the stream's writer failed")
 
 enum rf_status {
 	RF_OK = 0,
@@ -214,6 +215,10 @@ RF_EXTERN size_t rf_reader_rows_left(const rf_reader *r);
 /* Index (from 0) of the current frame. */
 RF_EXTERN size_t rf_reader_frame_index(const rf_reader *r);
 RF_EXTERN const char *rf_reader_error(const rf_reader *r);
+/* rf_reader_next_frame returns RF_EFAILED for a trailer (see
+ * rf_writer_fail): the tool that wrote the stream failed, and the frame
+ * before the trailer is not to be trusted; the error message says so,
+ * with the writer's own message. */
 /* 1 when bytes, the first len of an input, begin as a stream does: with
  * its magic, whatever version follows (the reader judges that); else 0,
  * as for fewer bytes than the magic's.  For a tool that tells a stream
@@ -236,6 +241,13 @@ RF_EXTERN int rf_writer_write_rows(rf_writer *w, const float *buf, size_t nrows)
 /* Checks that every row of the frame was written. */
 RF_EXTERN int rf_writer_end_frame(rf_writer *w);
 RF_EXTERN const char *rf_writer_error(const rf_writer *w);
+/* Ends the stream of a tool that cannot go on, so that no reader takes
+ * it for whole (reflect-stream(5), FAILED STREAMS): the rows of a frame
+ * begun and not finished are written as NaN, then a trailer, a header
+ * with the one key FAILED=message (a line, cut to fit).  Nothing when
+ * no frame was begun or the stream has no headers (-h).  0, or RF_EIO;
+ * the writer takes no more frames after it. */
+RF_EXTERN int rf_writer_fail(rf_writer *w, const char *message);
 
 /* The number of rows that fit in about `bytes` for a row of ncols*ncomp
  * floats (at least 1): the block size tools stream with. */

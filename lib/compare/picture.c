@@ -141,6 +141,13 @@ read_stream(rf_picture **pp, FILE *fp, const char *path, char *err, size_t errle
 		           rf_header_ncols(h), rf_header_nrows(h));
 	if (rc == 0 && factor > 1)
 		rc = resolve(*pp, factor, path, err, errlen);
+	/* A failed stream's trailer after the frame: the frame is not to be
+	 * trusted (a later frame, or anything else after it, is no concern
+	 * of a picture). */
+	if (rc == 0 && rf_reader_next_frame(r, &h) == RF_EFAILED) {
+		rc = RF_EFAILED;
+		rf__format(err, errlen, "%s", rf_reader_error(r));
+	}
 	rf_reader_close(r);
 	if (rc < 0) {
 		rf_picture_destroy(*pp);

@@ -18,7 +18,9 @@ struct rf_header {
 };
 
 static const char *const reserved_keys[] = {
-	"NCOLS", "NROWS", "NCOMP", "CHANNELS", "BigEndian", "FORMAT", NULL
+	"NCOLS", "NROWS", "NCOMP", "CHANNELS", "BigEndian", "FORMAT",
+	"FAILED", "FAILED_ROWS", /* a failed stream's trailer (rf_writer_fail) */
+	NULL
 };
 
 int

@@ -20,6 +20,7 @@ struct rf_reader {
 	size_t frame;      /* index of the current frame, counting from 0 */
 	size_t frames;     /* frames started */
 	size_t row;        /* next row of the current frame */
+	size_t last_nrows; /* rows of the frame before (for a trailer's message) */
 	size_t ncomp;
 	size_t row_floats; /* ncols * ncomp */
 	int swap;
@@ -29,7 +30,7 @@ struct rf_reader {
 	void *map;
 	size_t map_len;
 	int status; /* the first error: every later call returns it again */
-	char err[512];
+	char err[1100];
 };
 
 /* A message is one line of text whatever the input held: control
@@ -48,7 +49,7 @@ fail(rf_reader *r, int status, const char *fmt, ...) RF__PRINTF(3, 4);
 static int
 fail(rf_reader *r, int status, const char *fmt, ...)
 {
-	char msg[400];
+	char msg[1000];
 	va_list ap;
 
 	va_start(ap, fmt);
@@ -327,7 +328,8 @@ static int
 parse_header(rf_reader *r, char *line)
 {
 	size_t ncols = 0, nrows = 0, ncomp = 0, lineno = 1, total;
-	int have_format = 0, big_endian = -1, binary, rc;
+	int have_format = 0, big_endian = -1, binary, rc, cut = 0;
+	unsigned long failed_rows = 0;
 	enum rf_format format = RF_FORMAT_FLOAT;
 	char *channels = NULL;
 	const char *v;
@@ -361,6 +363,26 @@ parse_header(rf_reader *r, char *line)
 		}
 		if (len == 0)
 			break;
+		/* the trailer of a failed stream (rf_writer_fail) */
+		if (!strncmp(line, "FAILED_ROWS=", 12)) {
+			failed_rows = line[12] ? strtoul(line + 12, NULL, 10) : 0;
+			cut = 1;
+			continue;
+		}
+		if (!strncmp(line, "FAILED=", 7)) {
+			if (r->frames > 1 && cut)
+				rc = fail(r, RF_EFAILED, "the tool that wrote the stream failed "
+				          "in frame %zu, which holds only its first %lu of %zu "
+				          "rows (the rest are NaN): %s", r->frames - 1,
+				          failed_rows, r->last_nrows, line + 7);
+			else if (r->frames > 1)
+				rc = fail(r, RF_EFAILED, "the tool that wrote the stream failed "
+				          "after frame %zu: %s", r->frames - 1, line + 7);
+			else
+				rc = fail(r, RF_EFAILED, "the tool that wrote the stream failed: %s",
+				          line + 7);
+			goto out;
+		}
 		if (!strncmp(line, "NCOLS=", 6)) {
 			if (ncols) goto dup;
 			if ((rc = parse_size(r, lineno, "NCOLS", line + 6, &ncols)) < 0)
@@ -684,6 +706,7 @@ rf_reader_next_frame(rf_reader *r, const rf_header **hp)
 		return r->status;
 	if ((rc = skip_rest(r)) < 0)
 		return rc;
+	r->last_nrows = r->h ? rf_header_nrows(r->h) : 0;
 	rf_header_destroy(r->h);
 	r->row = 0;
 	if (rf_header_create(&r->h) < 0)

@@ -1,5 +1,6 @@
 /* Writing the stream: header (with the data aligned to 4 bytes), rows. */
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -12,6 +13,8 @@ struct rf_writer {
 	unsigned long long offset; /* bytes written since the stream began */
 	size_t ncols, nrows, ncomp, row;
 	int in_frame;
+	int begun;  /* a header was written */
+	int failed; /* rf_writer_fail: no more frames */
 	char err[512];
 };
 
@@ -151,10 +154,16 @@ rf_writer_begin_frame(rf_writer *w, const rf_header *h)
 			return RF_ETOOBIG;
 		}
 	}
+	if (w->failed) {
+		rf__format(w->err, sizeof(w->err), "'%s': the stream was ended as failed",
+		           w->name);
+		return RF_EINVAL;
+	}
 	w->row = 0;
 	w->in_frame = 1;
 	if (!w->opt.no_header && (rc = write_header(w, h)) < 0)
 		return rc;
+	w->begun = !w->opt.no_header;
 	return 0;
 }
 
@@ -204,5 +213,65 @@ rf_writer_end_frame(rf_writer *w)
 		return RF_EINVAL;
 	}
 	w->in_frame = 0;
+	return 0;
+}
+
+/*
+ * The trailer of a failed stream.  A tool that dies after its first
+ * header went out would leave a stream that may end on a frame's last
+ * row, which a reader cannot tell from a whole one.  So the frame begun
+ * is filled with NaN (so that a reader reaches what follows where a
+ * header may start), and a header follows whose keys say how many rows
+ * of that frame the tool wrote (FAILED_ROWS, when it cut one) and why
+ * it failed (FAILED): the reader refuses it with the message; a reader
+ * from before it refuses it as a header without NCOLS.  Streams that succeed never hold it: their bytes are unchanged.
+ */
+int
+rf_writer_fail(rf_writer *w, const char *message)
+{
+	char line[RF_HEADER_LINE_MAX + 1];
+	float nan_row[1024];
+	size_t i, left, n, cut, chunk = sizeof(nan_row) / sizeof(nan_row[0]);
+
+	if (!w || !w->begun || w->failed)
+		return 0;
+	w->failed = 1;
+	for (i = 0; i < chunk; i++)
+		nan_row[i] = NAN;
+	cut = w->in_frame ? w->row : (size_t)-1;
+	if (w->in_frame) {
+		/* the rest of the frame, in pieces of nan_row */
+		left = (w->nrows - w->row) * w->ncols * w->ncomp;
+		/* whole pixels a piece, for the ascii lines */
+		chunk -= chunk % w->ncomp;
+		for (; left; left -= n) {
+			n = left < chunk ? left : chunk;
+			if (w->opt.format == RF_FORMAT_ASCII) {
+				if (write_ascii(w, nan_row, n) < 0)
+					return RF_EIO;
+			} else if (put(w, (const char *)nan_row, n * sizeof(float)) < 0) {
+				return RF_EIO;
+			}
+		}
+		w->row = w->nrows;
+		w->in_frame = 0;
+	}
+	snprintf(line, sizeof(line), "FAILED=%s", message && *message ? message : "failed");
+	for (i = 0; line[i]; i++)
+		if ((unsigned char)line[i] < 0x20 || line[i] == 0x7f)
+			line[i] = '?';
+	if (putline(w, RF__STREAM_IDENT) < 0)
+		return RF_EIO;
+	if (cut != (size_t)-1) {
+		char rows[64];
+
+		snprintf(rows, sizeof(rows), "FAILED_ROWS=%zu", cut);
+		if (putline(w, rows) < 0)
+			return RF_EIO;
+	}
+	if (putline(w, line) < 0 || putline(w, "") < 0)
+		return RF_EIO;
+	if (fflush(w->fp) != 0)
+		return fail_io(w);
 	return 0;
 }
