@@ -200,6 +200,8 @@ struct cli_mode {
 	rf_module *module;
 	const struct rf_plugin *plugin;
 	double *values;
+	int verbose;        /* -v */
+	unsigned char *told; /* the optional inputs mode_note_absent named */
 };
 CLI_NORETURN void mode_list(unsigned kind);
 /* -m MODE --help: the mode's summary, file and where it was found,
@@ -217,6 +219,9 @@ void mode_help_line(unsigned kind, const char *def);
  * out through a descriptor of its own, cli_stdout(). */
 void mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose);
 void mode_unload(struct cli_mode *m);
+/* With -v, names the optional inputs of the mode that frame in lacks
+ * (they read as NaN), each the first time it is missing. */
+void mode_note_absent(struct cli_mode *m, struct cli_io *io, const rf_header *in);
 /* Says, once a frame, how many pixels' outputs of the mode were clamped
  * or zeroed (--invalid; rf_stage_invalid_output_count). */
 void mode_invalid_note(struct cli_io *io, size_t count);

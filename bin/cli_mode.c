@@ -442,6 +442,8 @@ mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose)
 		die_status(rc == RF_ENOMEM ? rc : RF_EPLUGIN, err);
 	}
 	m->plugin = rf_module_plugin(m->module);
+	m->verbose = verbose;
+	m->told = NULL;
 	m->values = ecalloc(m->plugin->nparams + 1, sizeof(double));
 	if (rf_plugin_parse_params(m->plugin, params, m->values, err, sizeof(err)) < 0) {
 		free(name);
@@ -472,8 +474,37 @@ mode_load(struct cli_mode *m, unsigned kind, const char *spec, int verbose)
 }
 
 void
+mode_note_absent(struct cli_mode *m, struct cli_io *io, const rf_header *in)
+{
+	const char *const *opt = rf_plugin_optional_inputs(m->plugin);
+	size_t i, n = 0;
+
+	if (!m->verbose || !opt)
+		return;
+	for (i = 0; opt[i]; i++)
+		;
+	if (!m->told)
+		m->told = ecalloc(i + 1, 1);
+	for (i = 0; opt[i]; i++) {
+		if (m->told[i] || rf_header_find_channel(in, opt[i]) >= 0)
+			continue;
+		m->told[i] = 1;
+		if (!n++) {
+			cli_message_start();
+			fprintf(stderr, "'%s': frame %zu: mode '%s' reads as NaN its optional "
+			        "input", io->input_name, io->frames, m->plugin->name);
+		}
+		fprintf(stderr, " '%s'", opt[i]);
+	}
+	if (n)
+		fprintf(stderr, ", which the stream lacks\n");
+}
+
+void
 mode_unload(struct cli_mode *m)
 {
+	free(m->told);
+	m->told = NULL;
 	free(m->values);
 	rf_module_unload(m->module);
 	m->module = NULL;

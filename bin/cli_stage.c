@@ -69,6 +69,7 @@ cli_stage_main(int argc, char **argv, const struct cli_stage_tool *t)
 	cli_io_open(&r.io, optind < argc ? argv[optind] : NULL);
 	while (cli_io_next(&r.io, &in)) {
 		rf_plugin_host_set_frame(r.host, in);
+		mode_note_absent(&r.mode, &r.io, in);
 		t->frame(&r, in);
 	}
 	if (t->finish)

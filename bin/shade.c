@@ -348,8 +348,10 @@ main(int argc, char **argv)
 	if ((rc = rf_shader_create(&shader, &so, err, sizeof(err))) < 0)
 		die_status(rc, err);
 	cli_io_open(&io, optind < argc ? argv[optind] : NULL);
-	while (cli_io_next(&io, &in))
+	while (cli_io_next(&io, &in)) {
+		mode_note_absent(&mode, &io, in);
 		shade_frame(&io, shader, in);
+	}
 	rf_shader_destroy(shader);
 	mode_unload(&mode);
 	cli_io_close(&io);

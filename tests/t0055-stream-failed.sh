@@ -118,4 +118,15 @@ test_expect_success 'ascii data: the rest as nan; -h: no header, no trailer' '
 	! grep -a "FAILED" raw
 '
 
+test_expect_success '-v names an optional input the stream lacks, once' '
+	sed -n "1,9p" two >one &&
+	cat one one | reflect-project -v -m bevel >/dev/null 2>err &&
+	test_grep "^reflect-project: .<stdin>.: frame 1: mode .bevel. reads as NaN its optional input .roughness., which the stream lacks$" err &&
+	test $(grep -c "optional input" err) = 1 &&
+	reflect-project -v -m bevel g.rfl >/dev/null 2>err &&
+	! grep "optional input" err &&
+	reflect-project -m bevel one >/dev/null 2>err &&
+	test_line_count 0 err
+'
+
 test_done
