@@ -350,6 +350,37 @@ test_expect_success '-m MODE --help names an installed mode.s installed man page
 	test_grep "^  man page: $prefix/share/man/man7/reflect-mode-box\.7$" out
 '
 
+# taps reads the GGX-prefiltered chain: a tap standing for a quarter of
+# the lobe's median cone (half-angle atan alpha) reads at the lod of the
+# lobe whose cone is half as wide, roughness_to_lod(sqrt(tan(atan(alpha)
+# / 2))).  Under a sky whose every level is one value (level k: k + 1),
+# what a read at a lod gives is what mode none gives at that lod's
+# roughness: taps at r equals none at r' = sqrt(tan(atan(r^2) / 2)).
+# (The rule of texel sizes read levels 0.3 to 1.7 finer or coarser.)
+test_expect_success 'taps reads each tap at the lod of its share of the lobe' '
+	awk "BEGIN { n = 8; for (k = 0; k < 4; k++) {
+		printf \"#?REFLECT1\\nENVMAP=CUBE\\nLEVEL=%d\\nLEVELS=4\\nPREFILTER=ggx\\n\", k
+		printf \"MAPPING=unity\\nSTEPS=3\\nNCOLS=%d\\nNROWS=%d\\n\", n, 6 * n
+		printf \"NCOMP=3\\nCHANNELS=R G B\\nFORMAT=ascii\\n\\n\"
+		for (j = 0; j < 6 * n * n; j++) print k + 1, k + 1, k + 1
+		n = n / 2 } }" >levels.rfl &&
+	for r in 0.2 0.45 0.7 1
+	do
+		printf "%s\t1\t2\t0.6\t0.8\t0\n" $r || return 1
+	done >rows &&
+	{ sed -n 1,7p mirror && cat rows; } >lobes &&
+	awk -F "\t" "{ a = \$1 * \$1; printf \"%.9g\\t1\\t2\\t0.6\\t0.8\\t0\\n\", sqrt(sin(atan2(a, 1) / 2) / cos(atan2(a, 1) / 2)) }" rows >narrow &&
+	{ sed -n 1,7p mirror && cat narrow; } >shares &&
+	shade -fa -m taps --env=levels.rfl lobes >t.txt 2>/dev/null &&
+	shade -fa -m none --env=levels.rfl shares >n.txt 2>/dev/null &&
+	data t.txt | cut -f7-9 >a &&
+	data n.txt | cut -f8-10 >b &&
+	test_cmp_numbers b a 1e-5 &&
+	# and those are between the levels, not at one
+	cut -f1 a >lods &&
+	awk "\$1 <= 1.001 || \$1 >= 3.999 { bad = 1 } END { exit bad }" lods
+'
+
 test_expect_success 'clean up the out-of-tree directory' '
 	rm -rf "$oot"
 '

@@ -4,13 +4,18 @@
  *
  * The lobe's median cone (half-angle atan alpha, alpha = r^2) is sampled
  * at four directions, D tilted by half that angle toward +-t and +-b
- * (t, b a frame about D), each read at the lod whose texel covers a
- * quarter of the cone: lod = log2(omega / (4 texel)) / 2, omega =
- * pi alpha^2 the cone's solid angle and texel the solid angle of a texel
- * of level 0 toward the tap (the host's texel_solid_angle).  The four
- * reads of a whole span go to the host in one call (sample_many), and
- * the mode writes their mean as spec.R spec.G spec.B.  At roughness 0
- * the taps meet at D and the lod is 0: a mirror read.
+ * (t, b a frame about D), each standing for a quarter of the cone: a
+ * cone of half the half-angle.  The chain sample_many reads is
+ * GGX-prefiltered: its lod for roughness r' holds the environment
+ * already blurred by the GGX lobe of r', so a tap reads at the lod of
+ * the lobe as wide as its share, not at a lod picked from texel sizes:
+ * alpha' = tan(atan(alpha) / 2), lod = roughness_to_lod(sqrt(alpha')).
+ * (texel_solid_angle is for a chain of plain box-filtered levels, the
+ * host's sample_radiance, where a texel is all the blur a level adds.)
+ * The four reads of a whole span go to the host in one call
+ * (sample_many), and the mode writes their mean as spec.R spec.G
+ * spec.B.  At roughness 0 the taps meet at D and the lod is 0: a
+ * mirror read.
  *
  * Build and run (doc/examples/Makefile does the first):
  *   cc -std=c11 -fPIC -shared $(pkg-config --cflags reflect-plugin) \
@@ -49,8 +54,8 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	struct taps *t;
 
 	(void)values;
-	if (!HAS(host, sample_many) || !HAS(host, texel_solid_angle)) {
-		snprintf(err, errlen, "the host has no sample_many or texel_solid_angle "
+	if (!HAS(host, sample_many) || !host->roughness_to_lod) {
+		snprintf(err, errlen, "the host has no sample_many or roughness_to_lod "
 		         "(it needs reflect-shade with an environment, plugin ABI 1.1)");
 		return -1;
 	}
@@ -105,7 +110,8 @@ run(void *state, const struct rf_span *span)
 	rgba = lod + m;
 	for (i = 0; i < n; i++, in += 4) {
 		const float alpha = in[0] * in[0], half = 0.5f * atanf(alpha);
-		const float omega = 3.14159265f * alpha * alpha;
+		/* the lobe as wide as a tap's quarter of the cone, on the chain */
+		const float tap_lod = host->roughness_to_lod(host->ctx, sqrtf(tanf(half)));
 		float d[3] = { in[1], in[2], in[3] }, t[3], b[3], len;
 
 		len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
@@ -116,15 +122,14 @@ run(void *state, const struct rf_span *span)
 		for (k = 0; k < 4; k++) {
 			const float *axis = k < 2 ? t : b, sign = k & 1 ? -1.0f : 1.0f;
 			const uint32_t j = 4 * i + k;
-			float dir[3], texel;
+			float dir[3];
 
 			for (c = 0; c < 3; c++)
 				dir[c] = cosf(half) * d[c] + sign * sinf(half) * axis[c];
 			x[j] = dir[0];
 			y[j] = dir[1];
 			z[j] = dir[2];
-			texel = host->texel_solid_angle(host->ctx, dir, 0.0f);
-			lod[j] = omega > 4.0f * texel ? 0.5f * log2f(omega / (4.0f * texel)) : 0.0f;
+			lod[j] = tap_lod;
 		}
 	}
 	host->sample_many(host->ctx, m, x, y, z, lod, rgba);

@@ -242,7 +242,11 @@ struct rf_host {
 	 * last), and the solid angle of a texel toward dir (need not be
 	 * unit) at a lod, (2 / face_size(0))^2 4^lod / (1 + u^2 + v^2)^1.5
 	 * for face coordinates u, v: what filtered importance sampling
-	 * compares a sample's pdf with.  NULL without an environment. */
+	 * compares a sample's pdf with on plain box-filtered levels.  On
+	 * the prefiltered chain a lod stands for a lobe, not a texel: read
+	 * a share of a lobe at roughness_to_lod of the lobe as wide as the
+	 * share (reflect-plugin(7), The prefiltered chain).  NULL without an
+	 * environment. */
 	uint32_t (*face_size)(void *ctx, uint32_t level);
 	float (*texel_solid_angle)(void *ctx, const float dir[3], float lod);
 	/* The pixel's footprint on its surface: where the camera rays through
