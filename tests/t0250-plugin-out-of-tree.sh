@@ -235,6 +235,7 @@ shade () {
 test_expect_success 'the installed examples build with their Makefile' '
 	ex="$prefix/share/doc/reflect/examples" &&
 	test -f "$ex/Makefile" && test -f "$ex/ratio.c" && test -f "$ex/taps.c" &&
+	test -f "$ex/reflect-mode-sphere.7" && test -f "$ex/room-floor.scene" &&
 	mkdir "$oot/ex" && cp "$ex"/* "$oot/ex/" &&
 	cat >"$oot/pc" <<-EOF &&
 	#!/bin/sh
@@ -323,6 +324,9 @@ test_expect_success 'make install-user: the installed tools find the examples, n
 	test_line_count 0 err &&
 	test_grep "^  file: $u/sphere\.so (version 1\.0, plugin ABI 1\.1, reflect developers, public domain)$" out &&
 	test_grep "^  found in: the user plugin directory$" out &&
+	# its man page, installed beside it, as reflect-plugin(7) asks
+	test -f "$u/reflect-mode-sphere.7" &&
+	test_grep "^  man page: $u/reflect-mode-sphere\.7$" out &&
 	user reflect-project -fa -m sphere:radius=2 --box=-10,-10,-10,10,10,10 \
 		--center=0,0,0 gbuf >out3 &&
 	data out3 >got3 &&

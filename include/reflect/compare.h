@@ -33,8 +33,8 @@ RF_EXTERN const float *rf_picture_pixels(const rf_picture *p);
  * stride floats from mask) is at least 0.5 and whose neighbours within
  * erode pixels (a square of 2 erode + 1) are on the mask too and, when
  * objid is not NULL, on the same object; pixels nearer the frame's edge
- * than erode do not count.  Erode 1 with objid is ../shared/truth's
- * scoring mask. */
+ * than erode do not count.  Erode 1 with objid is the path-traced
+ * references' scoring mask (reflect-compare(1)). */
 RF_EXTERN void rf_compare_mask(unsigned char *keep, size_t width, size_t height,
                                const float *mask, const float *objid, size_t stride,
                                unsigned erode);

@@ -30,8 +30,8 @@
  * A minor bump only appends fields at the end of a struct, or defines new
  * flag bits or kinds; a major bump is anything else.  The host accepts a
  * plugin when its major equals the host's and its minor is not newer, and
- * never reads a descriptor past its size.  tests/unit/test-abi.c pins the
- * layout: a change that fails it needs a version bump and a new entry
+ * never reads a descriptor past its size.  tests/unit/test-abi.c (in
+ * reflect's source tree, not installed) pins the layout: a change that fails it needs a version bump and a new entry
  * here.  The full guide is reflect-plugin(7).
  */
 #ifndef REFLECT_PLUGIN_H

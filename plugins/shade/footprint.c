@@ -62,7 +62,7 @@ static const struct rf_param params[NPARAMS] = {
 	  "round: the prefilter's kernel about R, parallax and contact only",
 	  0, 1, LOBE_MEASURED, RF_PARAM_CHOICE, "measured|round" },
 	{ "bend", "how far the centre moves from R toward the lobe's median (0: R, "
-	  "1: the median); the default is fitted on rooms of bench/footprint-rooms",
+	  "1: the median); the default is fitted on the rooms of reflect-mode-footprint(7)",
 	  0, 1.5, 0.55, 0, NULL },
 };
 
