@@ -7,7 +7,8 @@ writes DIR/hall.gltf, DIR/hall.bin, DIR/hall.obj, DIR/hall.mtl and
 DIR/hall-textures/{plaster,tiles}.png (DIR defaults to this script's
 directory).  The output is the same bytes on every run and machine:
 the committed files are this script's output, and
-tests/t1015-hall-generator.sh checks that they still are.
+tests/t1015-hall-generator.sh in reflect's source tree checks that they
+still are.
 
 The hall is L-shaped, in metres, +Y up, floor at y = 0, 4.5 m high:
 
