@@ -136,6 +136,17 @@ test_expect_success 'a buffer claiming 10 GB: refused before any allocation' '
 	EOF
 '
 
+test_expect_success 'a byteLength past 2^64, and one not whole: not valid' '
+	for len in 1e20 18446744073709551616 1e400 92.5 -92
+	do
+		gltf_quad "{\"byteLength\":$len,\"uri\":\"small.bin\"}" >huge.gltf &&
+		bad_mesh "${SQ}huge.gltf${SQ}: buffer 0 has no valid byteLength$" <<-\EOF || return 1
+		probe box -3 -3 -3 3 3 3
+		mesh huge.gltf
+		EOF
+	done
+'
+
 test_expect_success 'an accessor claiming more than its bufferView' '
 	gltf_quad "$(data_uri $QUAD)" | sed "s/\"count\":4,\"type\":\"VEC3\"/\"count\":1000000000,\"type\":\"VEC3\"/" >count.gltf &&
 	bad_mesh "${SQ}count.gltf${SQ}: accessor 0 claims count 1000000000, more than the byteLength of its bufferView (48)$" <<-\EOF

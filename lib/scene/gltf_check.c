@@ -388,7 +388,9 @@ check_buffers(const char *path, const struct claims *b, int glb, double bin,
 		double have;
 		const char *what;
 
-		if (!(c->length >= 0 && c->length == (double)(uint64_t)c->length))
+		/* Below 2^64 first: converting a larger double is undefined. */
+		if (!(c->length >= 0 && c->length < 0x1p64 &&
+		      c->length == (double)(uint64_t)c->length))
 			return rf__format(err, errlen, "'%s': buffer %zu has no valid "
 			                  "byteLength", path, i), RF_EFORMAT;
 		if (!c->uri) {
