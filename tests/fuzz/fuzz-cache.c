@@ -41,25 +41,6 @@ note(void *arg, const char *msg)
 		      "a control character in a note");
 }
 
-/* The scratch cache, removed at exit. */
-static void
-cleanup(void)
-{
-	char path[600];
-	struct dirent *e;
-	DIR *d;
-
-	if (!(d = opendir(dir)))
-		return;
-	while ((e = readdir(d)))
-		if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) {
-			snprintf(path, sizeof(path), "%s/%s", dir, e->d_name);
-			unlink(path);
-		}
-	closedir(d);
-	rmdir(dir);
-}
-
 /* The raw environment: texels that differ by face and place. */
 static rf_cubemap *
 source(void)
@@ -109,17 +90,14 @@ chain(void)
 	return env;
 }
 
-/* The scratch cache ($TMPDIR, else /tmp) and its one entry. */
+/* The scratch cache and its one entry. */
 static void
 setup(void)
 {
-	const char *tmp = getenv("TMPDIR");
 	struct dirent *e;
 	DIR *d;
 
-	snprintf(dir, sizeof(dir), "%s/fuzz-cache-%ld", tmp && *tmp == '/' ? tmp : "/tmp",
-	         (long)getpid());
-	atexit(cleanup);
+	snprintf(dir, sizeof(dir), "%s", scratch_dir());
 	reference = chain();
 	check((d = opendir(dir)) != NULL, "no cache directory");
 	while ((e = readdir(d)))

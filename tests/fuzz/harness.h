@@ -8,9 +8,13 @@
 #ifndef REFLECT_FUZZ_HARNESS_H
 #define REFLECT_FUZZ_HARNESS_H
 
+#include <dirent.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "reflect/envmap.h"
 
@@ -37,6 +41,51 @@ check_message(const char *err)
 	check(err[0] != '\0', "a refusal without a message");
 	for (c = err; *c; c++)
 		check((unsigned char)*c >= 0x20 && *c != 0x7f, "a control byte in a message");
+}
+
+/* The harness's scratch folder, HARNESS-PID under $TMPDIR (else /tmp),
+ * for readers that take a path: made on first use, and emptied and
+ * removed at exit so that a replay leaves nothing behind. */
+static inline char *
+scratch_path(void)
+{
+	static char path[400];
+
+	return path;
+}
+
+static inline void
+scratch_remove(void)
+{
+	const char *dir = scratch_path();
+	char path[700];
+	struct dirent *e;
+	DIR *d;
+
+	if (!(d = opendir(dir)))
+		return;
+	while ((e = readdir(d)))
+		if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) {
+			snprintf(path, sizeof(path), "%s/%s", dir, e->d_name);
+			unlink(path);
+		}
+	closedir(d);
+	rmdir(dir);
+}
+
+static inline const char *
+scratch_dir(void)
+{
+	const char *tmp = getenv("TMPDIR");
+	char *dir = scratch_path();
+
+	if (!dir[0]) {
+		snprintf(dir, 400, "%s/" HARNESS "-%ld", tmp && *tmp == '/' ? tmp : "/tmp",
+		         (long)getpid());
+		check(mkdir(dir, 0700) == 0, "cannot make the scratch folder");
+		atexit(scratch_remove);
+	}
+	return dir;
 }
 
 /* Made once, kept for the process: 8 texels a face, 4 levels. */
