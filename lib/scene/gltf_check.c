@@ -482,6 +482,8 @@ rf__gltf_check(const char *path, struct rf__gltf_info *info, char *err, size_t e
 	int glb, rc = 0;
 	FILE *fp;
 
+	info->materials = NULL;
+	info->nmaterials = 0;
 	if (!(fp = fopen(path, "rb")) || fstat(fileno(fp), &st) < 0) {
 		rf__format(err, errlen, "cannot open '%s': %s", path, strerror(errno));
 		if (fp)
