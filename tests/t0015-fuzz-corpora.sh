@@ -6,7 +6,7 @@ test_description='the fuzz harnesses replayed over their corpora and the bugs th
 # control byte, a header that does not come back, radiance that is not
 # finite, the vector and plain reads disagreeing) and, in the sanitizer
 # build, on any memory error or undefined behaviour.
-for t in header scene dds ktx numeric probes envstream cache shade exr png hdr sniff
+for t in header scene dds ktx numeric probes envstream cache shade exr png hdr sniff gltf
 do
 	test_expect_success "replay the $t corpus" '
 		"$builddir/tests/fuzz/replay-'$t'" "$srcdir/tests/fuzz/corpus/'$t'" >out &&
@@ -30,8 +30,14 @@ test_expect_success 'the environment and shading harnesses hold their corpora fi
 	! ls -d fuzz-cache-* 2>/dev/null
 '
 
+test_expect_success 'the glTF harness checks each status and leaves nothing' '
+	TMPDIR=$PWD "$builddir/tests/fuzz/replay-gltf" "$srcdir/tests/fuzz/corpus/gltf" >out &&
+	test $(grep -c "^ran " out) -ge 20 &&
+	! ls -d fuzz-gltf-* 2>/dev/null
+'
+
 test_expect_success 'random bytes through every harness' '
-	for t in header scene dds ktx numeric probes envstream cache shade exr png hdr sniff
+	for t in header scene dds ktx numeric probes envstream cache shade exr png hdr sniff gltf
 	do
 		for seed in 1 2 3 4 5 6 7 8
 		do
