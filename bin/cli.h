@@ -7,6 +7,7 @@
 
 #include "reflect/reflect.h"
 #include "reflect/plugin.h"
+#include "reflect/scene.h"
 
 #if defined(__GNUC__)
 #define CLI_PRINTF(a, b) __attribute__((format(printf, a, b)))
@@ -169,6 +170,41 @@ int cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
  * failed in run() or a failed read ends the process with its message. */
 void cli_stage_rows(struct cli_io *io, rf_stage *stage, const rf_header *in,
                     const rf_header *out);
+
+/* The frames of a tool that makes them (cli_frames.c): -n N, the full
+ * run; --orbit=DEGREES and --path=orbit:DEGREES|line:X,Y,Z, the camera
+ * over it; --frames=A-B or --frame=K, the part of it made here.  The
+ * tool renders frames first..last, each as the full run makes it. */
+enum {
+	CLI_OPT_ORBIT = 0x1000,
+	CLI_OPT_PATH,
+	CLI_OPT_FRAMES,
+	CLI_OPT_FRAME
+};
+#define CLI_FRAME_OPTIONS \
+	{ "orbit", required_argument, NULL, CLI_OPT_ORBIT }, \
+	{ "path", required_argument, NULL, CLI_OPT_PATH }, \
+	{ "frames", required_argument, NULL, CLI_OPT_FRAMES }, \
+	{ "frame", required_argument, NULL, CLI_OPT_FRAME }
+#define CLI_FRAME_USAGE "[-n FRAMES] [--frames=A-B|--frame=K] [--orbit=DEGREES] " \
+	"[--path=orbit:DEGREES|line:X,Y,Z]"
+#define CLI_FRAME_HELP \
+	"  -n N               N frames, FRAME=0..N-1\n" \
+	"  --frames=A-B  --frame=K  only the full run's frames A..B (or K)\n" \
+	"  --orbit=DEGREES    turn the camera about its target over the frames\n" \
+	"  --path=line:X,Y,Z  move the camera (and its target) to X,Y,Z\n"
+struct cli_frames {
+	size_t count;        /* -n: the full run's frames */
+	size_t first, last;  /* made here: first..last */
+	int ranged;          /* --frames or --frame given */
+	const char *option, *range; /* which, and its text, for messages */
+	struct rf_camera_path path;
+};
+void cli_frames_init(struct cli_frames *f);
+/* Takes -n and the options above: 1 when opt was one of them. */
+int cli_frames_option(struct cli_frames *f, int opt, const char *arg);
+/* Sets first..last, dying unless the range lies within the full run. */
+void cli_frames_check(struct cli_frames *f);
 
 /* Threads over row blocks: -j N, else REFLECT_THREADS, else every core. */
 int cli_threads(const char *arg);

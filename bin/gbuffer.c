@@ -10,18 +10,16 @@
 static void
 usage(void)
 {
-	fprintf(stderr, "usage: %s [-vV] [-x WIDTH] [-y HEIGHT] [-n FRAMES] "
-	        "[-j THREADS] [-c CHANNELS] [--orbit=DEGREES] "
-	        "[--path=orbit:DEGREES|line:X,Y,Z] [--supersample=N] [-f a|f] [-h] "
+	fprintf(stderr, "usage: %s [-vV] [-x WIDTH] [-y HEIGHT] " CLI_FRAME_USAGE " "
+	        "[-j THREADS] [-c CHANNELS] [--supersample=N] [-f a|f] [-h] "
 	        "[--print-default-scene] [scene]\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
 
-enum { OPT_ORBIT = 256, OPT_PATH, OPT_SUPERSAMPLE, OPT_PRINT_DEFAULT, OPT_HELP };
+enum { OPT_SUPERSAMPLE = 256, OPT_PRINT_DEFAULT, OPT_HELP };
 
 static const struct option long_options[] = {
-	{ "orbit", required_argument, NULL, OPT_ORBIT },
-	{ "path", required_argument, NULL, OPT_PATH },
+	CLI_FRAME_OPTIONS,
 	{ "supersample", required_argument, NULL, OPT_SUPERSAMPLE },
 	{ "print-default-scene", no_argument, NULL, OPT_PRINT_DEFAULT },
 	{ "help", no_argument, NULL, OPT_HELP },
@@ -37,9 +35,7 @@ help(void)
 	       "objid depth, with the camera and probes as header keys.\n"
 	       "See reflect-gbuffer(1).\n"
 	       "  -x W -y H          image size (default 640x360)\n"
-	       "  -n N               N frames, FRAME=0..N-1\n"
-	       "  --orbit=DEGREES    turn the camera about its target over the frames\n"
-	       "  --path=line:X,Y,Z  move the camera (and its target) to X,Y,Z\n"
+	       CLI_FRAME_HELP
 	       "  --supersample=N    N x N samples a pixel: a frame N times larger,\n"
 	       "                     resolved by reflect-export\n"
 	       "  -c CHANNELS        channels to write, e.g. P,N,V,roughness\n"
@@ -48,34 +44,6 @@ help(void)
 	       "  --print-default-scene  print the embedded scene and exit\n", argv0);
 	fshut(stdout, "<stdout>");
 	exit(0);
-}
-
-static void
-parse_orbit(const char *arg, const char *what, struct rf_camera_path *path)
-{
-	float deg;
-
-	parse_floats(arg, what, &deg, 1);
-	path->kind = RF_PATH_ORBIT;
-	path->degrees = deg;
-}
-
-static void
-parse_path(const char *arg, struct rf_camera_path *path)
-{
-	if (!strncmp(arg, "orbit:", 6)) {
-		parse_orbit(arg + 6, "--path=orbit", path);
-	} else if (!strncmp(arg, "line:", 5)) {
-		float end[3];
-
-		parse_floats(arg + 5, "--path=line", end, 3);
-		path->kind = RF_PATH_LINE;
-		path->end[0] = end[0];
-		path->end[1] = end[1];
-		path->end[2] = end[2];
-	} else {
-		die("--path: '%s' is neither orbit:DEGREES nor line:X,Y,Z", arg);
-	}
 }
 
 static rf_header *
@@ -135,29 +103,27 @@ int
 main(int argc, char **argv)
 {
 	struct cli_io io = { 0 };
-	struct rf_camera_path path = { RF_PATH_NONE, 0, { 0, 0, 0 } };
+	struct cli_frames frames;
 	struct rf_camera start, cam;
 	struct rf_writer_options wopt;
 	const char *channels = NULL, *threads = NULL, *file;
-	size_t width = 640, height = 360, frames = 1, frame, rows, supersample = 1;
+	size_t width = 640, height = 360, frame, rows, supersample = 1;
 	char err[1024];
 	rf_gbuffer *g;
 	rf_scene *s;
 	int c, rc, verbose = 0;
 
 	cli_init(argc, argv);
+	cli_frames_init(&frames);
 	while ((c = getopt_long(argc, argv, "vVx:y:n:j:c:f:h", long_options, NULL)) != -1) {
 		switch (c) {
 		case 'v': verbose = 1; break;
 		case 'V': print_version(); break;
 		case 'x': width = parse_count(optarg, 'x', 1, RF_FRAME_SIDE_MAX); break;
 		case 'y': height = parse_count(optarg, 'y', 1, RF_FRAME_SIDE_MAX); break;
-		case 'n': frames = parse_count(optarg, 'n', 1, 1000000000); break;
 		case 'j': threads = optarg; break;
 		case 'c': channels = optarg; break;
 		case 'f': case 'h': cli_io_option(&io, c, optarg); break;
-		case OPT_ORBIT: parse_orbit(optarg, "--orbit", &path); break;
-		case OPT_PATH: parse_path(optarg, &path); break;
 		case OPT_SUPERSAMPLE:
 			supersample = (size_t)parse_whole("supersample", optarg, 1, 16);
 			break;
@@ -166,12 +132,15 @@ main(int argc, char **argv)
 			fshut(stdout, "<stdout>");
 			return 0;
 		case OPT_HELP: help(); break;
-		default: usage();
+		default:
+			if (!cli_frames_option(&frames, c, optarg))
+				usage();
 		}
 	}
 	if (argc - optind > 1)
 		usage();
 	file = cli_input_or_default(optind < argc ? argv[optind] : NULL);
+	cli_frames_check(&frames);
 	/* The samples of a pixel are the pixels of a frame N times larger:
 	 * their rays cross it at the centres of an N x N grid. */
 	cli_check_frame(supersample > 1 ? "-x -y --supersample" : "-x -y",
@@ -191,10 +160,10 @@ main(int argc, char **argv)
 	if (rows > height)
 		rows = height;
 	rf_scene_camera(s, &start);
-	for (frame = 0; frame < frames; frame++) {
+	for (frame = frames.first; frame <= frames.last; frame++) {
 		rf_header *h;
 
-		rf_camera_at_frame(&start, &path, frame, frames, &cam);
+		rf_camera_at_frame(&start, &frames.path, frame, frames.count, &cam);
 		if ((rc = rf_gbuffer_set_camera(g, &cam, err, sizeof(err))) < 0)
 			die("frame %zu: %s", frame, err);
 		if (verbose)

@@ -10,8 +10,8 @@
 static void
 usage(void)
 {
-	fprintf(stderr, "usage: %s [-V] [-x WIDTH] [-y HEIGHT] [-j THREADS] "
-	        "[--samples=N] [--masking=separable|correlated] "
+	fprintf(stderr, "usage: %s [-V] [-x WIDTH] [-y HEIGHT] " CLI_FRAME_USAGE " "
+	        "[-j THREADS] [--samples=N] [--masking=separable|correlated] "
 	        "[--objects=hidden|visible] [--seed=N] [--halves] [-f a|f] [-h] "
 	        "[scene]\n", argv0);
 	exit(EXIT_BAD_INPUT);
@@ -20,6 +20,7 @@ usage(void)
 enum { OPT_SAMPLES = 256, OPT_MASKING, OPT_OBJECTS, OPT_SEED, OPT_HALVES, OPT_HELP };
 
 static const struct option long_options[] = {
+	CLI_FRAME_OPTIONS,
 	{ "samples", required_argument, NULL, OPT_SAMPLES },
 	{ "masking", required_argument, NULL, OPT_MASKING },
 	{ "objects", required_argument, NULL, OPT_OBJECTS },
@@ -38,6 +39,7 @@ help(void)
 	       "against the scene's emission.  Writes R G B mask objid.\n"
 	       "See reflect-trace(1).\n"
 	       "  -x W -y H          image size (default 640x360)\n"
+	       CLI_FRAME_HELP
 	       "  --samples=N        samples a pixel (1024)\n"
 	       "  --masking=separable|correlated  Smith G (separable, as Cycles 3.4)\n"
 	       "  --objects=hidden|visible  reflective objects in reflected rays\n"
@@ -46,6 +48,29 @@ help(void)
 	       argv0);
 	fshut(stdout, "<stdout>");
 	exit(0);
+}
+
+static rf_header *
+frame_header(const rf_scene *s, const rf_tracer *t, const struct rf_camera *cam,
+             size_t frame, size_t width, size_t height, unsigned samples)
+{
+	char buf[32];
+	rf_header *h;
+	size_t k;
+	int rc;
+
+	if (rf_header_create(&h) < 0 || rf_header_set_size(h, width, height) < 0)
+		die_sys("out of memory");
+	for (k = 0; k < rf_tracer_nchannels(t); k++)
+		if (rf_header_add_channel(h, rf_tracer_channel(t, k)) < 0)
+			die_sys("out of memory");
+	cli_record_command(h);
+	if ((rc = rf_scene_frame_keys(s, cam, frame, h)) < 0)
+		die_header_key(rc);
+	snprintf(buf, sizeof(buf), "%u", samples);
+	if (rf_header_set(h, "TRACE_SAMPLES", buf) < 0)
+		die_sys("out of memory");
+	return h;
 }
 
 static int
@@ -65,18 +90,19 @@ main(int argc, char **argv)
 	struct rf_trace_options o;
 	struct cli_io io = { 0 };
 	struct rf_writer_options wopt;
-	struct rf_camera cam;
+	struct cli_frames frames;
+	struct rf_camera start, cam;
 	const char *threads = NULL, *file;
-	size_t width = 640, height = 360, rows, k;
-	char err[1024], buf[32];
+	size_t width = 640, height = 360, rows, frame;
+	char err[1024];
 	rf_tracer *t;
-	rf_header *h;
 	rf_scene *s;
 	int c, rc;
 
 	cli_init(argc, argv);
+	cli_frames_init(&frames);
 	rf_trace_options_init(&o);
-	while ((c = getopt_long(argc, argv, "Vx:y:j:f:h", long_options, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "Vx:y:n:j:f:h", long_options, NULL)) != -1) {
 		switch (c) {
 		case 'V': print_version(); break;
 		case 'x': width = parse_count(optarg, 'x', 1, RF_FRAME_SIDE_MAX); break;
@@ -97,12 +123,15 @@ main(int argc, char **argv)
 		case OPT_SEED: o.seed = (uint32_t)parse_whole("seed", optarg, 0, 4294967295.0); break;
 		case OPT_HALVES: o.halves = 1; break;
 		case OPT_HELP: help(); break;
-		default: usage();
+		default:
+			if (!cli_frames_option(&frames, c, optarg))
+				usage();
 		}
 	}
 	if (argc - optind > 1)
 		usage();
 	file = cli_input_or_default(optind < argc ? argv[optind] : NULL);
+	cli_frames_check(&frames);
 	if (o.halves && o.samples < 2)
 		die("--halves: %u sample%s cannot make two halves (2 or more for halves)",
 		    o.samples, o.samples == 1 ? "" : "s");
@@ -113,18 +142,6 @@ main(int argc, char **argv)
 		rf_scene_destroy(s);
 		die_status(rc, err);
 	}
-	rf_scene_camera(s, &cam);
-	if (rf_header_create(&h) < 0 || rf_header_set_size(h, width, height) < 0)
-		die_sys("out of memory");
-	for (k = 0; k < rf_tracer_nchannels(t); k++)
-		if (rf_header_add_channel(h, rf_tracer_channel(t, k)) < 0)
-			die_sys("out of memory");
-	cli_record_command(h);
-	if ((rc = rf_scene_frame_keys(s, &cam, 0, h)) < 0)
-		die_header_key(rc);
-	snprintf(buf, sizeof(buf), "%u", o.samples);
-	if (rf_header_set(h, "TRACE_SAMPLES", buf) < 0)
-		die_sys("out of memory");
 	wopt.format = io.format;
 	wopt.no_header = io.no_header;
 	cli_widen_pipe(STDOUT_FILENO);
@@ -133,10 +150,20 @@ main(int argc, char **argv)
 	rows = rf_block_rows(width, rf_tracer_nchannels(t), CLI_BLOCK_BYTES);
 	if (rows > height)
 		rows = height;
-	cli_io_begin(&io, h);
-	rf_header_destroy(h);
-	cli_blocks(&io, height, rows, 0, width * rf_tracer_nchannels(t), trace_block, t);
-	cli_io_end_frame(&io);
+	rf_scene_camera(s, &start);
+	for (frame = frames.first; frame <= frames.last; frame++) {
+		rf_header *h;
+
+		rf_camera_at_frame(&start, &frames.path, frame, frames.count, &cam);
+		if (rf_camera_check(&cam, err, sizeof(err)) < 0 ||
+		    (rc = rf_tracer_set_camera(t, &cam)) < 0)
+			die("frame %zu: %s", frame, err);
+		h = frame_header(s, t, &cam, frame, width, height, o.samples);
+		cli_io_begin(&io, h);
+		rf_header_destroy(h);
+		cli_blocks(&io, height, rows, 0, width * rf_tracer_nchannels(t), trace_block, t);
+		cli_io_end_frame(&io);
+	}
 	rf_tracer_destroy(t);
 	rf_scene_destroy(s);
 	cli_io_close(&io);
