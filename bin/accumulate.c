@@ -8,12 +8,14 @@ static void
 usage(void)
 {
 	fprintf(stderr, "usage: %s [-alvV] [-m MODE[:KEY=VALUE...]] [-j THREADS] "
+	        CLI_PROGRESS_USAGE " "
 	        "[--channels=LIST] [--stats] [--reset=KEYS] " CLI_IO_USAGE " [file]\n",
 	        argv0);
 	exit(EXIT_BAD_INPUT);
 }
 
 static const struct option long_options[] = {
+	CLI_PROGRESS_OPTION,
 	{ "channels", required_argument, NULL, 'C' },
 	{ "stats", no_argument, NULL, 'S' },
 	{ "reset", required_argument, NULL, 'R' },

@@ -154,6 +154,7 @@ put_clean(FILE *fp, const char *s)
 void
 cli_message_start(void)
 {
+	cli_progress_clear();
 	put_clean(stderr, argv0);
 	fputs(": ", stderr);
 }

@@ -179,7 +179,8 @@ enum {
 	CLI_OPT_ORBIT = 0x1000,
 	CLI_OPT_PATH,
 	CLI_OPT_FRAMES,
-	CLI_OPT_FRAME
+	CLI_OPT_FRAME,
+	CLI_OPT_PROGRESS
 };
 #define CLI_FRAME_OPTIONS \
 	{ "orbit", required_argument, NULL, CLI_OPT_ORBIT }, \
@@ -205,6 +206,30 @@ void cli_frames_init(struct cli_frames *f);
 int cli_frames_option(struct cli_frames *f, int opt, const char *arg);
 /* Sets first..last, dying unless the range lies within the full run. */
 void cli_frames_check(struct cli_frames *f);
+
+/* How far a run is, on stderr (cli_progress.c): on a terminal a line
+ * redrawn once the run lasts a second, --progress plain lines, -q
+ * nothing.  cli_blocks reports a frame's rows; a tool that knows how
+ * many frames it makes says so first. */
+enum cli_progress_mode { CLI_PROGRESS_AUTO, CLI_PROGRESS_LINES, CLI_PROGRESS_QUIET };
+#define CLI_PROGRESS_OPTION { "progress", no_argument, NULL, CLI_OPT_PROGRESS }
+#define CLI_PROGRESS_USAGE "[-q|--progress]"
+#define CLI_PROGRESS_HELP \
+	"  -q  no progress   --progress  progress as plain lines (else on a terminal)\n"
+/* Takes -q and --progress: 1 when opt was one of them. */
+int cli_progress_option(int opt);
+/* Blocks of at most a 32nd of a frame while progress shows, for a slow
+ * tool whose rows do not depend on how they are blocked (trace). */
+size_t cli_progress_block(size_t block, size_t rows_a_frame);
+void cli_progress_frames(size_t count);
+/* -q: not even a note that a slow step begins. */
+int cli_progress_quiet(void);
+void cli_progress_frame(size_t rows_a_frame);
+void cli_progress_rows(size_t done);
+/* Erases a progress line before a message; cli_progress_end at the end
+ * of the run (cli_io_close) also writes --progress's last line. */
+void cli_progress_clear(void);
+void cli_progress_end(void);
 
 /* Threads over row blocks: -j N, else REFLECT_THREADS, else every core. */
 int cli_threads(const char *arg);

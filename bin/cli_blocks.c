@@ -165,6 +165,7 @@ cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
 
 	if (!nrows)
 		return 0;
+	cli_progress_frame(nrows);
 	memset(&b, 0, sizeof(b));
 	b.io = io;
 	b.nrows = nrows;
@@ -234,6 +235,7 @@ cli_blocks(struct cli_io *io, size_t nrows, size_t block, size_t in_floats,
 		b.computed++;
 		pthread_cond_broadcast(&b.cv);
 		pthread_mutex_unlock(&b.mu);
+		cli_progress_rows(y + n);
 	}
 	/* The writer finishes its blocks before it sees stop. */
 	if (writing) {

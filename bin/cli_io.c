@@ -286,6 +286,7 @@ cli_io_end_frame(struct cli_io *io)
 void
 cli_io_close(struct cli_io *io)
 {
+	cli_progress_end();
 	rf_reader_close(io->reader);
 	cli_guard_stream(NULL);
 	rf_writer_close(io->writer);

@@ -16,6 +16,7 @@ help(const struct cli_stage_tool *t)
 	mode_help_line(t->kind, t->spec);
 	fprintf(cli_stdout(), "%s"
 	        "  -j N  threads   -v  say which plugin   -V  versions\n"
+	        CLI_PROGRESS_HELP
 	        "  -f a|f  output format   -h  no output header\n"
 	        "  -H -x W -y H -c CHANNELS  headerless input\n", t->help);
 	fshut(cli_stdout(), "<stdout>");
@@ -31,11 +32,11 @@ cli_stage_main(int argc, char **argv, const struct cli_stage_tool *t)
 	int c, list = 0, verbose = 0, want_help = 0, rc;
 
 	cli_init(argc, argv);
-	snprintf(optstring, sizeof(optstring), "%slvVm:j:" CLI_IO_OPTSTRING,
+	snprintf(optstring, sizeof(optstring), "%sqlvVm:j:" CLI_IO_OPTSTRING,
 	         t->optstring ? t->optstring : "");
 	r.spec = t->spec;
 	while ((c = getopt_long(argc, argv, optstring, t->long_options, NULL)) != -1) {
-		if (cli_io_option(&r.io, c, optarg))
+		if (cli_io_option(&r.io, c, optarg) || cli_progress_option(c))
 			continue;
 		switch (c) {
 		case 'l': list = 1; break;

@@ -8,11 +8,13 @@ static void
 usage(void)
 {
 	fprintf(stderr, "usage: %s [-lvV] [-m MODE[:KEY=VALUE...]] [-j THREADS] "
+	        CLI_PROGRESS_USAGE " "
 	        "[--channels=LIST] " CLI_IO_USAGE " [file]\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
 
 static const struct option long_options[] = {
+	CLI_PROGRESS_OPTION,
 	{ "channels", required_argument, NULL, 'C' },
 	{ "help", no_argument, NULL, CLI_OPT_HELP },
 	{ NULL, 0, NULL, 0 },
@@ -20,6 +22,7 @@ static const struct option long_options[] = {
 
 static struct rf_filter_options options;
 static rf_filter *filter;
+static size_t rows_written; /* of this frame, for progress */
 
 static int
 option(struct cli_stage_run *r, int opt, const char *arg)
@@ -53,6 +56,8 @@ static int
 write_rows(void *arg, const float *rows, size_t nrows)
 {
 	cli_io_write(arg, rows, nrows);
+	rows_written += nrows;
+	cli_progress_rows(rows_written);
 	return 0;
 }
 
@@ -67,6 +72,8 @@ frame(struct cli_stage_run *r, const rf_header *in)
 		cli_stage_refused(r, rc, err);
 	cli_stage_header(r, out, RF_KEY_FILTER);
 	cli_io_begin(&r->io, out);
+	rows_written = 0;
+	cli_progress_frame(rf_header_nrows(in));
 	if ((rc = rf_filter_frame(filter, read_rows, write_rows, &r->io)) < 0) {
 		if ((rc == RF_EINVAL || rc == RF_EPLUGIN) && *rf_filter_error(filter))
 			die("'%s': frame %zu, %s", r->io.input_name, r->io.frames,

@@ -11,7 +11,7 @@ static void
 usage(void)
 {
 	fprintf(stderr, "usage: %s [-vV] [-x WIDTH] [-y HEIGHT] " CLI_FRAME_USAGE " "
-	        "[-j THREADS] [-c CHANNELS] [--supersample=N] [-f a|f] [-h] "
+	        CLI_PROGRESS_USAGE " [-j THREADS] [-c CHANNELS] [--supersample=N] [-f a|f] [-h] "
 	        "[--print-default-scene] [scene]\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
@@ -20,6 +20,7 @@ enum { OPT_SUPERSAMPLE = 256, OPT_PRINT_DEFAULT, OPT_HELP };
 
 static const struct option long_options[] = {
 	CLI_FRAME_OPTIONS,
+	CLI_PROGRESS_OPTION,
 	{ "supersample", required_argument, NULL, OPT_SUPERSAMPLE },
 	{ "print-default-scene", no_argument, NULL, OPT_PRINT_DEFAULT },
 	{ "help", no_argument, NULL, OPT_HELP },
@@ -36,6 +37,7 @@ help(void)
 	       "See reflect-gbuffer(1).\n"
 	       "  -x W -y H          image size (default 640x360)\n"
 	       CLI_FRAME_HELP
+	       CLI_PROGRESS_HELP
 	       "  --supersample=N    N x N samples a pixel: a frame N times larger,\n"
 	       "                     resolved by reflect-export\n"
 	       "  -c CHANNELS        channels to write, e.g. P,N,V,roughness\n"
@@ -115,7 +117,7 @@ main(int argc, char **argv)
 
 	cli_init(argc, argv);
 	cli_frames_init(&frames);
-	while ((c = getopt_long(argc, argv, "vVx:y:n:j:c:f:h", long_options, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "qvVx:y:n:j:c:f:h", long_options, NULL)) != -1) {
 		switch (c) {
 		case 'v': verbose = 1; break;
 		case 'V': print_version(); break;
@@ -133,7 +135,7 @@ main(int argc, char **argv)
 			return 0;
 		case OPT_HELP: help(); break;
 		default:
-			if (!cli_frames_option(&frames, c, optarg))
+			if (!cli_frames_option(&frames, c, optarg) && !cli_progress_option(c))
 				usage();
 		}
 	}
@@ -160,6 +162,7 @@ main(int argc, char **argv)
 	if (rows > height)
 		rows = height;
 	rf_scene_camera(s, &start);
+	cli_progress_frames(frames.last - frames.first + 1);
 	for (frame = frames.first; frame <= frames.last; frame++) {
 		rf_header *h;
 

@@ -7,11 +7,13 @@ static void
 usage(void)
 {
 	fprintf(stderr, "usage: %s [-lvV] [-m MODE[:KEY=VALUE...]] [-j THREADS] "
+	        CLI_PROGRESS_USAGE " "
 	        CLI_INVALID_USAGE " " CLI_IO_USAGE " [file]\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
 
 static const struct option long_options[] = {
+	CLI_PROGRESS_OPTION,
 	{ "invalid", required_argument, NULL, 'I' },
 	{ "help", no_argument, NULL, CLI_OPT_HELP },
 	{ NULL, 0, NULL, 0 },

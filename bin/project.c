@@ -9,6 +9,7 @@ static void
 usage(void)
 {
 	fprintf(stderr, "usage: %s [-lvV] [-m MODE[:KEY=VALUE...]] [-j THREADS] "
+	        CLI_PROGRESS_USAGE " "
 	        "[--box=XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX] [--center=X,Y,Z] "
 	        "[--box-projection=on|off] " CLI_INVALID_USAGE " " CLI_IO_USAGE " [file]\n",
 	        argv0);
@@ -16,6 +17,7 @@ usage(void)
 }
 
 static const struct option long_options[] = {
+	CLI_PROGRESS_OPTION,
 	{ "box", required_argument, NULL, 'B' },
 	{ "center", required_argument, NULL, 'C' },
 	{ "box-projection", required_argument, NULL, 'P' },

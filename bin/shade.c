@@ -10,6 +10,7 @@ static void
 usage(void)
 {
 	fprintf(stderr, "usage: %s [-lvV] [-m MODE[:KEY=VALUE...]] [-j THREADS] "
+	        CLI_PROGRESS_USAGE " "
 	        "[--env=FILE] [--layout=L] [--prefiltered] [--srgb=auto|on|off] "
 	        "[--rgbm=M[,E]] [--intensity=X] [--size=N] [--nonfinite=error|zero] "
 	        "[--mapping=unity|linear|exact] [--steps=N] [--samples=N] "
@@ -33,6 +34,7 @@ enum {
 };
 
 static const struct option long_options[] = {
+	CLI_PROGRESS_OPTION,
 	{ "env", required_argument, NULL, OPT_ENVMAP },
 	{ "layout", required_argument, NULL, OPT_ENVMAP },
 	{ "prefiltered", no_argument, NULL, OPT_ENVMAP },
@@ -68,6 +70,8 @@ static void
 progress(void *arg, const char *line, double done, double total)
 {
 	(void)arg;
+	if (cli_progress_quiet())
+		return;
 	if (done == 0.0) {
 		if (line)
 			fprintf(stderr, "%s: %s\n", argv0, line);
@@ -202,9 +206,9 @@ main(int argc, char **argv)
 	cli_init(argc, argv);
 	rf_shader_options_init(&so);
 	envmap_opts_init(&env);
-	while ((c = getopt_long(argc, argv, "lvVm:j:" CLI_IO_OPTSTRING, long_options,
+	while ((c = getopt_long(argc, argv, "qlvVm:j:" CLI_IO_OPTSTRING, long_options,
 	                        &idx)) != -1) {
-		if (cli_io_option(&io, c, optarg))
+		if (cli_io_option(&io, c, optarg) || cli_progress_option(c))
 			continue;
 		switch (c) {
 		case 'l': list = 1; break;
@@ -319,6 +323,7 @@ main(int argc, char **argv)
 		        "      a pixel, --normal-fade, --fallback=infinite|none|sky:FILE\n"
 		        "  --invalid=error|clamp|zero  NaN, Inf, roughness out of [0, 1]\n"
 		        "  -j N  threads   -v  say which plugin and environment   -V  versions\n"
+		        CLI_PROGRESS_HELP
 		        "  -f a|f  output format   -h  no output header\n"
 		        "  -H -x W -y H -c CHANNELS  headerless input\n");
 		fshut(cli_stdout(), "<stdout>");

@@ -11,7 +11,7 @@ static void
 usage(void)
 {
 	fprintf(stderr, "usage: %s [-V] [-x WIDTH] [-y HEIGHT] " CLI_FRAME_USAGE " "
-	        "[-j THREADS] [--samples=N] [--masking=separable|correlated] "
+	        CLI_PROGRESS_USAGE " [-j THREADS] [--samples=N] [--masking=separable|correlated] "
 	        "[--objects=hidden|visible] [--seed=N] [--halves] [-f a|f] [-h] "
 	        "[scene]\n", argv0);
 	exit(EXIT_BAD_INPUT);
@@ -21,6 +21,7 @@ enum { OPT_SAMPLES = 256, OPT_MASKING, OPT_OBJECTS, OPT_SEED, OPT_HALVES, OPT_HE
 
 static const struct option long_options[] = {
 	CLI_FRAME_OPTIONS,
+	CLI_PROGRESS_OPTION,
 	{ "samples", required_argument, NULL, OPT_SAMPLES },
 	{ "masking", required_argument, NULL, OPT_MASKING },
 	{ "objects", required_argument, NULL, OPT_OBJECTS },
@@ -40,6 +41,7 @@ help(void)
 	       "See reflect-trace(1).\n"
 	       "  -x W -y H          image size (default 640x360)\n"
 	       CLI_FRAME_HELP
+	       CLI_PROGRESS_HELP
 	       "  --samples=N        samples a pixel (1024)\n"
 	       "  --masking=separable|correlated  Smith G (separable, as Cycles 3.4)\n"
 	       "  --objects=hidden|visible  reflective objects in reflected rays\n"
@@ -102,7 +104,7 @@ main(int argc, char **argv)
 	cli_init(argc, argv);
 	cli_frames_init(&frames);
 	rf_trace_options_init(&o);
-	while ((c = getopt_long(argc, argv, "Vx:y:n:j:f:h", long_options, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "qVx:y:n:j:f:h", long_options, NULL)) != -1) {
 		switch (c) {
 		case 'V': print_version(); break;
 		case 'x': width = parse_count(optarg, 'x', 1, RF_FRAME_SIDE_MAX); break;
@@ -124,7 +126,7 @@ main(int argc, char **argv)
 		case OPT_HALVES: o.halves = 1; break;
 		case OPT_HELP: help(); break;
 		default:
-			if (!cli_frames_option(&frames, c, optarg))
+			if (!cli_frames_option(&frames, c, optarg) && !cli_progress_option(c))
 				usage();
 		}
 	}
@@ -150,7 +152,9 @@ main(int argc, char **argv)
 	rows = rf_block_rows(width, rf_tracer_nchannels(t), CLI_BLOCK_BYTES);
 	if (rows > height)
 		rows = height;
+	rows = cli_progress_block(rows, height);
 	rf_scene_camera(s, &start);
+	cli_progress_frames(frames.last - frames.first + 1);
 	for (frame = frames.first; frame <= frames.last; frame++) {
 		rf_header *h;
 

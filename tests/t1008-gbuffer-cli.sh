@@ -84,7 +84,7 @@ test_expect_success '--help on stdout, -V, usage errors' '
 	test ! -s err &&
 	reflect-gbuffer -V >out &&
 	test_grep "^reflect-gbuffer (reflect) " out &&
-	test_expect_code 1 reflect-gbuffer -q 2>err &&
+	test_expect_code 1 reflect-gbuffer -Q 2>err &&
 	test_grep "^usage: reflect-gbuffer" err &&
 	test_expect_code 1 reflect-gbuffer a.scene b.scene 2>err &&
 	test_grep "^usage: reflect-gbuffer" err &&

@@ -1,0 +1,105 @@
+#!/bin/sh
+test_description='progress on standard error: plain lines with --progress, a line redrawn on a terminal, nothing with -q or elsewhere'
+. "$srcdir/tests/lib.sh"
+
+# A line of --progress: percent, where, elapsed and (before the end) ETA.
+LINE='^reflect-[a-z]*: +[0-9]+%, (frame [0-9]+(/[0-9]+)?, )?row [0-9]+/[0-9]+, [0-9]+:[0-9][0-9] elapsed(, ETA [0-9]+:[0-9][0-9])?$'
+
+test_expect_success 'setup' '
+	cat >s.scene <<-\EOF &&
+	probe center 0 1.5 0 box -3 0 -2 3 3 2
+	camera position 0 1.6 2 target 0 1 0 fov 50
+	sphere center 0 1 0 radius 0.9 roughness 0.3
+	EOF
+	reflect-gbuffer -x 48 -y 30 -n 2 s.scene >g.rfl &&
+	reflect-project g.rfl >p.rfl &&
+	XDG_CACHE_HOME=$PWD/cache reflect-shade p.rfl >out 2>err &&
+	test_grep "prefilter" err
+'
+
+# The shaded environment is prefiltered once, and said so; it is cached now.
+XDG_CACHE_HOME=$PWD/cache
+export XDG_CACHE_HOME
+
+test_expect_success 'nothing on stderr without --progress when it is no terminal' '
+	reflect-gbuffer -x 48 -y 30 -n 2 s.scene >out 2>err &&
+	test ! -s err &&
+	reflect-trace -x 48 -y 30 --samples=16 s.scene >out 2>err &&
+	test ! -s err &&
+	reflect-shade p.rfl >out 2>err &&
+	test ! -s err
+'
+
+test_expect_success 'gbuffer --progress: lines, the last at 100% of every frame, the same stream' '
+	reflect-gbuffer -x 48 -y 30 -n 3 --orbit=30 -h s.scene >plain &&
+	reflect-gbuffer -x 48 -y 30 -n 3 --orbit=30 --progress -h s.scene >out 2>err &&
+	cmp plain out &&
+	grep -E "$LINE" err &&
+	! grep -v -E "$LINE" err &&
+	tail -n 1 err >last &&
+	grep -E "^reflect-gbuffer: 100%, frame 3/3, row 30/30, [0-9]+:[0-9][0-9] elapsed$" last
+'
+
+# With progress showing, trace computes in smaller blocks (a 32nd of a
+# frame) to report more often: its rows must not depend on that.
+test_expect_success 'trace --progress: the same bytes in smaller blocks' '
+	reflect-trace -x 64 -y 64 --samples=16 -n 2 --orbit=20 -h s.scene >plain &&
+	reflect-trace -x 64 -y 64 --samples=16 -n 2 --orbit=20 --progress -h s.scene >out 2>err &&
+	cmp plain out &&
+	tail -n 1 err >last &&
+	grep -E "^reflect-trace: 100%, frame 2/2, row 64/64, " last
+'
+
+# reflect-accumulate's result, written after the last frame, is a pass
+# of its own: a third.
+test_expect_success 'the stream stages: frame by frame, as many as come' '
+	reflect-project --progress g.rfl >out 2>err &&
+	tail -n 1 err >last &&
+	grep -E "^reflect-project: 100%, frame 2, row 30/30, " last &&
+	reflect-shade --progress p.rfl >shaded 2>err &&
+	tail -n 1 err >last &&
+	grep -E "^reflect-shade: 100%, frame 2, row 30/30, " last &&
+	reflect-occlude --progress shaded >out 2>err &&
+	grep -E "^reflect-occlude: 100%, frame 2, row 30/30, " err &&
+	reflect-accumulate --progress shaded >out 2>err &&
+	grep -E "^reflect-accumulate: 100%, frame 3, row 30/30, " err &&
+	reflect-filter --progress shaded >out 2>err &&
+	grep -E "^reflect-filter: 100%, frame 2, row 30/30, " err
+'
+
+test_expect_success '-q silences, and the last of -q and --progress wins' '
+	reflect-gbuffer -x 8 -y 8 --progress -q s.scene >out 2>err &&
+	test ! -s err &&
+	reflect-gbuffer -x 8 -y 8 -q --progress s.scene >out 2>err &&
+	grep -E "^reflect-gbuffer: 100%" err &&
+	rm -rf cache &&
+	reflect-shade -q p.rfl >out 2>err &&
+	test ! -s err &&
+	test -d cache
+'
+
+# script(1) gives the tool a terminal and records what it writes there.
+# A trace of about a second or more draws the line (only after a
+# second), redraws it in place and erases it at the end.
+if command -v script >/dev/null
+then
+	test_expect_success 'on a terminal: one line, redrawn in place and erased' '
+		script -q -e -c "reflect-trace -x 160 -y 90 --samples=8192 -h s.scene >t.rfl" ts >/dev/null &&
+		reflect-trace -x 160 -y 90 --samples=8192 -q -h s.scene >q.rfl &&
+		cmp q.rfl t.rfl &&
+		esc=$(printf "\033") &&
+		cr=$(printf "\r") &&
+		test_grep "${cr}${esc}\[Kreflect-trace: *[0-9]*%  row [0-9]*/90  " ts &&
+		sed -n "2,\$p" ts | tr -d "\n" | grep -q "${cr}${esc}\[KScript done" &&
+		! grep "reflect-trace: .*${cr}reflect" ts
+	'
+
+	test_expect_success 'on a terminal with -q: nothing' '
+		script -q -e -c "reflect-trace -x 160 -y 90 --samples=8192 -q s.scene >t.rfl" ts >/dev/null &&
+		! grep reflect-trace: ts
+	'
+else
+	test_skip 'on a terminal: one line, redrawn in place and erased' 'script(1) is missing'
+fi
+
+test_done
