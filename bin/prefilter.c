@@ -12,6 +12,7 @@ static void
 usage(void)
 {
 	fprintf(stderr, "usage: %s [-SvV] [-o OUT] [-s SAMPLES] [-j THREADS] "
+	        CLI_PROGRESS_USAGE " "
 	        "[--levels=N] [--min-size=N] [--mapping=unity|linear|exact] "
 	        "[--steps=N] [--method=filtered|brute] [--plain] [--lod-bias=B] "
 	        "[--layout=L] [--size=N] [--srgb=auto|on|off] [--rgbm=M[,E]] "
@@ -53,12 +54,18 @@ now(clockid_t clock)
 	return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
+/* The texel rows of every level as the rows of one frame. */
 static void
 progress(void *arg, double done, double total)
 {
-	fprintf(stderr, "\r%s: %3.0f%%", argv0, 100.0 * done / total);
-	if (done >= total)
-		fputc('\n', stderr);
+	int *started = arg;
+
+	if (!*started) {
+		cli_progress_frames(1);
+		cli_progress_frame((size_t)total);
+		*started = 1;
+	}
+	cli_progress_rows((size_t)done);
 }
 
 static void
@@ -173,6 +180,7 @@ main(int argc, char **argv)
 		{ "ktx-texel", required_argument, NULL, 'K' },
 		{ "zstd", optional_argument, NULL, 'Z' },
 		{ "help", no_argument, NULL, 'Q' },
+		CLI_PROGRESS_OPTION,
 		{ NULL, 0, NULL, 0 },
 	};
 	struct prefilter_opts o;
@@ -181,14 +189,14 @@ main(int argc, char **argv)
 	rf_cubemap *src, *out;
 	const char *threads = NULL;
 	char err[1024];
-	int c, idx, rc;
+	int c, idx, rc, progress_started = 0;
 
 	cli_init(argc, argv);
 	memset(&o, 0, sizeof(o));
 	rf_prefilter_defaults(&o.pf);
 	o.min_size = 1;
 	envmap_opts_init(&eo);
-	while ((c = getopt_long(argc, argv, "SvVo:s:j:f:h", long_options, &idx)) != -1) {
+	while ((c = getopt_long(argc, argv, "qSvVo:s:j:f:h", long_options, &idx)) != -1) {
 		switch (c) {
 		case 0:
 			envmap_opts_parse(&eo, long_options[idx].name, optarg);
@@ -255,10 +263,13 @@ main(int argc, char **argv)
 			       "  --irradiance=FILE  also a 32-texel cube of E / pi (diffuse light)\n"
 			       "  --nonfinite=error|zero  a NaN or Inf texel refused (error, as -S)\n"
 			       "          or replaced with 0\n"
-			       "  -j N threads  -v  -V\n", argv0);
+			       "  -j N threads  -v  -V\n"
+			       CLI_PROGRESS_HELP, argv0);
 			fshut(stdout, "<stdout>");
 			return 0;
-		default: usage();
+		default:
+			if (!cli_progress_option(c))
+				usage();
 		}
 	}
 	if (argc - optind > 1 || (argc - optind == 1 && eo.path))
@@ -276,8 +287,8 @@ main(int argc, char **argv)
 		cli_check_frame("--size (a frame of N x 6N)", eo.load.size, 6 * eo.load.size);
 	o.pf.nthreads = cli_threads(threads);
 	eo.load.nthreads = o.pf.nthreads;
-	if (isatty(STDERR_FILENO))
-		o.pf.progress = progress;
+	o.pf.progress = progress;
+	o.pf.progress_arg = &progress_started;
 	src = envmap_load(&eo, &info);
 	if (o.irradiance) {
 		/* the diffuse light as a cube of its own: 32 texels a face */
@@ -362,6 +373,7 @@ main(int argc, char **argv)
 		write_chain(&o, o.output, out, &info);
 	rf_cubemap_destroy(src);
 	rf_cubemap_destroy(out);
+	cli_progress_end();
 	fshut(stdout, "<stdout>");
 	return 0;
 }

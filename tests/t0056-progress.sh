@@ -67,6 +67,14 @@ test_expect_success 'the stream stages: frame by frame, as many as come' '
 	grep -E "^reflect-filter: 100%, frame 2, row 30/30, " err
 '
 
+test_expect_success 'prefilter --progress: the texel rows of every level' '
+	reflect-prefilter --size=32 -h -o plain.rfl &&
+	reflect-prefilter --size=32 -h --progress -o out.rfl 2>err &&
+	cmp plain.rfl out.rfl &&
+	tail -n 1 err >last &&
+	grep -E "^reflect-prefilter: 100%, row 186/186, " last
+'
+
 test_expect_success '-q silences, and the last of -q and --progress wins' '
 	reflect-gbuffer -x 8 -y 8 --progress -q s.scene >out 2>err &&
 	test ! -s err &&
