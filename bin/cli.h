@@ -202,6 +202,10 @@ struct cli_frames {
 	struct rf_camera_path path;
 };
 void cli_frames_init(struct cli_frames *f);
+/* A frame's header: its size, the command, the scene's keys for the
+ * camera and FRAME; the tool adds its channels and keys. */
+rf_header *cli_frame_header(const rf_scene *s, const struct rf_camera *cam, size_t frame,
+                            size_t width, size_t height);
 /* Takes -n and the options above: 1 when opt was one of them. */
 int cli_frames_option(struct cli_frames *f, int opt, const char *arg);
 /* Sets first..last, dying unless the range lies within the full run. */

@@ -13,6 +13,22 @@
 
 #include "cli.h"
 
+rf_header *
+cli_frame_header(const rf_scene *s, const struct rf_camera *cam, size_t frame,
+                 size_t width, size_t height)
+{
+	rf_header *h;
+	int rc;
+
+	if (rf_header_create(&h) < 0 || rf_header_set_size(h, width, height) < 0)
+		die_sys("out of memory");
+	cli_record_command(h);
+	/* A probe's env path may be too long for a header line. */
+	if ((rc = rf_scene_frame_keys(s, cam, frame, h)) < 0)
+		die_header_key(rc);
+	return h;
+}
+
 void
 cli_frames_init(struct cli_frames *f)
 {

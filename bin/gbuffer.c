@@ -52,20 +52,13 @@ static rf_header *
 frame_header(const rf_scene *s, const rf_gbuffer *g, const struct rf_camera *cam,
              size_t frame, size_t width, size_t height, size_t supersample)
 {
+	rf_header *h = cli_frame_header(s, cam, frame, width, height);
 	char buf[32];
-	rf_header *h;
 	size_t i;
-	int rc;
 
-	if (rf_header_create(&h) < 0 || rf_header_set_size(h, width, height) < 0)
-		die_sys("out of memory");
 	for (i = 0; i < rf_gbuffer_nchannels(g); i++)
 		if (rf_header_add_channel(h, rf_gbuffer_channel(g, i)) < 0)
 			die_sys("out of memory");
-	cli_record_command(h);
-	/* A probe's env path may be too long for a header line. */
-	if ((rc = rf_scene_frame_keys(s, cam, frame, h)) < 0)
-		die_header_key(rc);
 	snprintf(buf, sizeof(buf), "%zu", supersample);
 	if (supersample > 1 && rf_header_set(h, RF_KEY_SUPERSAMPLE, buf) < 0)
 		die_sys("out of memory");

@@ -56,19 +56,13 @@ static rf_header *
 frame_header(const rf_scene *s, const rf_tracer *t, const struct rf_camera *cam,
              size_t frame, size_t width, size_t height, unsigned samples)
 {
+	rf_header *h = cli_frame_header(s, cam, frame, width, height);
 	char buf[32];
-	rf_header *h;
 	size_t k;
-	int rc;
 
-	if (rf_header_create(&h) < 0 || rf_header_set_size(h, width, height) < 0)
-		die_sys("out of memory");
 	for (k = 0; k < rf_tracer_nchannels(t); k++)
 		if (rf_header_add_channel(h, rf_tracer_channel(t, k)) < 0)
 			die_sys("out of memory");
-	cli_record_command(h);
-	if ((rc = rf_scene_frame_keys(s, cam, frame, h)) < 0)
-		die_header_key(rc);
 	snprintf(buf, sizeof(buf), "%u", samples);
 	if (rf_header_set(h, "TRACE_SAMPLES", buf) < 0)
 		die_sys("out of memory");
