@@ -15,6 +15,11 @@
  * ray starts in it, so its box culls nothing, and rf__trace tries it last
  * as before.
  *
+ * Rays that leave together go down the BVH eight at a time
+ * (rtcIntersect8): the callback serves any number of lanes, each finding
+ * its double ray by the ray's id, and the winner's refinement is the
+ * single ray's, so a packet's hits are the single rays' to the bit.
+ *
  * One device per scene: the library keeps no process-wide state, and a
  * device with the BVH of a few objects costs under half a millisecond
  * (bench/mesh-bench).  The BVH is built on one thread ("threads=1"): the
@@ -62,15 +67,25 @@ struct rf__accel {
 };
 
 /* What a ray carries to the callbacks: Embree's context first, so that a
- * callback's context pointer is this. */
+ * callback's context pointer is this.  A packet's lanes are found by the
+ * ray's id, which is the lane's index. */
 struct ctx {
 	struct RTCIntersectContext rtc;
 	const rf_scene *s;
-	const double *o, *k, *d, *inv;
-	unsigned flags;
-	struct rf__candidate *best;
+	const struct rf__lane *lane;
+	struct rf__candidate *best; /* by lane */
+	const double *o, *d, *inv; /* an occlusion query's ray */
 	double tmax; /* an occlusion query's end */
 };
+
+/* Fields of a packet of N rays (RTCRayHitN), one float or unsigned per
+ * lane, in the order of struct RTCRayHit; a single ray is N = 1. */
+#define RAYN_TFAR 8
+#define RAYN_ID 10
+#define HITN_U 15
+#define HITN_V 16
+#define HITN_PRIM 17
+#define HITN_GEOM 18
 
 static float
 round_down(double v)
@@ -103,6 +118,8 @@ object_bounds(const struct RTCBoundsFunctionArguments *args)
 	b->upper_z = round_up(ob->max[2] + a->margin);
 }
 
+/* Any number of rays: rtcIntersect1 calls with one, rtcIntersect8 with
+ * up to eight, the lanes not asked for invalid. */
 static void
 object_intersect(const struct RTCIntersectFunctionNArguments *args)
 {
@@ -110,29 +127,37 @@ object_intersect(const struct RTCIntersectFunctionNArguments *args)
 	const rf_scene *s = c->s;
 	const size_t i = args->primID;
 	const struct object *ob = &s->objects[i];
-	struct RTCRayHit *rh = (struct RTCRayHit *)args->rayhit;
-	struct rf__candidate cand;
-	float far;
+	const unsigned N = args->N;
+	float *fr = (float *)args->rayhit;
+	unsigned *ur = (unsigned *)args->rayhit;
+	const float margin = ((const struct rf__accel *)args->geometryUserPtr)->margin;
+	unsigned j;
 
-	/* rtcIntersect1 only: one ray, valid */
-	if (!args->valid[0])
-		return;
-	if ((c->flags & RF__TRACE_SKIP_REFLECTIVE) && ob->mat.mask > 0.0f)
-		return;
-	if (!rf__object_hit(ob, c->k ? c->k + i * RF__ORIGIN_STRIDE : NULL, c->o, c->d, c->inv,
-	                    &cand))
-		return;
-	if (!(cand.t < c->best->t || (cand.t == c->best->t && (int)i < c->best->index)))
-		return;
-	cand.index = (int)i;
-	*c->best = cand;
-	/* Culling only, and never short of the exact distance. */
-	far = round_up(cand.t * (1.0 + MARGIN_REL) +
-	               (double)((const struct rf__accel *)args->geometryUserPtr)->margin);
-	if (far < rh->ray.tfar) {
-		rh->ray.tfar = far;
-		rh->hit.geomID = args->geomID;
-		rh->hit.primID = args->primID;
+	for (j = 0; j < N; j++) {
+		const struct rf__lane *l;
+		struct rf__candidate cand, *best;
+		float far;
+
+		if (!args->valid[j])
+			continue;
+		l = &c->lane[ur[RAYN_ID * N + j]];
+		best = &c->best[ur[RAYN_ID * N + j]];
+		if ((l->flags & RF__TRACE_SKIP_REFLECTIVE) && ob->mat.mask > 0.0f)
+			continue;
+		if (!rf__object_hit(ob, l->k ? l->k + i * RF__ORIGIN_STRIDE : NULL, l->o, l->d,
+		                    l->inv, &cand))
+			continue;
+		if (!(cand.t < best->t || (cand.t == best->t && (int)i < best->index)))
+			continue;
+		cand.index = (int)i;
+		*best = cand;
+		/* Culling only, and never short of the exact distance. */
+		far = round_up(cand.t * (1.0 + MARGIN_REL) + (double)margin);
+		if (far < fr[RAYN_TFAR * N + j]) {
+			fr[RAYN_TFAR * N + j] = far;
+			ur[HITN_GEOM * N + j] = args->geomID;
+			ur[HITN_PRIM * N + j] = args->primID;
+		}
 	}
 }
 
@@ -371,22 +396,89 @@ rf__accel_get(const rf_scene *cs, char *err, size_t errlen)
 	return a;
 }
 
+/* The winner of lane l again in double: its triangle (geometry g,
+ * primitive prim, Embree's float t, u and v) into *mh, unless an object
+ * lies as near.  One helper for rf__accel_intersect and its packets, so
+ * that both give the same bits. */
+static void
+refine(const struct rf__accel *a, const rf_scene *s, const struct rf__lane *l,
+       unsigned geom, unsigned primid, float tfar, float u, float v,
+       const struct rf__candidate *best, struct rf__mesh_hit *mh)
+{
+	const struct tri_geom *g;
+	const struct rf__mesh *m;
+	const double *o = l->o, *d = l->d;
+	uint32_t prim;
+	const uint32_t *ix;
+	double v0[3], e1[3], e2[3], pv[3], tv[3], qv[3], det;
+	int j;
+
+	mh->mesh = -1;
+	if (geom == RTC_INVALID_GEOMETRY_ID || geom == a->user_id)
+		return;
+	g = &a->geoms[geom];
+	m = &s->meshes[g->mesh];
+	prim = g->map ? g->map[primid] : primid;
+	ix = m->indices + 3 * (size_t)prim;
+	for (j = 0; j < 3; j++) {
+		v0[j] = m->positions[3 * (size_t)ix[0] + j];
+		e1[j] = (double)m->positions[3 * (size_t)ix[1] + j] - v0[j];
+		e2[j] = (double)m->positions[3 * (size_t)ix[2] + j] - v0[j];
+		tv[j] = o[j] - v0[j];
+	}
+	/* Moeller-Trumbore: P = o + t d on the ray, and on the triangle's
+	 * plane to double's precision, where Embree's float t would leave it
+	 * off by some 1e-7 t. */
+	rf__cross(d, e2, pv);
+	det = rf__dot(e1, pv);
+	mh->mesh = g->mesh;
+	mh->prim = prim;
+	if (fabs(det) > 1e-300) {
+		const double id = 1.0 / det;
+
+		rf__cross(tv, e1, qv);
+		mh->b1 = rf__dot(tv, pv) * id;
+		mh->b2 = rf__dot(d, qv) * id;
+		mh->t = rf__dot(e2, qv) * id;
+	}
+	if (!(fabs(det) > 1e-300) || !(mh->t > 0.0) || !isfinite(mh->t)) {
+		/* edge-on: Embree's own values */
+		mh->t = tfar;
+		mh->b1 = u;
+		mh->b2 = v;
+	}
+	/* An object at the same distance wins, as it would have first. */
+	if (best->t <= mh->t)
+		mh->mesh = -1;
+}
+
+/* Triangles are single precision: a ray leaving a mesh's surface would
+ * meet its own triangle a float's error away.  Objects ignore it (their
+ * callback starts at raycast.c's own bound). */
+static float
+ray_tnear(const double o[3])
+{
+	return (float)(MARGIN_REL * (1.0 + fmax(fabs(o[0]), fmax(fabs(o[1]), fabs(o[2])))));
+}
+
+static unsigned
+ray_mask(unsigned flags)
+{
+	return flags & RF__TRACE_SKIP_REFLECTIVE ? GMASK_OTHER : GMASK_OTHER | GMASK_REFLECTIVE;
+}
+
 void
 rf__accel_intersect(const struct rf__accel *a, const rf_scene *s, const double o[3],
                     const double *k, const double d[3], const double inv[3], unsigned flags,
                     struct rf__candidate *best, struct rf__mesh_hit *mh)
 {
+	const struct rf__lane l = { o, k, d, inv, flags };
 	struct ctx c;
 	struct RTCRayHit rh;
-	double reach = fmax(fabs(o[0]), fmax(fabs(o[1]), fabs(o[2])));
 
 	rtcInitIntersectContext(&c.rtc);
 	c.s = s;
-	c.o = o;
-	c.k = k;
-	c.d = d;
-	c.inv = inv;
-	c.flags = flags;
+	c.lane = &l;
 	c.best = best;
 	rh.ray.org_x = (float)o[0];
 	rh.ray.org_y = (float)o[1];
@@ -394,62 +486,67 @@ rf__accel_intersect(const struct rf__accel *a, const rf_scene *s, const double o
 	rh.ray.dir_x = (float)d[0];
 	rh.ray.dir_y = (float)d[1];
 	rh.ray.dir_z = (float)d[2];
-	/* Triangles are single precision: a ray leaving a mesh's surface
-	 * would meet its own triangle a float's error away.  Objects ignore
-	 * it (their callback starts at raycast.c's own bound). */
-	rh.ray.tnear = (float)(MARGIN_REL * (1.0 + reach));
+	rh.ray.tnear = ray_tnear(o);
 	rh.ray.tfar = INFINITY;
 	rh.ray.time = 0.0f;
-	rh.ray.mask = flags & RF__TRACE_SKIP_REFLECTIVE ? GMASK_OTHER
-	                                                : GMASK_OTHER | GMASK_REFLECTIVE;
+	rh.ray.mask = ray_mask(flags);
 	rh.ray.id = 0;
 	rh.ray.flags = 0;
 	rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
 	rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
 	rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 	rtcIntersect1(a->scene, &c.rtc, &rh);
-	mh->mesh = -1;
-	if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || rh.hit.geomID == a->user_id)
+	refine(a, s, &l, rh.hit.geomID, rh.hit.primID, rh.ray.tfar, rh.hit.u, rh.hit.v, best,
+	       mh);
+}
+
+void
+rf__accel_intersect8(const struct rf__accel *a, const rf_scene *s, int n,
+                     const struct rf__lane *l, const int *valid, struct rf__candidate *best,
+                     struct rf__mesh_hit *mh)
+{
+	struct ctx c;
+	RTC_ALIGN(32) struct RTCRayHit8 rh;
+	RTC_ALIGN(32) int v[8];
+	int j, any = 0;
+
+	if (n <= 0)
 		return;
-	{
-		const struct tri_geom *g = &a->geoms[rh.hit.geomID];
-		const struct rf__mesh *m = &s->meshes[g->mesh];
-		const uint32_t prim = g->map ? g->map[rh.hit.primID] : rh.hit.primID;
-		const uint32_t *ix = m->indices + 3 * (size_t)prim;
-		double v0[3], e1[3], e2[3], pv[3], tv[3], qv[3], det;
-		int j;
+	rtcInitIntersectContext(&c.rtc);
+	c.s = s;
+	c.lane = l;
+	c.best = best;
+	for (j = 0; j < 8; j++) {
+		/* Embree reads every lane; the ones past n repeat the first */
+		const struct rf__lane *lj = &l[j < n ? j : 0];
 
-		for (j = 0; j < 3; j++) {
-			v0[j] = m->positions[3 * (size_t)ix[0] + j];
-			e1[j] = (double)m->positions[3 * (size_t)ix[1] + j] - v0[j];
-			e2[j] = (double)m->positions[3 * (size_t)ix[2] + j] - v0[j];
-			tv[j] = o[j] - v0[j];
-		}
-		/* The winner again in double (Moeller-Trumbore): P = o + t d on
-		 * the ray, and on the triangle's plane to double's precision,
-		 * where Embree's float t would leave it off by some 1e-7 t. */
-		rf__cross(d, e2, pv);
-		det = rf__dot(e1, pv);
-		mh->mesh = g->mesh;
-		mh->prim = prim;
-		if (fabs(det) > 1e-300) {
-			const double id = 1.0 / det;
-
-			rf__cross(tv, e1, qv);
-			mh->b1 = rf__dot(tv, pv) * id;
-			mh->b2 = rf__dot(d, qv) * id;
-			mh->t = rf__dot(e2, qv) * id;
-		}
-		if (!(fabs(det) > 1e-300) || !(mh->t > 0.0) || !isfinite(mh->t)) {
-			/* edge-on: Embree's own values */
-			mh->t = rh.ray.tfar;
-			mh->b1 = rh.hit.u;
-			mh->b2 = rh.hit.v;
-		}
-		/* An object at the same distance wins, as it would have first. */
-		if (best->t <= mh->t)
-			mh->mesh = -1;
+		v[j] = j < n && valid[j] ? -1 : 0;
+		any |= v[j];
+		rh.ray.org_x[j] = (float)lj->o[0];
+		rh.ray.org_y[j] = (float)lj->o[1];
+		rh.ray.org_z[j] = (float)lj->o[2];
+		rh.ray.dir_x[j] = (float)lj->d[0];
+		rh.ray.dir_y[j] = (float)lj->d[1];
+		rh.ray.dir_z[j] = (float)lj->d[2];
+		rh.ray.tnear[j] = ray_tnear(lj->o);
+		rh.ray.tfar[j] = INFINITY;
+		rh.ray.time[j] = 0.0f;
+		rh.ray.mask[j] = ray_mask(lj->flags);
+		rh.ray.id[j] = (unsigned)(j < n ? j : 0);
+		rh.ray.flags[j] = 0;
+		rh.hit.geomID[j] = RTC_INVALID_GEOMETRY_ID;
+		rh.hit.primID[j] = RTC_INVALID_GEOMETRY_ID;
+		rh.hit.instID[0][j] = RTC_INVALID_GEOMETRY_ID;
 	}
+	for (j = 0; j < n; j++)
+		mh[j].mesh = -1;
+	if (!any)
+		return;
+	rtcIntersect8(v, a->scene, &c.rtc, &rh);
+	for (j = 0; j < n; j++)
+		if (v[j])
+			refine(a, s, &l[j], rh.hit.geomID[j], rh.hit.primID[j], rh.ray.tfar[j],
+			       rh.hit.u[j], rh.hit.v[j], &best[j], &mh[j]);
 }
 
 int
@@ -458,16 +555,14 @@ rf__accel_occluded(const struct rf__accel *a, const rf_scene *s, const double o[
 {
 	struct ctx c;
 	struct RTCRay ray;
-	double reach = fmax(fabs(o[0]), fmax(fabs(o[1]), fabs(o[2])));
 
 	rtcInitIntersectContext(&c.rtc);
 	c.s = s;
+	c.lane = NULL;
+	c.best = NULL;
 	c.o = o;
-	c.k = NULL;
 	c.d = d;
 	c.inv = inv;
-	c.flags = 0;
-	c.best = NULL;
 	c.tmax = tmax;
 	ray.org_x = (float)o[0];
 	ray.org_y = (float)o[1];
@@ -476,7 +571,7 @@ rf__accel_occluded(const struct rf__accel *a, const rf_scene *s, const double o[
 	ray.dir_y = (float)d[1];
 	ray.dir_z = (float)d[2];
 	/* the margin of rf__accel_intersect's rays, off the surface left */
-	ray.tnear = (float)(MARGIN_REL * (1.0 + reach));
+	ray.tnear = ray_tnear(o);
 	/* triangles are decided in float: a rounding short of the end */
 	ray.tfar = tmax < (double)FLT_MAX ? round_down(tmax) : INFINITY;
 	ray.time = 0.0f;

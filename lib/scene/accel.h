@@ -1,7 +1,8 @@
 /*
  * Internal to scene: the scene's acceleration structure (accel.c), one
  * Embree 3 BVH over the meshes' triangles and the analytic objects as
- * user geometry, and what rf__trace shares with it.
+ * user geometry, one ray or a packet of eight, and what rf__trace and
+ * rf__trace8 share with it.
  */
 #ifndef REFLECT_SCENE_ACCEL_H
 #define REFLECT_SCENE_ACCEL_H
@@ -40,6 +41,21 @@ void rf__accel_intersect(const struct rf__accel *a, const rf_scene *s, const dou
                          const double *k, const double d[3], const double inv[3],
                          unsigned flags, struct rf__candidate *best,
                          struct rf__mesh_hit *mh);
+
+/* One ray of a packet: its origin, k (or NULL), unit direction, its
+ * reciprocals and rf__trace's flags, as rf__accel_intersect takes them. */
+struct rf__lane {
+	const double *o, *k, *d, *inv;
+	unsigned flags;
+};
+
+/* rf__accel_intersect for lanes 0 .. n-1 (n <= 8) at once, through
+ * Embree's packets of eight: those whose valid is 0 are not searched
+ * (best and mh as they were, mh[j].mesh -1).  Each lane's hits are those
+ * rf__accel_intersect gives it, to the bit. */
+void rf__accel_intersect8(const struct rf__accel *a, const rf_scene *s, int n,
+                          const struct rf__lane *l, const int *valid,
+                          struct rf__candidate *best, struct rf__mesh_hit *mh);
 
 /* Whether an object or a triangle lies on the unit ray from o along d
  * nearer than tmax (INFINITY: anywhere): Embree's occlusion query, which

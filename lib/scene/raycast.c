@@ -387,27 +387,18 @@ rf__occluded(const rf_scene *s, const double o[3], const double d[3], double tma
 	return 0;
 }
 
-int
-rf__trace(const rf_scene *s, const double o[3], const double *k, const double d[3],
-          const double *inv_d, unsigned flags, struct rf_hit *hit)
+/* A ray's hit once the objects and the triangles are searched: the room
+ * if it is nearer, then the shading of what was met. */
+static int
+finish(const rf_scene *s, const double o[3], const double *k, const double d[3],
+       const double inv[3], struct candidate best, struct rf__mesh_hit mh,
+       struct rf_hit *hit)
 {
-	double tmp[RF__ORIGIN_STRIDE], own_inv[3];
-	const double *inv = inv_d ? inv_d : own_inv;
-	struct candidate best = { INFINITY, -1, -1, 0 }, c;
-	struct rf__mesh_hit mh = { -1, 0, 0.0, 0.0, 0.0 };
+	double tmp[RF__ORIGIN_STRIDE];
+	struct candidate c;
 	const struct rf_scene_probe *room = s->nprobes && s->room ? &s->probes[0] : NULL;
-	const struct rf__accel *acc;
 	int j;
 
-	if (!inv_d)
-		for (j = 0; j < 3; j++)
-			own_inv[j] = 1.0 / d[j];
-	if ((s->nobjects || s->nmeshes) && !(flags & RF__TRACE_ROOM_ONLY)) {
-		if (s->nmeshes && (acc = rf__accel_get(s, NULL, 0)))
-			rf__accel_intersect(acc, s, o, k, d, inv, flags, &best, &mh);
-		else
-			trace_objects(s, o, k, d, inv, flags, &best);
-	}
 	if (mh.mesh >= 0)
 		best.t = mh.t;
 	if (room) {
@@ -470,4 +461,68 @@ rf__trace(const rf_scene *s, const double o[3], const double *k, const double d[
 		}
 	}
 	return hit->objid;
+}
+
+int
+rf__trace(const rf_scene *s, const double o[3], const double *k, const double d[3],
+          const double *inv_d, unsigned flags, struct rf_hit *hit)
+{
+	double own_inv[3];
+	const double *inv = inv_d ? inv_d : own_inv;
+	struct candidate best = { INFINITY, -1, -1, 0 };
+	struct rf__mesh_hit mh = { -1, 0, 0.0, 0.0, 0.0 };
+	const struct rf__accel *acc;
+	int j;
+
+	if (!inv_d)
+		for (j = 0; j < 3; j++)
+			own_inv[j] = 1.0 / d[j];
+	if ((s->nobjects || s->nmeshes) && !(flags & RF__TRACE_ROOM_ONLY)) {
+		if (s->nmeshes && (acc = rf__accel_get(s, NULL, 0)))
+			rf__accel_intersect(acc, s, o, k, d, inv, flags, &best, &mh);
+		else
+			trace_objects(s, o, k, d, inv, flags, &best);
+	}
+	return finish(s, o, k, d, inv, best, mh, hit);
+}
+
+void
+rf__trace8(const rf_scene *s, const double o[3], const double *k, int n,
+           const double *const d[], const double *const inv_d[], const unsigned flags[],
+           struct rf_hit hit[])
+{
+	struct rf__lane l[8];
+	struct candidate best[8];
+	struct rf__mesh_hit mh[8];
+	double own_inv[8][3];
+	int valid[8], j, c;
+	const struct rf__accel *acc;
+
+	if (!s->nmeshes || !(acc = rf__accel_get(s, NULL, 0))) {
+		/* the objects' own loop, as before: no packets to gain */
+		for (j = 0; j < n; j++)
+			rf__trace(s, o, k, d[j], inv_d ? inv_d[j] : NULL, flags[j], &hit[j]);
+		return;
+	}
+	for (j = 0; j < n; j++) {
+		if (!inv_d)
+			for (c = 0; c < 3; c++)
+				own_inv[j][c] = 1.0 / d[j][c];
+		l[j].o = o;
+		l[j].k = k;
+		l[j].d = d[j];
+		l[j].inv = inv_d ? inv_d[j] : own_inv[j];
+		l[j].flags = flags[j];
+		valid[j] = !(flags[j] & RF__TRACE_ROOM_ONLY);
+		best[j].t = INFINITY;
+		best[j].index = -1;
+		best[j].axis = -1;
+		best[j].upper = 0;
+		mh[j].mesh = -1;
+		mh[j].prim = 0;
+		mh[j].t = mh[j].b1 = mh[j].b2 = 0.0;
+	}
+	rf__accel_intersect8(acc, s, n, l, valid, best, mh);
+	for (j = 0; j < n; j++)
+		finish(s, o, k, d[j], l[j].inv, best[j], mh[j], &hit[j]);
 }

@@ -275,7 +275,7 @@ const struct emission *rf__wall_emission_of(const rf_scene *s, int face);
 /* raycast.c */
 /* Fills k[(nobjects + 1) * RF__ORIGIN_STRIDE] for rays from o (the room
  * last). */
-void rf__trace_prepare(const rf_scene *s, const double o[3], double *k);
+RF_EXTERN void rf__trace_prepare(const rf_scene *s, const double o[3], double *k);
 /* rf__trace's flags: objects and mesh triangles whose mask is above 0
  * (what reflects the probe) are passed through. */
 #define RF__TRACE_SKIP_REFLECTIVE 1u
@@ -288,6 +288,12 @@ void rf__trace_prepare(const rf_scene *s, const double o[3], double *k);
 RF_EXTERN int rf__trace(const rf_scene *s, const double o[3], const double *k,
                         const double d[3], const double *inv_d, unsigned flags,
                         struct rf_hit *hit);
+/* rf__trace for n <= 8 rays from o at once (inv_d[j] the reciprocals of
+ * d[j], or inv_d NULL), each into hit[j] as rf__trace would fill it, to
+ * the bit: a scene with meshes searches them as one packet. */
+RF_EXTERN void rf__trace8(const rf_scene *s, const double o[3], const double *k, int n,
+                          const double *const d[], const double *const inv_d[],
+                          const unsigned flags[], struct rf_hit hit[]);
 /* Whether the room, an object or a triangle lies on the unit ray from o
  * along d nearer than tmax (INFINITY: anywhere): a shadow ray. */
 int rf__occluded(const rf_scene *s, const double o[3], const double d[3], double tmax);

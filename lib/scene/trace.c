@@ -177,29 +177,6 @@ hash(uint32_t x)
 	return x;
 }
 
-/* What a reflected ray from p along d meets emits. */
-static void
-reflected(const struct rf_tracer *t, const double p[3], const double *k, const double d[3],
-          float rgb[3])
-{
-	const rf_scene *s = t->s;
-	struct rf_hit h;
-
-	if (!t->nseen) {
-		/* the room alone: the wall the ray leaves by */
-		double uv[2];
-		int face = rf__room_exit(s, p, d, uv);
-
-		if (face < 0)
-			rgb[0] = rgb[1] = rgb[2] = 0.0f;
-		else
-			rf__wall_emission(s, face, uv, rgb);
-		return;
-	}
-	rf__trace(s, p, k, d, NULL, t->flags, &h);
-	rf__radiance(s, &h, rgb);
-}
-
 /* The lobe's integral at a hit seen along -v over a Hammersley set of K
  * samples turned by rot: their sum (of weight x radiance) into acc. */
 #if defined(__GNUC__) && !defined(__clang__)
@@ -274,7 +251,7 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 		float wts[TRACE_CHUNK];
 		int ok[TRACE_CHUNK];
 		const int correlated = t->o.masking_correlated;
-		uint32_t i0, j, m;
+		uint32_t i0, j, m, next;
 
 		for (i0 = 0; i0 < K; i0 += m) {
 			/* the chunk's turns copied: the arrays below escape to
@@ -361,15 +338,36 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 						acc[c] += wts[j] * rgb[j][c];
 				continue;
 			}
-			for (j = 0; j < m; j++) {
-				double l[3] = { lxs[j], lys[j], lzs[j] };
-				float rgb[3];
+			/* the chunk's valid rays eight at a time (rf__trace8:
+			 * the hits of one by one), summed in their order */
+			for (j = 0; j < m; j = next) {
+				double l[8][3];
+				const double *dl[8];
+				unsigned fl[8];
+				uint32_t idx[8];
+				struct rf_hit hl[8];
+				int nl = 0, q;
 
-				if (!ok[j])
-					continue;
-				reflected(t, h->P, k, l, rgb);
-				for (c = 0; c < 3; c++)
-					acc[c] += wts[j] * rgb[c];
+				for (next = j; next < m && nl < 8; next++) {
+					if (!ok[next])
+						continue;
+					l[nl][0] = lxs[next];
+					l[nl][1] = lys[next];
+					l[nl][2] = lzs[next];
+					dl[nl] = l[nl];
+					fl[nl] = t->flags;
+					idx[nl++] = next;
+				}
+				if (!nl)
+					break;
+				rf__trace8(t->s, h->P, k, nl, dl, NULL, fl, hl);
+				for (q = 0; q < nl; q++) {
+					float rgb[3];
+
+					rf__radiance(t->s, &hl[q], rgb);
+					for (c = 0; c < 3; c++)
+						acc[c] += wts[idx[q]] * rgb[c];
+				}
 			}
 		}
 	}

@@ -626,6 +626,125 @@ TEST(reflective_triangles_passed_through)
 	rf_scene_destroy(s);
 }
 
+/* Every field of two hits, bit for bit. */
+static int
+same_hit(const struct rf_hit *a, const struct rf_hit *b)
+{
+	return !memcmp(&a->t, &b->t, sizeof(a->t)) && !memcmp(a->P, b->P, sizeof(a->P)) &&
+	       !memcmp(a->N, b->N, sizeof(a->N)) && !memcmp(a->Ng, b->Ng, sizeof(a->Ng)) &&
+	       !memcmp(a->T, b->T, sizeof(a->T)) &&
+	       !memcmp(a->bary, b->bary, sizeof(a->bary)) &&
+	       !memcmp(&a->roughness, &b->roughness, sizeof(a->roughness)) &&
+	       !memcmp(&a->metallic, &b->metallic, sizeof(a->metallic)) &&
+	       !memcmp(a->albedo, b->albedo, sizeof(a->albedo)) &&
+	       !memcmp(&a->mask, &b->mask, sizeof(a->mask)) && a->objid == b->objid &&
+	       a->prim == b->prim;
+}
+
+static uint32_t
+next_random(uint32_t *state)
+{
+	/* xorshift32: any fixed sequence does */
+	*state ^= *state << 13;
+	*state ^= *state >> 17;
+	*state ^= *state << 5;
+	return *state;
+}
+
+static double
+uniform(uint32_t *state)
+{
+	return (double)(next_random(state) >> 8) / 16777216.0;
+}
+
+TEST(packets_meet_what_single_rays_meet)
+{
+	/* Some 4000 rays from inside a room of objects (a reflective sphere
+	 * among them) and meshes (a reflective icosphere, two quads one of
+	 * which is half reflective), cast one by one and in packets of every
+	 * size from 1 to 8, their flags mixed: all, passing reflective
+	 * surfaces, the room alone (the packet's lanes left out of the
+	 * search).  Each lane's hit is the single ray's to the bit. */
+	rf_scene *s = parse("probe box -3 -1 -4 3 3 3\n"
+	                    "camera position 0 1 2.5 target 0 1 0\n"
+	                    "sphere center -1.2 1 -0.5 radius 0.4 reflective on\n"
+	                    "sphere center 1.5 0.3 0.5 radius 0.3\n"
+	                    "box min 0.6 0.8 -1.4 max 1.4 1.6 -0.8\n"
+	                    "rect plane y 0.01 min -2.5 -3.5 max 2.5 2.5 roughness 0.3\n");
+	const double c[3] = { 0.2, 1.1, -2.2 };
+	struct rf__mesh ico = icosphere(c, 0.7, 3, 1), a = quad(2), b = quad(3);
+	static const unsigned kinds[4] = { 0, RF__TRACE_SKIP_REFLECTIVE, RF__TRACE_ROOM_ONLY,
+	                                   0 };
+	double k[16 * RF__ORIGIN_STRIDE], dirs[8][3], invs[8][3];
+	uint32_t state = 12345;
+	int i, j, n, r, bad = 0, meshes = 0, objects = 0, room = 0, passed = 0;
+
+	ASSERT(s);
+	for (i = 0; i < 4; i++)
+		b.positions[3 * i + 2] = -2.5f;
+	free(b.materials[0].name);
+	free(b.materials);
+	b.nmaterials = 2;
+	b.materials = calloc(2, sizeof(*b.materials));
+	b.materials[0].name = strdup("matte");
+	b.materials[1].name = strdup("mirror");
+	b.materials[1].mask = 1.0f;
+	b.material[1] = 1;
+	ASSERT_EQ(add(s, &ico), 0);
+	ASSERT_EQ(add(s, &a), 0);
+	ASSERT_EQ(add(s, &b), 0);
+	for (r = 0; r < 900; r++) {
+		double o[3];
+		const double *d[8], *inv[8];
+		unsigned flags[8];
+		struct rf_hit h8[8], h1;
+		const int with_k = r % 2, with_inv = r % 3 != 0;
+
+		n = 1 + r % 8;
+		o[0] = -2.5 + 5.0 * uniform(&state);
+		o[1] = -0.5 + 3.0 * uniform(&state);
+		o[2] = -3.5 + 6.0 * uniform(&state);
+		if (with_k)
+			rf__trace_prepare(s, o, k);
+		for (j = 0; j < n; j++) {
+			double len = 0.0;
+			int m;
+
+			/* toward a point near the meshes, or anywhere */
+			for (m = 0; m < 3; m++) {
+				dirs[j][m] = r % 4 == 3 ? 2.0 * uniform(&state) - 1.0
+				                        : c[m] + 1.6 * uniform(&state) - 0.8 - o[m];
+				len += dirs[j][m] * dirs[j][m];
+			}
+			len = sqrt(len);
+			for (m = 0; m < 3; m++) {
+				dirs[j][m] /= len;
+				invs[j][m] = 1.0 / dirs[j][m];
+			}
+			d[j] = dirs[j];
+			inv[j] = invs[j];
+			flags[j] = kinds[next_random(&state) % 4];
+		}
+		rf__trace8(s, o, with_k ? k : NULL, n, d, with_inv ? inv : NULL, flags, h8);
+		for (j = 0; j < n; j++) {
+			rf__trace(s, o, with_k ? k : NULL, d[j], with_inv ? inv[j] : NULL, flags[j],
+			          &h1);
+			if (!same_hit(&h1, &h8[j]) && bad++ < 5)
+				printf("# packet %d lane %d of %d: objid %d t %.17g, alone %d t %.17g\n",
+				       r, j, n, h8[j].objid, h8[j].t, h1.objid, h1.t);
+			meshes += h1.objid > 4;
+			objects += h1.objid >= 1 && h1.objid <= 4;
+			room += h1.objid < 0 && flags[j] == RF__TRACE_ROOM_ONLY;
+			passed += flags[j] == RF__TRACE_SKIP_REFLECTIVE && h1.mask == 0.0f;
+		}
+	}
+	ASSERT_EQ(bad, 0);
+	/* the rays meet every kind of thing */
+	printf("# meshes %d objects %d room-only %d passed %d\n", meshes, objects, room, passed);
+	ASSERT(meshes > 500 && objects > 300 && room > 500 && passed > 500);
+	rf_scene_destroy(s);
+}
+
 TEST(capture_sees_an_emissive_mesh)
 {
 	/* A probe at (0, 1.5, 0) in a room that emits nothing; a matte quad
@@ -753,6 +872,7 @@ main(void)
 	RUN(textured_material_and_emission);
 	RUN(same_bytes_at_any_thread_count);
 	RUN(reflective_triangles_passed_through);
+	RUN(packets_meet_what_single_rays_meet);
 	RUN(capture_sees_an_emissive_mesh);
 	RUN(trace_reflects_an_emissive_mesh);
 	RUN(bad_meshes_refused);
