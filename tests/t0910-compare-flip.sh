@@ -123,6 +123,42 @@ test_expect_success 'thresholds on the per-pixel FLIP, with exit statuses' '
 	test_grep "^WARNING$" out
 '
 
+# 4 x 2, the left half on the mask: green against blue there, the same
+# grey on the right; the filters see the whole picture, the figures the
+# mask alone.
+test_expect_success 'a mask leaves pixels out of the figures and greys them on the map' '
+	stream ma.txt 4 2 "R G B mask" <<-\EOF &&
+	0 1 0 1
+	0 1 0 1
+	0.5 0.5 0.5 0
+	0.5 0.5 0.5 0
+	0 1 0 1
+	0 1 0 1
+	0.5 0.5 0.5 0
+	0.5 0.5 0.5 0
+	EOF
+	stream mb.txt 4 2 "R G B" <<-\EOF &&
+	0 0 1
+	0 0 1
+	0.5 0.5 0.5
+	0.5 0.5 0.5
+	0 0 1
+	0 0 1
+	0.5 0.5 0.5
+	0.5 0.5 0.5
+	EOF
+	test_expect_code 3 reflect-compare --metric=ldr-flip --mask --objid=none --erode=0 \
+		-fa -o m.png ma.txt mb.txt >got &&
+	test "$(cut -d" " -f4 got)" = 4 &&
+	test_expect_code 3 reflect-compare --metric=ldr-flip -fa ma.txt mb.txt >all &&
+	test "$(cut -d" " -f4 all)" = 8 &&
+	awk "{ exit !(\$1 > 0.5) }" got &&
+	awk -v m="$(cut -d" " -f1 got)" "{ exit !(\$1 < m) }" all &&
+	"$builddir/tests/imgdump" -8 m.png | sed -n 5p >grey &&
+	echo "38 38 38" >want &&
+	diff want grey
+'
+
 test_expect_success 'refused: nonsense named, with the fix' '
 	p="$pairs/gradient-test.png" r="$pairs/gradient-ref.png" &&
 	test_expect_code 1 reflect-compare --metric=hdr-flip $p $r 2>err &&
