@@ -59,7 +59,7 @@ struct compare_opts {
 	unsigned erode;
 	double fail, failpercent, hardfail, warn, warnpercent, peak, scale;
 	int ascii, json;
-	int metric, nthreads, exposures_given;
+	int metric, exposures_given;
 	const char *threads;
 	struct rf_flip_options flip;
 };
@@ -366,7 +366,7 @@ run_flip(struct compare_opts *o, const struct rf_compare_input *in, const char *
 	if (vs.nonfinite)
 		die("'%s' against '%s': %zu values are not finite (the first at pixel %zu, %zu): "
 		    "FLIP compares finite colours", an, bn, vs.nonfinite, vs.max_x, vs.max_y);
-	if (o->flip.hdr && (isnan(o->flip.start) || isnan(o->flip.stop) || !o->flip.nexposures)) {
+	if (o->flip.hdr && (isnan(o->flip.start) || isnan(o->flip.stop))) {
 		if (rf_flip_exposures(in, &start, &stop, &count) < 0)
 			die("'%s' (the reference): more than half its pixels are black, so HDR-FLIP's "
 			    "exposures cannot come from its luminance: give --start-exposure and "
@@ -375,9 +375,10 @@ run_flip(struct compare_opts *o, const struct rf_compare_input *in, const char *
 			o->flip.start = start;
 		if (isnan(o->flip.stop))
 			o->flip.stop = stop;
-		if (!o->flip.nexposures)
-			o->flip.nexposures = (int)fmax(2.0, ceil(o->flip.stop - o->flip.start));
 	}
+	/* the count the automatic one would be, from the range in use */
+	if (o->flip.hdr && !o->flip.nexposures)
+		o->flip.nexposures = (int)fmax(2.0, ceil(o->flip.stop - o->flip.start));
 	if (o->flip.hdr && o->flip.start > o->flip.stop)
 		die("HDR-FLIP's start exposure %g is above its stop exposure %g", o->flip.start,
 		    o->flip.stop);
@@ -429,7 +430,7 @@ int
 main(int argc, char **argv)
 {
 	struct compare_opts o = { NULL, NULL, "objid", NULL, 1, 1e-6, 0, INFINITY, -1, 0, 1, 0,
-	                          0, 0, METRIC_DIFF, 0, 0, NULL,
+	                          0, 0, METRIC_DIFF, 0, NULL,
 	                          { 0, 0, 0, 0.0, NAN, NAN, 0, 1 } };
 	int acol[MAX_CHANNELS], bcol[MAX_CHANNELS], c;
 	const char *chname[MAX_CHANNELS];

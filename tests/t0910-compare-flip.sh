@@ -198,6 +198,10 @@ test_expect_success 'refused: a reference too dark for exposures, values not fin
 	test_expect_code 3 reflect-compare --metric=flip --start-exposure=0 --stop-exposure=0 \
 		--exposures=1 -fa w.txt k.txt >got &&
 	test "$(cut -d" " -f4- got)" = "16 0 0 1" &&
+	# start and stop given, the count follows from them alone
+	test_expect_code 3 reflect-compare --metric=flip --start-exposure=-1 --stop-exposure=1.5 \
+		-fa w.txt k.txt >got &&
+	test "$(cut -d" " -f5-7 got)" = "-1 1.5 3" &&
 	stream n.txt 2 1 "R G B" <<-\EOF &&
 	0.5 nan 0.5
 	0.5 0.5 0.5
