@@ -11,7 +11,8 @@ usage(void)
 	fprintf(stderr, "usage: %s [-V] [-c CHANNELS] [--mask[=CHANNEL]] [--objid=CHANNEL|none] "
 	        "[--erode=N] [--fail=A] [--failpercent=P] [--hardfail=H] [--warn=W] "
 	        "[--warnpercent=P] [--peak=P] [-o HEATMAP] [--scale=S] [-f a] [--json] "
-	        "A B\n", argv0);
+	        "[--metric=diff|flip|ldr-flip|hdr-flip] [--ppd=P|--viewing=D,W,PIXELS] "
+	        "[--start-exposure=C] [--stop-exposure=C] [--exposures=N] [-j N] A B\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
 
@@ -21,8 +22,14 @@ enum { EXIT_DIFFERENT = 3 };
 
 enum {
 	OPT_MASK = 256, OPT_OBJID, OPT_ERODE, OPT_FAIL, OPT_FAILPERCENT, OPT_HARDFAIL, OPT_WARN,
-	OPT_WARNPERCENT, OPT_PEAK, OPT_SCALE, OPT_JSON, OPT_HELP
+	OPT_WARNPERCENT, OPT_PEAK, OPT_SCALE, OPT_JSON, OPT_HELP, OPT_METRIC, OPT_PPD, OPT_VIEWING,
+	OPT_START, OPT_STOP, OPT_EXPOSURES
 };
+
+/* The metrics: values' differences, and FLIP of the kind the pictures
+ * call for (LDR for display sRGB, HDR for linear) or named. */
+enum { METRIC_DIFF, METRIC_FLIP, METRIC_LDR_FLIP, METRIC_HDR_FLIP };
+static const char *const metric_names[] = { "diff", "flip", "ldr-flip", "hdr-flip" };
 
 static const struct option long_options[] = {
 	{ "channels", required_argument, NULL, 'c' },
@@ -38,6 +45,12 @@ static const struct option long_options[] = {
 	{ "scale", required_argument, NULL, OPT_SCALE },
 	{ "json", no_argument, NULL, OPT_JSON },
 	{ "help", no_argument, NULL, OPT_HELP },
+	{ "metric", required_argument, NULL, OPT_METRIC },
+	{ "ppd", required_argument, NULL, OPT_PPD },
+	{ "viewing", required_argument, NULL, OPT_VIEWING },
+	{ "start-exposure", required_argument, NULL, OPT_START },
+	{ "stop-exposure", required_argument, NULL, OPT_STOP },
+	{ "exposures", required_argument, NULL, OPT_EXPOSURES },
 	{ NULL, 0, NULL, 0 },
 };
 
@@ -46,6 +59,9 @@ struct compare_opts {
 	unsigned erode;
 	double fail, failpercent, hardfail, warn, warnpercent, peak, scale;
 	int ascii, json;
+	int metric, exposures_given;
+	const char *threads;
+	struct rf_flip_options flip;
 };
 
 #define MAX_CHANNELS 64
@@ -166,12 +182,11 @@ make_mask(const struct compare_opts *o, const rf_picture *a, const rf_picture *b
 	return keep;
 }
 
+/* Writes w x h display RGB pixels to path, of the type its name says. */
 static void
-write_heatmap(const char *path, const struct rf_compare_input *in, double scale)
+write_rgb(const char *path, const float *rgb, size_t w, size_t h)
 {
 	static const char *const names[] = { "R", "G", "B" };
-	const size_t w = rf_compare_heatmap_width(in->width, in->height), h = in->height;
-	float *rgb = emalloc(w * h * 3 * sizeof(float) + 1);
 	rf_image_writer *iw;
 	char err[1024];
 	int type, rc;
@@ -180,7 +195,6 @@ write_heatmap(const char *path, const struct rf_compare_input *in, double scale)
 		die("%s", err);
 	if (type < 0 && (type = rf_image_type_for_path(path)) < 0)
 		die("-o: no image type for '%s' (try .png or .exr)", path);
-	rf_compare_heatmap(rgb, in, scale);
 	/* A failed write's message is the writer's, not err (which held
 	 * nothing then), and a full disk is a system error. */
 	if ((rc = rf_image_writer_open(&iw, path, w, h, 3, names, (enum rf_pixel_type)type,
@@ -190,6 +204,16 @@ write_heatmap(const char *path, const struct rf_compare_input *in, double scale)
 		die_status(rc, rf_image_writer_error(iw));
 	if ((rc = rf_image_writer_close(iw, err, sizeof(err))) < 0)
 		die_status(rc, err);
+}
+
+static void
+write_heatmap(const char *path, const struct rf_compare_input *in, double scale)
+{
+	const size_t w = rf_compare_heatmap_width(in->width, in->height), h = in->height;
+	float *rgb = emalloc(w * h * 3 * sizeof(float) + 1);
+
+	rf_compare_heatmap(rgb, in, scale);
+	write_rgb(path, rgb, w, h);
 	free(rgb);
 }
 
@@ -248,11 +272,166 @@ report(const struct compare_opts *o, const struct rf_compare_stats *st, double w
 	return failed ? EXIT_DIFFERENT : 0;
 }
 
+/* FLIP's figures, as report() prints the others'. */
+static int
+report_flip(const struct compare_opts *o, const struct rf_flip_stats *st, const char *an,
+            const char *bn, const char *names)
+{
+	const double share = st->npixels ? 100.0 * (double)st->nover / (double)st->npixels : 0.0;
+	const double warn_share = st->npixels ? 100.0 * (double)st->nwarn / (double)st->npixels
+	                                      : 0.0;
+	const int failed = share > o->failpercent || st->max_error > o->hardfail;
+	const int warned = !failed && o->warn >= 0 && warn_share > o->warnpercent;
+	const int hdr = o->flip.hdr;
+
+	if (o->json) {
+		printf("{\n  \"a\": \"%s\",\n  \"b\": \"%s\",\n  \"channels\": \"%s\",\n", an, bn,
+		       names);
+		printf("  \"metric\": \"%s\",\n  \"pixels\": %zu,\n", hdr ? "hdr-flip" : "ldr-flip",
+		       st->npixels);
+		json_number("ppd", o->flip.ppd, 0);
+		if (hdr) {
+			json_number("start_exposure", o->flip.start, 0);
+			json_number("stop_exposure", o->flip.stop, 0);
+			printf("  \"exposures\": %d,\n", o->flip.nexposures);
+		}
+		json_number("mean", st->mean, 0);
+		json_number("max_error", st->max_error, 0);
+		printf("  \"max_at\": [%zu, %zu],\n", st->max_x, st->max_y);
+		json_number("over_percent", share, 0);
+		printf("  \"result\": \"%s\"\n}\n", failed ? "fail" : warned ? "warn" : "pass");
+	} else if (o->ascii) {
+		printf("%.9g %.9g %.9g %zu", st->mean, st->max_error, share, st->npixels);
+		if (hdr)
+			printf(" %.9g %.9g %d", o->flip.start, o->flip.stop, o->flip.nexposures);
+		putchar('\n');
+	} else {
+		printf("'%s' against '%s': %s, %s, %zu pixels%s\n", an, bn,
+		       hdr ? "HDR-FLIP" : "LDR-FLIP", names, st->npixels,
+		       o->mask ? " (on the mask)" : "");
+		printf("  mean         %.6f\n", st->mean);
+		printf("  max          %.6f at pixel %zu, %zu\n", st->max_error, st->max_x, st->max_y);
+		printf("  viewing      %.4g pixels per degree\n", o->flip.ppd);
+		if (hdr)
+			printf("  exposures    %d from %.4f to %.4f stops\n", o->flip.nexposures,
+			       o->flip.start, o->flip.stop);
+		printf("  over %-7g %.6g %% of the pixels\n", o->fail, share);
+		printf("%s\n", failed ? "FAIL" : warned ? "WARNING" : "PASS");
+	}
+	fshut(stdout, "<stdout>");
+	return failed ? EXIT_DIFFERENT : 0;
+}
+
+/* The kind of FLIP the pictures call for, or die saying why none. */
+static void
+flip_kind(struct compare_opts *o, const rf_picture *a, const rf_picture *b, const char *an,
+          const char *bn, size_t nch)
+{
+	const int as = rf_picture_srgb(a), bs = rf_picture_srgb(b);
+
+	if (nch != 3)
+		die("--metric=%s compares colour: -c names %zu channels, not three (R G B)",
+		    metric_names[o->metric], nch);
+	if (o->scale > 0)
+		die("--scale: FLIP's map is 0 to 1 always");
+	if (o->metric == METRIC_FLIP && as != bs)
+		die("'%s' is %s, '%s' %s: name the metric, --metric=ldr-flip (the linear one "
+		    "clamped to [0, 1]) or convert one", an, as ? "display sRGB" : "linear", bn,
+		    bs ? "display sRGB" : "linear");
+	if (o->metric == METRIC_HDR_FLIP && (as || bs))
+		die("--metric=hdr-flip compares linear pictures, and '%s' is display sRGB: "
+		    "use --metric=ldr-flip", as ? an : bn);
+	o->flip.hdr = o->metric == METRIC_HDR_FLIP || (o->metric == METRIC_FLIP && !bs);
+	o->flip.a_srgb = as;
+	o->flip.b_srgb = bs;
+	if (!o->flip.hdr && o->exposures_given)
+		die("--start-exposure, --stop-exposure and --exposures are HDR-FLIP's, and '%s' "
+		    "against '%s' is LDR-FLIP", an, bn);
+}
+
+/* FLIP of A against B (the reference): the exposures, the map, the
+ * figures; the exit status. */
+static int
+run_flip(struct compare_opts *o, const struct rf_compare_input *in, const char *an,
+         const char *bn, const char *names)
+{
+	const size_t w = in->width, h = in->height;
+	float *error = emalloc(w * h * sizeof(float) + 1);
+	struct rf_compare_stats vs;
+	struct rf_flip_stats st;
+	double start, stop;
+	int count, rc;
+
+	rf_compare_stats(&vs, in, 1.0, 0.0, 0.0);
+	if (vs.nonfinite)
+		die("'%s' against '%s': %zu values are not finite (the first at pixel %zu, %zu): "
+		    "FLIP compares finite colours", an, bn, vs.nonfinite, vs.max_x, vs.max_y);
+	if (o->flip.hdr && (isnan(o->flip.start) || isnan(o->flip.stop))) {
+		if (rf_flip_exposures(in, &start, &stop, &count) < 0)
+			die("'%s' (the reference): more than half its pixels are black, so HDR-FLIP's "
+			    "exposures cannot come from its luminance: give --start-exposure and "
+			    "--stop-exposure", bn);
+		if (isnan(o->flip.start))
+			o->flip.start = start;
+		if (isnan(o->flip.stop))
+			o->flip.stop = stop;
+	}
+	/* the count the automatic one would be, from the range in use */
+	if (o->flip.hdr && !o->flip.nexposures)
+		o->flip.nexposures = (int)fmax(2.0, ceil(o->flip.stop - o->flip.start));
+	if (o->flip.hdr && o->flip.start > o->flip.stop)
+		die("HDR-FLIP's start exposure %g is above its stop exposure %g", o->flip.start,
+		    o->flip.stop);
+	o->flip.nthreads = cli_threads(o->threads);
+	if ((rc = rf_compare_flip(error, &o->flip, in)) < 0)
+		die_status(rc, rc == RF_ENOMEM ? "out of memory for FLIP's sums" : rf_strerror(rc));
+	rf_flip_stats(&st, error, w, h, in->keep, o->fail, o->warn >= 0 ? o->warn : o->fail);
+	if (!st.npixels)
+		die("'%s' against '%s': no pixel to compare%s", an, bn,
+		    o->mask ? ": the mask is empty" : "");
+	if (o->heatmap) {
+		float *rgb = emalloc(w * h * 3 * sizeof(float) + 1);
+
+		rf_flip_heatmap(rgb, error, w, h, in->keep);
+		write_rgb(o->heatmap, rgb, w, h);
+		free(rgb);
+	}
+	free(error);
+	return report_flip(o, &st, an, bn, names);
+}
+
+/* --viewing=DISTANCE,WIDTH,PIXELS: pixels per degree. */
+static double
+parse_viewing(const char *arg)
+{
+	char *list = estrdup(arg), *save = NULL, *t;
+	double v[3];
+	int n = 0;
+
+	for (t = strtok_r(list, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+		if (n == 3)
+			break;
+		v[n] = parse_number(n == 0 ? "viewing's distance" : n == 1 ? "viewing's width"
+		                                                           : "viewing's pixels",
+		                    t, n == 2 ? 1 : 1e-3, n == 2 ? 1e6 : 1e3);
+		n++;
+	}
+	free(list);
+	if (n != 3 || t)
+		die("--viewing: '%s' is not DISTANCE,WIDTH,PIXELS (metres, metres, pixels: "
+		    "0.7,0.7,3840)", arg);
+	v[0] = rf_flip_ppd(v[0], v[1], v[2]);
+	if (v[0] < 1 || v[0] > 1000)
+		die("--viewing: '%s' makes %g pixels per degree, outside [1, 1000]", arg, v[0]);
+	return v[0];
+}
+
 int
 main(int argc, char **argv)
 {
 	struct compare_opts o = { NULL, NULL, "objid", NULL, 1, 1e-6, 0, INFINITY, -1, 0, 1, 0,
-	                          0, 0 };
+	                          0, 0, METRIC_DIFF, 0, NULL,
+	                          { 0, 0, 0, 0.0, NAN, NAN, 0, 1 } };
 	int acol[MAX_CHANNELS], bcol[MAX_CHANNELS], c;
 	const char *chname[MAX_CHANNELS];
 	char names[1024], err[1024];
@@ -264,7 +443,8 @@ main(int argc, char **argv)
 	size_t n, i;
 
 	cli_init(argc, argv);
-	while ((c = getopt_long(argc, argv, "Vc:o:f:", long_options, NULL)) != -1) {
+	o.flip.ppd = RF_FLIP_PPD_DEFAULT;
+	while ((c = getopt_long(argc, argv, "Vc:o:f:j:", long_options, NULL)) != -1) {
 		switch (c) {
 		case 'V': print_version(); break;
 		case 'c': o.channels = optarg; break;
@@ -285,6 +465,30 @@ main(int argc, char **argv)
 		case OPT_PEAK: o.peak = parse_number("peak", optarg, 1e-30, INFINITY); break;
 		case OPT_SCALE: o.scale = parse_number("scale", optarg, 0, INFINITY); break;
 		case OPT_JSON: o.json = 1; break;
+		case 'j': o.threads = optarg; break;
+		case OPT_METRIC:
+			for (i = 0; i < 4 && strcmp(optarg, metric_names[i]); i++)
+				;
+			if (i == 4)
+				die("--metric: '%s' is not diff, flip, ldr-flip or hdr-flip", optarg);
+			o.metric = (int)i;
+			break;
+		case OPT_PPD: o.flip.ppd = parse_number("ppd", optarg, 1, 1000); break;
+		case OPT_VIEWING: o.flip.ppd = parse_viewing(optarg); break;
+		case OPT_START:
+			o.flip.start = parse_number("start-exposure", optarg, -200, 200);
+			o.exposures_given = 1;
+			break;
+		case OPT_STOP:
+			o.flip.stop = parse_number("stop-exposure", optarg, -200, 200);
+			o.exposures_given = 1;
+			break;
+		case OPT_EXPOSURES:
+			o.flip.nexposures = (int)parse_number("exposures", optarg, 1, 400);
+			if (o.flip.nexposures != parse_number("exposures", optarg, 1, 400))
+				die("--exposures: '%s' is not a whole number", optarg);
+			o.exposures_given = 1;
+			break;
 		case OPT_HELP:
 			printf("usage: %s [options] A B\n"
 			       "How far A is from B: two images (any type reflect reads) or streams.\n"
@@ -298,7 +502,13 @@ main(int argc, char **argv)
 			       "      pixels differ by more than A, or one by more than H\n"
 			       "  --warn=W --warnpercent=P  warn likewise (exit 0)\n"
 			       "  --peak=P  PSNR's peak (1)   -o FILE  heat map   --scale=S  its top\n"
-			       "  -f a  one line of numbers   --json  a JSON object   -V  versions\n",
+			       "  -f a  one line of numbers   --json  a JSON object   -V  versions\n"
+			       "  --metric=diff|flip|ldr-flip|hdr-flip  values' differences (diff),\n"
+			       "      or FLIP: LDR for display sRGB pictures, HDR for linear ones\n"
+			       "  --ppd=P  FLIP's pixels per degree (67, from --viewing=0.7,0.7,3840:\n"
+			       "      metres away, metres wide, pixels wide)\n"
+			       "  --start-exposure=C --stop-exposure=C --exposures=N  HDR-FLIP's\n"
+			       "      (from B's luminance)   -j N  threads\n",
 			       argv0);
 			fshut(stdout, "<stdout>");
 			return 0;
@@ -331,6 +541,14 @@ main(int argc, char **argv)
 	in.width = rf_picture_width(a);
 	in.height = rf_picture_height(a);
 	in.keep = keep;
+	if (o.metric != METRIC_DIFF) {
+		flip_kind(&o, a, b, argv[optind], argv[optind + 1], n);
+		c = run_flip(&o, &in, argv[optind], argv[optind + 1], names);
+		free(keep);
+		rf_picture_destroy(a);
+		rf_picture_destroy(b);
+		return c;
+	}
 	rf_compare_stats(&st, &in, o.peak, o.fail, o.warn >= 0 ? o.warn : o.fail);
 	if (!st.npixels && o.mask)
 		die("'%s' against '%s': no pixel to compare: the mask '%s' is empty%s", argv[optind],

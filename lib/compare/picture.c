@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "stream/stream-internal.h"
 #include "util/util.h"
@@ -15,6 +16,7 @@
 
 struct rf_picture {
 	size_t width, height, nch;
+	int srgb;
 	char **names;
 	float *px;
 };
@@ -160,6 +162,7 @@ static int
 read_image(rf_picture **pp, const char *path, char *err, size_t errlen)
 {
 	rf_image *img;
+	const char *cs;
 	size_t i, n;
 	int rc;
 
@@ -170,6 +173,8 @@ read_image(rf_picture **pp, const char *path, char *err, size_t errlen)
 		rf_image_destroy(img);
 		return rc;
 	}
+	cs = rf_image_attribute(img, "oiio:ColorSpace");
+	(*pp)->srgb = cs && !strcasecmp(cs, "sRGB");
 	n = (*pp)->width * (*pp)->height * (*pp)->nch;
 	if (n)
 		memcpy((*pp)->px, rf_image_pixels(img), n * sizeof(float));
@@ -216,6 +221,7 @@ size_t rf_picture_height(const rf_picture *p) { return p->height; }
 size_t rf_picture_nchannels(const rf_picture *p) { return p->nch; }
 const char *rf_picture_channel(const rf_picture *p, size_t i) { return i < p->nch ? p->names[i] : NULL; }
 const float *rf_picture_pixels(const rf_picture *p) { return p->px; }
+int rf_picture_srgb(const rf_picture *p) { return p->srgb; }
 
 int
 rf_picture_find_channel(const rf_picture *p, const char *s)
