@@ -217,6 +217,38 @@ write_heatmap(const char *path, const struct rf_compare_input *in, double scale)
 	free(rgb);
 }
 
+/* A string as JSON has it: a file name may hold quotes, backslashes and
+ * control bytes. */
+static void
+json_string(const char *s)
+{
+	putchar('"');
+	for (; *s; s++) {
+		const unsigned char c = (unsigned char)*s;
+
+		if (c == '"' || c == '\\')
+			printf("\\%c", c);
+		else if (c < 0x20 || c == 0x7f)
+			printf("\\u%04x", c);
+		else
+			putchar(c);
+	}
+	putchar('"');
+}
+
+/* The start of a report in JSON: what was compared. */
+static void
+json_head(const char *an, const char *bn, const char *names)
+{
+	fputs("{\n  \"a\": ", stdout);
+	json_string(an);
+	fputs(",\n  \"b\": ", stdout);
+	json_string(bn);
+	fputs(",\n  \"channels\": ", stdout);
+	json_string(names);
+	fputs(",\n", stdout);
+}
+
 /* Numbers as JSON has them: no inf or nan. */
 static void
 json_number(const char *key, double v, int last)
@@ -239,8 +271,7 @@ report(const struct compare_opts *o, const struct rf_compare_stats *st, double w
 	const int warned = !failed && o->warn >= 0 && warn_share > o->warnpercent;
 
 	if (o->json) {
-		printf("{\n  \"a\": \"%s\",\n  \"b\": \"%s\",\n  \"channels\": \"%s\",\n", an, bn,
-		       names);
+		json_head(an, bn, names);
 		printf("  \"pixels\": %zu,\n  \"values\": %zu,\n  \"nonfinite\": %zu,\n", st->npixels,
 		       st->nvalues, st->nonfinite);
 		json_number("rmse", st->rmse, 0);
@@ -248,8 +279,9 @@ report(const struct compare_opts *o, const struct rf_compare_stats *st, double w
 		json_number("mean_b", st->mean_b, 0);
 		json_number("psnr", st->psnr, 0);
 		json_number("max_error", st->max_error, 0);
-		printf("  \"max_at\": [%zu, %zu],\n  \"max_channel\": \"%s\",\n", st->max_x, st->max_y,
-		       chname[st->max_channel]);
+		printf("  \"max_at\": [%zu, %zu],\n  \"max_channel\": ", st->max_x, st->max_y);
+		json_string(chname[st->max_channel]);
+		fputs(",\n", stdout);
 		json_number("over_percent", share, 0);
 		printf("  \"result\": \"%s\"\n}\n", failed ? "fail" : warned ? "warn" : "pass");
 	} else if (o->ascii) {
@@ -285,8 +317,7 @@ report_flip(const struct compare_opts *o, const struct rf_flip_stats *st, const 
 	const int hdr = o->flip.hdr;
 
 	if (o->json) {
-		printf("{\n  \"a\": \"%s\",\n  \"b\": \"%s\",\n  \"channels\": \"%s\",\n", an, bn,
-		       names);
+		json_head(an, bn, names);
 		printf("  \"metric\": \"%s\",\n  \"pixels\": %zu,\n", hdr ? "hdr-flip" : "ldr-flip",
 		       st->npixels);
 		json_number("ppd", o->flip.ppd, 0);

@@ -97,6 +97,17 @@ test_expect_success 'a value that is not finite fails, and is counted' '
 	test_grep "\"result\": \"fail\"" j
 '
 
+# A file name is the user's: quotes, backslashes and control bytes in it
+# must not break the JSON around it.
+test_expect_success '--json: names with quotes, backslashes and tabs escaped' '
+	name=$(printf "q\"b\\\\c\td.txt") &&
+	cp a.txt "$name" &&
+	reflect-compare --json "$name" a.txt >j &&
+	test_grep "^  \"a\": \"q\\\\\"b\\\\\\\\c\\\\u0009d.txt\",$" j &&
+	test_grep "^  \"b\": \"a.txt\",$" j &&
+	test_grep "^  \"max_channel\": \"R\",$" j
+'
+
 test_expect_success 'channels: R G B by default, else spec.*; -c names any' '
 	stream s.txt 1 1 "spec.R spec.G spec.B x" <<-\EOF &&
 	1 2 3 9
