@@ -90,7 +90,7 @@ names_mode(const char *file, const struct rf_plugin *p)
 
 /* The earlier file that -m finds for the mode before this one. */
 static const char *
-winner(struct listing *l, const struct rf_plugin *p)
+winner(const struct listing *l, const struct rf_plugin *p)
 {
 	size_t i;
 
@@ -188,35 +188,47 @@ print_mode(const char *path, const struct rf_plugin *p)
 		        "one goes)\n");
 }
 
+/* A file the scan found, loaded: NULL, with a warning, when it cannot
+ * be.  The first file of each name is remembered, to name what shadows
+ * the later ones. */
+static const struct rf_plugin *
+load_listed(struct listing *l, const char *path, int shadowed, rf_module **m)
+{
+	char err[1024];
+
+	if (!shadowed)
+		remember(l, path);
+	if (rf_module_load_file(m, path, 0, err, sizeof(err)) < 0) {
+		warn("ignoring %s", err);
+		return NULL;
+	}
+	return rf_module_plugin(*m);
+}
+
+static void
+say_shadowed(const struct listing *l, const struct rf_plugin *p, const char *path)
+{
+	const char *first = winner(l, p);
+
+	fprintf(cli_stdout(), "# %s: shadowed by %s, earlier in the search path\n", path,
+	        first ? first : "an earlier file");
+}
+
 static void
 list_one(void *arg, const char *path, int shadowed)
 {
 	struct listing *l = arg;
-	const char *first;
-	char err[1024];
-	rf_module *m;
 	const struct rf_plugin *p;
+	rf_module *m;
 
-	if (!shadowed)
-		remember(l, path);
-	if (rf_module_load_file(&m, path, 0, err, sizeof(err)) < 0) {
-		warn("ignoring %s", err);
+	if (!(p = load_listed(l, path, shadowed, &m)))
 		return;
+	if (p->kind == l->kind && shadowed) {
+		say_shadowed(l, p, path);
+	} else if (p->kind == l->kind) {
+		l->count++;
+		print_mode(path, p);
 	}
-	p = rf_module_plugin(m);
-	if (p->kind != l->kind) {
-		rf_module_unload(m);
-		return;
-	}
-	if (shadowed) {
-		first = winner(l, p);
-		fprintf(cli_stdout(), "# %s: shadowed by %s, earlier in the search path\n", path,
-		        first ? first : "an earlier file");
-		rf_module_unload(m);
-		return;
-	}
-	l->count++;
-	print_mode(path, p);
 	rf_module_unload(m);
 }
 
@@ -266,22 +278,14 @@ static void
 all_one(void *arg, const char *path, int shadowed)
 {
 	struct listing *l = arg;
-	const char *first, *origin;
-	char err[1024];
-	rf_module *m;
 	const struct rf_plugin *p;
+	const char *origin;
+	rf_module *m;
 
-	if (!shadowed)
-		remember(l, path);
-	if (rf_module_load_file(&m, path, 0, err, sizeof(err)) < 0) {
-		warn("ignoring %s", err);
+	if (!(p = load_listed(l, path, shadowed, &m)))
 		return;
-	}
-	p = rf_module_plugin(m);
 	if (shadowed) {
-		first = winner(l, p);
-		fprintf(cli_stdout(), "# %s: shadowed by %s, earlier in the search path\n", path,
-		        first ? first : "an earlier file");
+		say_shadowed(l, p, path);
 	} else {
 		origin = rf_plugin_dir_origin(path);
 		l->count++;
