@@ -270,6 +270,27 @@ quad(size_t line)
 	return m;
 }
 
+/* The quad at depth z, its second triangle (above the diagonal
+ * y = 1 + x / 2) a mirror: two materials, matte and mirror. */
+static struct rf__mesh
+half_mirror_quad(size_t line, float z)
+{
+	struct rf__mesh m = quad(line);
+	int i;
+
+	for (i = 0; i < 4; i++)
+		m.positions[3 * i + 2] = z;
+	free(m.materials[0].name);
+	free(m.materials);
+	m.nmaterials = 2;
+	m.materials = calloc(2, sizeof(*m.materials));
+	m.materials[0].name = strdup("matte");
+	m.materials[1].name = strdup("mirror");
+	m.materials[1].mask = 1.0f;
+	m.material[1] = 1;
+	return m;
+}
+
 TEST(quad_mesh_as_a_rect)
 {
 	/* The rectangle as an object, then as a mesh: the same hits. */
@@ -584,24 +605,13 @@ TEST(reflective_triangles_passed_through)
 	 * triangle, or nothing behind the second; otherwise A. */
 	rf_scene *s = parse(AWAY "camera position 0 1 4 target 0 1 0\n"
 	                         "sphere center 0 1 -1.5 radius 0.1 reflective on\n");
-	struct rf__mesh a = quad(1), b = quad(2);
+	struct rf__mesh a = quad(1), b = half_mirror_quad(2, -2.0f);
 	const double d[3] = { 0, 0, -1 };
 	const double low[3] = { 0.5, 0.7, 3 }, high[3] = { -0.5, 1.3, 3 };
 	const double mid[3] = { 0, 1, 3 };
 	struct rf_hit h;
-	int i;
 
 	ASSERT(s);
-	for (i = 0; i < 4; i++)
-		b.positions[3 * i + 2] = -2.0f;
-	free(b.materials[0].name);
-	free(b.materials);
-	b.nmaterials = 2;
-	b.materials = calloc(2, sizeof(*b.materials));
-	b.materials[0].name = strdup("matte");
-	b.materials[1].name = strdup("mirror");
-	b.materials[1].mask = 1.0f;
-	b.material[1] = 1;
 	ASSERT_EQ(add(s, &a), 0);
 	ASSERT_EQ(add(s, &b), 0);
 	ASSERT_EQ(rf__trace(s, low, NULL, d, NULL, 0, &h), 2);
@@ -672,24 +682,15 @@ TEST(packets_meet_what_single_rays_meet)
 	                    "box min 0.6 0.8 -1.4 max 1.4 1.6 -0.8\n"
 	                    "rect plane y 0.01 min -2.5 -3.5 max 2.5 2.5 roughness 0.3\n");
 	const double c[3] = { 0.2, 1.1, -2.2 };
-	struct rf__mesh ico = icosphere(c, 0.7, 3, 1), a = quad(2), b = quad(3);
+	struct rf__mesh ico = icosphere(c, 0.7, 3, 1), a = quad(2);
+	struct rf__mesh b = half_mirror_quad(3, -2.5f);
 	static const unsigned kinds[4] = { 0, RF__TRACE_SKIP_REFLECTIVE, RF__TRACE_ROOM_ONLY,
 	                                   0 };
 	double k[16 * RF__ORIGIN_STRIDE], dirs[8][3], invs[8][3];
 	uint32_t state = 12345;
-	int i, j, n, r, bad = 0, meshes = 0, objects = 0, room = 0, passed = 0;
+	int j, n, r, bad = 0, meshes = 0, objects = 0, room = 0, passed = 0;
 
 	ASSERT(s);
-	for (i = 0; i < 4; i++)
-		b.positions[3 * i + 2] = -2.5f;
-	free(b.materials[0].name);
-	free(b.materials);
-	b.nmaterials = 2;
-	b.materials = calloc(2, sizeof(*b.materials));
-	b.materials[0].name = strdup("matte");
-	b.materials[1].name = strdup("mirror");
-	b.materials[1].mask = 1.0f;
-	b.material[1] = 1;
 	ASSERT_EQ(add(s, &ico), 0);
 	ASSERT_EQ(add(s, &a), 0);
 	ASSERT_EQ(add(s, &b), 0);
