@@ -224,11 +224,14 @@ scalar(struct js *j, double *v)
 	return number(j, v);
 }
 
-/* The number or boolean at path (keys of nested objects, NULL-terminated)
- * in the object starting at j's position: 1 and *v, 0 without one, -1
- * when the JSON does not parse. */
+/* The value at path (keys of nested objects, NULL-terminated) in the
+ * object starting at j's position, read by leaf: 1 when found, 0
+ * without one (or one of another type, which leaf skips), -1 when the
+ * JSON does not parse. */
+typedef int leaf_fn(struct js *j, void *out);
+
 static int
-lookup(struct js *j, const char *const *path, double *v)
+lookup(struct js *j, const char *const *path, leaf_fn *leaf, void *out)
 {
 	const char *t;
 	size_t len;
@@ -242,10 +245,7 @@ lookup(struct js *j, const char *const *path, double *v)
 		if (string(j, &t, &len) < 0 || !lit(j, ':'))
 			return -1;
 		if (rc == 0 && key_is(t, len, path[0])) {
-			if (!path[1])
-				rc = scalar(j, v) < 0 ? -1 : 1;
-			else
-				rc = lookup(j, path + 1, v);
+			rc = path[1] ? lookup(j, path + 1, leaf, out) : leaf(j, out);
 			if (rc < 0)
 				return -1;
 		} else if (skip(j, 1) < 0)
@@ -254,31 +254,29 @@ lookup(struct js *j, const char *const *path, double *v)
 	return lit(j, '}') ? rc : -1;
 }
 
-/* The string member key of the object starting at j's position: 1 and
- * its raw text, 0 without one, -1 when the JSON does not parse. */
+/* A number or boolean into the double *out; anything else does not
+ * parse as what glTF puts there. */
 static int
-member_string(struct js *j, const char *key, const char **t, size_t *len)
+leaf_scalar(struct js *j, void *out)
 {
-	const char *k;
-	size_t klen;
-	int rc = 0;
+	return scalar(j, out) < 0 ? -1 : 1;
+}
 
-	if (!lit(j, '{'))
-		return skip(j, 1) < 0 ? -1 : 0;
-	if (lit(j, '}'))
-		return 0;
-	do {
-		if (string(j, &k, &klen) < 0 || !lit(j, ':'))
-			return -1;
-		ws(j);
-		if (rc == 0 && key_is(k, klen, key) && j->pos < j->n && j->s[j->pos] == '"') {
-			if (string(j, t, len) < 0)
-				return -1;
-			rc = 1;
-		} else if (skip(j, 1) < 0)
-			return -1;
-	} while (lit(j, ','));
-	return lit(j, '}') ? rc : -1;
+/* A string's raw text; another value is skipped. */
+struct text {
+	const char *t;
+	size_t len;
+};
+
+static int
+leaf_string(struct js *j, void *out)
+{
+	struct text *x = out;
+
+	ws(j);
+	if (j->pos < j->n && j->s[j->pos] == '"')
+		return string(j, &x->t, &x->len) < 0 ? -1 : 1;
+	return skip(j, 1) < 0 ? -1 : 0;
 }
 
 /*
@@ -302,6 +300,7 @@ materials(struct js *j, struct rf__gltf_info *info)
 		{ "emissiveTexture", "extensions", "KHR_texture_transform", "texCoord", NULL },
 	};
 	static const char *const mirror[] = { "extras", "reflect", "mirror", NULL };
+	static const char *const name[] = { "name", NULL };
 
 	if (!lit(j, '['))
 		return skip(j, 1);
@@ -309,33 +308,33 @@ materials(struct js *j, struct rf__gltf_info *info)
 		return 0;
 	do {
 		struct rf__gltf_material m, *grown;
-		const char *t;
-		size_t start, len;
+		struct text t;
+		size_t start;
 		double v;
 		int k, rc;
 
 		ws(j);
 		start = j->pos;
 		m.emissive_strength = 1.0f;
-		if ((rc = lookup(j, strength, &v)) < 0)
+		if ((rc = lookup(j, strength, leaf_scalar, &v)) < 0)
 			return -1;
 		if (rc)
 			m.emissive_strength = (float)v;
 		for (k = 0; k < RF__GLTF_TEXTURES; k++) {
 			j->pos = start;
-			if ((rc = lookup(j, tex[k], &v)) < 0)
+			if ((rc = lookup(j, tex[k], leaf_scalar, &v)) < 0)
 				return -1;
 			m.texcoord[k] = rc && v >= 0 && v < 1e9 ? (int)v : -1;
 		}
 		j->pos = start;
-		if ((rc = lookup(j, mirror, &v)) < 0)
+		if ((rc = lookup(j, mirror, leaf_scalar, &v)) < 0)
 			return -1;
 		m.mirror = rc ? v != 0 : -1;
 		j->pos = start;
 		m.name = NULL;
-		if ((rc = member_string(j, "name", &t, &len)) < 0)
+		if ((rc = lookup(j, name, leaf_string, &t)) < 0)
 			return -1;
-		if (rc && !(m.name = strndup(t, len)))
+		if (rc && !(m.name = strndup(t.t, t.len)))
 			return RF_ENOMEM;
 		if (!(grown = realloc(info->materials, (info->nmaterials + 1) * sizeof(*grown)))) {
 			free(m.name);
