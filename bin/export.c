@@ -11,7 +11,7 @@
 static void
 usage(void)
 {
-	fprintf(stderr, "usage: %s -o FILE [-V] [-c CHANNELS] [-e STOPS] "
+	fprintf(stderr, "usage: %s -o FILE [-V] " CLI_PROGRESS_USAGE " [-c CHANNELS] [-e STOPS] "
 	        "[--tone=none|filmic] [--srgb=on|off] [--depth=8|16|half|float] "
 	        "[--half] [--downsample=N] [--filter=box|gaussian[:SIGMA]] "
 	        "[-H -x W -y H -c CHANNELS] [file]\n", argv0);
@@ -407,6 +407,7 @@ main(int argc, char **argv)
 		{ "downsample", required_argument, NULL, 'W' },
 		{ "filter", required_argument, NULL, 'L' },
 		{ "help", no_argument, NULL, 'Q' },
+		CLI_PROGRESS_OPTION,
 		{ NULL, 0, NULL, 0 },
 	};
 	struct export_opts o = { NULL, NULL, 1.0f, RF_TONE_NONE, -1, -1, -1, RF_RESOLVE_BOX,
@@ -420,7 +421,7 @@ main(int argc, char **argv)
 	int c;
 
 	cli_init(argc, argv);
-	while ((c = getopt_long(argc, argv, "Vo:c:e:Hx:y:", long_options, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "qVo:c:e:Hx:y:", long_options, NULL)) != -1) {
 		switch (c) {
 		case 'V': print_version(); break;
 		case 'o': o.output = optarg; break;
@@ -482,10 +483,13 @@ main(int argc, char **argv)
 			       "                  frame's SUPERSAMPLE, from reflect-gbuffer)\n"
 			       "  --filter=box|gaussian[:SIGMA]  its filter (SIGMA in pixels, 0.4)\n"
 			       "  -H -x W -y H -c CHANNELS  headerless input (all channels written)\n"
-			       "  -V  versions\n", argv0);
+			       "  -V  versions\n"
+			       CLI_PROGRESS_HELP, argv0);
 			fshut(stdout, "<stdout>");
 			return 0;
-		default: usage();
+		default:
+			if (!cli_progress_option(c))
+				usage();
 		}
 	}
 	if (!o.output || argc - optind > 1)

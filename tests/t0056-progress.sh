@@ -64,7 +64,10 @@ test_expect_success 'the stream stages: frame by frame, as many as come' '
 	reflect-accumulate --progress shaded >out 2>err &&
 	grep -E "^reflect-accumulate: 100%, frame 3, row 30/30, " err &&
 	reflect-filter --progress shaded >out 2>err &&
-	grep -E "^reflect-filter: 100%, frame 2, row 30/30, " err
+	grep -E "^reflect-filter: 100%, frame 2, row 30/30, " err &&
+	reflect-export --progress -o "ex%d.png" shaded 2>err &&
+	grep -E "^reflect-export: 100%, frame 2, row 30/30, " err &&
+	test -s ex1.png
 '
 
 test_expect_success 'prefilter --progress: the texel rows of every level' '
