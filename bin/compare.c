@@ -387,10 +387,10 @@ run_flip(struct compare_opts *o, const struct rf_compare_input *in, const char *
          const char *bn, const char *names)
 {
 	const size_t w = in->width, h = in->height;
-	float *error = emalloc(w * h * sizeof(float) + 1);
 	struct rf_compare_stats vs;
 	struct rf_flip_stats st;
 	double start, stop;
+	float *error;
 	int count, rc;
 
 	rf_compare_stats(&vs, in, 1.0, 0.0, 0.0);
@@ -414,12 +414,19 @@ run_flip(struct compare_opts *o, const struct rf_compare_input *in, const char *
 		die("HDR-FLIP's start exposure %g is above its stop exposure %g", o->flip.start,
 		    o->flip.stop);
 	o->flip.nthreads = cli_threads(o->threads);
-	if ((rc = rf_compare_flip(error, &o->flip, in)) < 0)
+	/* made once nothing above can end the tool, and freed before a
+	 * refusal below: LeakSanitizer sees no block left behind */
+	error = emalloc(w * h * sizeof(float) + 1);
+	if ((rc = rf_compare_flip(error, &o->flip, in)) < 0) {
+		free(error);
 		die_status(rc, rc == RF_ENOMEM ? "out of memory for FLIP's sums" : rf_strerror(rc));
+	}
 	rf_flip_stats(&st, error, w, h, in->keep, o->fail, o->warn >= 0 ? o->warn : o->fail);
-	if (!st.npixels)
+	if (!st.npixels) {
+		free(error);
 		die("'%s' against '%s': no pixel to compare%s", an, bn,
 		    o->mask ? ": the mask is empty" : "");
+	}
 	if (o->heatmap) {
 		float *rgb = emalloc(w * h * 3 * sizeof(float) + 1);
 
