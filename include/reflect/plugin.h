@@ -27,6 +27,11 @@
  *        texel_solid_angle, pixel_footprint and random_pairs; the
  *        probe list (nprobes, probes, probe_blend, probe_weights);
  *        the descriptor flag RF_PLUGIN_PREFILTERED.
+ *   1.2  probe shapes: struct rf_probe grows the influence's shape and
+ *        rotation and a proxy of its own (RF_SHAPE_*).  The host gives a
+ *        1.1 plugin its probes array at the 1.1 stride, and refuses it
+ *        a frame whose probes are not axis-aligned boxes projected onto
+ *        themselves, which it could not see.
  * A minor bump only appends fields at the end of a struct, or defines new
  * flag bits or kinds; a major bump is anything else.  The host accepts a
  * plugin when its major equals the host's and its minor is not newer, and
@@ -45,7 +50,7 @@ extern "C" {
 #endif
 
 #define RF_PLUGIN_ABI_MAJOR 1
-#define RF_PLUGIN_ABI_MINOR 1
+#define RF_PLUGIN_ABI_MINOR 2
 
 #if defined(__GNUC__)
 #define RF_PLUGIN_EXPORT __attribute__((visibility("default")))
@@ -68,7 +73,34 @@ struct rf_probe {
 	 * (the PROBE_BEVEL key; 0 for the box). */
 	float bevel;
 	int bevel_grown;
+	/* ABI 1.2: the shapes engines give a probe.  The influence (where
+	 * the probe weighs, and where its capture point must lie) is the
+	 * box above, turned about its centre by rotation when rotated, or
+	 * the sphere inscribed in that box (shape RF_SHAPE_SPHERE; the box
+	 * is then a cube).  The proxy, the shape the lookups are projected
+	 * onto, is the influence (proxy_shape RF_SHAPE_SAME, which a zeroed
+	 * tail means), a box or sphere of its own given the same way, or
+	 * RF_SHAPE_INFINITE (no projection: the lookup is R).  Rotations
+	 * are row-major, orthonormal and right-handed, local to world:
+	 * world = centre + rotation (local - centre). */
+	uint32_t shape;
+	uint32_t rotated;
+	float rotation[9];
+	uint32_t proxy_shape;
+	uint32_t proxy_rotated;
+	float proxy_min[3], proxy_max[3];
+	float proxy_rotation[9];
 };
+
+/* Shapes of a probe's influence and proxy (ABI 1.2). */
+#define RF_SHAPE_SAME 0     /* the proxy: the influence itself */
+#define RF_SHAPE_BOX 1
+#define RF_SHAPE_SPHERE 2
+#define RF_SHAPE_INFINITE 3 /* the proxy only: no projection */
+
+/* sizeof(struct rf_probe) in ABI 1.1, the stride of a 1.1 plugin's
+ * probes array. */
+#define RF_PROBE_SIZE_1_1 48
 
 /* The most probes a frame has. */
 #define RF_PROBES_MAX 16

@@ -172,6 +172,13 @@ RF_EXTERN int rf_header_supersample(const rf_header *h, size_t *factor);
 #define RF_KEY_PROBE_BLEND "PROBE_BLEND" /* blend distance in metres */
 #define RF_KEY_PROBE_IMPORTANCE "PROBE_IMPORTANCE" /* blending order, highest first */
 #define RF_KEY_PROBE_BEVEL "PROBE_BEVEL" /* RADIUS [grown]: the rounded box */
+#define RF_KEY_PROBE_SHAPE "PROBE_SHAPE" /* box or sphere (inscribed in PROBE_BOX) */
+#define RF_KEY_PROBE_ROTATION "PROBE_ROTATION" /* 9 numbers, row-major, about
+                                                  the box's centre */
+#define RF_KEY_PROBE_PROXY "PROBE_PROXY" /* box, sphere or infinite: the shape
+                                            lookups project onto */
+#define RF_KEY_PROBE_PROXY_BOX "PROBE_PROXY_BOX" /* as PROBE_BOX, the proxy's */
+#define RF_KEY_PROBE_PROXY_ROTATION "PROBE_PROXY_ROTATION" /* as PROBE_ROTATION */
 #define RF_KEY_PROJECTION "PROJECTION" /* reflect-project's mode */
 #define RF_KEY_SHADE "SHADE"           /* reflect-shade's mode */
 #define RF_KEY_OCCLUSION "OCCLUSION"   /* reflect-occlude's mode */

@@ -55,7 +55,32 @@ struct rf_plugin_host {
 	/* What the last filter mode's create() declared (filter_passes). */
 	uint32_t filter_npasses;
 	uint32_t filter_radius[RF_FILTER_PASSES_MAX];
+	/* The table a plugin built for ABI 1.1 or 1.0 gets: the same but
+	 * for its probes array, at that ABI's stride (kept in step by every
+	 * setter, sync_legacy). */
+	struct rf_host legacy;
+	unsigned char legacy_probes[RF_PROBES_MAX][RF_PROBE_SIZE_1_1];
 };
+
+/* A probe a plugin of ABI 1.1 would misread: anything but an axis-aligned
+ * box that is its own proxy. */
+static int
+probe_shaped(const struct rf_probe *p)
+{
+	return (p->shape != 0 && p->shape != RF_SHAPE_BOX) || p->rotated ||
+	       p->proxy_shape != RF_SHAPE_SAME;
+}
+
+static void
+sync_legacy(rf_plugin_host *h)
+{
+	uint32_t i;
+
+	h->legacy = h->table;
+	for (i = 0; i < h->blend.nprobes && i < RF_PROBES_MAX; i++)
+		memcpy(h->legacy_probes[i], &h->blend.probes[i], RF_PROBE_SIZE_1_1);
+	h->legacy.probes = (const struct rf_probe *)(const void *)h->legacy_probes;
+}
 
 static const char *
 header_get(void *ctx, const char *key)
@@ -483,6 +508,7 @@ rf_plugin_host_create(rf_plugin_host **hp)
 	h->table.probe_blend = h->blend.blend;
 	h->table.probe_weights = probe_weights;
 	h->mapping = RF_MAPPING_DEFAULT;
+	sync_legacy(h);
 	return 0;
 }
 
@@ -495,6 +521,7 @@ drop_radiance(rf_plugin_host *h)
 	h->plain = NULL;
 	h->table.sample_radiance = NULL;
 	h->table.env_size = h->table.env_levels = 0;
+	sync_legacy(h);
 }
 
 void
@@ -524,6 +551,7 @@ rf_plugin_host_set_frame(rf_plugin_host *h, const rf_header *frame)
 		if (h->table.nprobes && h->table.probe)
 			h->blend.probes[0] = h->probe;
 		rf_blend_order(&h->blend);
+		sync_legacy(h);
 	}
 	if (!v || rf__scan_doubles(v, c, 10) < 0)
 		return;
@@ -560,6 +588,7 @@ rf_plugin_host_set_probe(rf_plugin_host *h, const struct rf_probe *probe)
 		rf_blend_order(&h->blend);
 	}
 	h->table.project_rays = probe ? project_rays : NULL;
+	sync_legacy(h);
 }
 
 int
@@ -583,6 +612,7 @@ rf_plugin_host_set_environment(rf_plugin_host *h, const rf_cubemap *env,
 	h->table.roughness_to_lod = env ? roughness_to_lod : NULL;
 	h->table.lod_to_roughness = env ? lod_to_roughness : NULL;
 	h->table.lod_steps = env ? steps : 0.0f;
+	sync_legacy(h);
 	return rc;
 }
 
@@ -611,6 +641,7 @@ rf_plugin_host_set_radiance(rf_plugin_host *h, const rf_cubemap *env)
 	h->table.sample_radiance = sample_radiance;
 	h->table.env_size = (uint32_t)size;
 	h->table.env_levels = (uint32_t)levels;
+	sync_legacy(h);
 	return 0;
 }
 
@@ -618,6 +649,38 @@ void
 rf_plugin_host_set_seed(rf_plugin_host *h, uint32_t seed)
 {
 	h->table.seed = seed;
+	sync_legacy(h);
+}
+
+const struct rf_host *
+rf__host_for_plugin(const struct rf_host *table, const struct rf_plugin *p, char *err,
+                    size_t errlen)
+{
+	const rf_plugin_host *h;
+	uint32_t i;
+
+	/* only this file's tables know a legacy view; others are the caller's */
+	if (p->abi_minor >= 2 || !table || table->probe_weights != probe_weights)
+		return table;
+	h = table->ctx;
+	if (p->kind == RF_KIND_PROJECTION || p->kind == RF_KIND_SHADE ||
+	    p->kind == RF_KIND_OCCLUSION)
+		for (i = 0; i < h->blend.nprobes; i++)
+			if (probe_shaped(&h->blend.probes[i])) { /* [0] is probe */
+				rf__format(err, errlen, "mode '%s' was built for plugin ABI %u.%u, "
+				           "which knows axis-aligned probe boxes only, and probe "
+				           "%u is %s: rebuild the mode against this reflect's "
+				           "<reflect/plugin.h> (ABI %d.%d)", p->name,
+				           p->abi_major, p->abi_minor, (unsigned)i + 1,
+				           h->blend.probes[i].shape == RF_SHAPE_SPHERE
+				               ? "a sphere"
+				               : h->blend.probes[i].rotated
+				                     ? "a rotated box"
+				                     : "projected onto a proxy of its own",
+				           RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR);
+				return NULL;
+			}
+	return &h->legacy;
 }
 
 const struct rf_host *

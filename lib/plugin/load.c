@@ -28,6 +28,7 @@ struct rf_module {
 static const size_t descriptor_size[RF_PLUGIN_ABI_MINOR + 1] = {
 	END_OF(struct rf_plugin, destroy),         /* 1.0 */
 	END_OF(struct rf_plugin, optional_inputs), /* 1.1 */
+	END_OF(struct rf_plugin, optional_inputs), /* 1.2: the descriptor is 1.1's */
 };
 
 /* The three fields every ABI begins a descriptor with: no other field

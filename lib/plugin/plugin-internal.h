@@ -44,6 +44,13 @@ int rf__host_take_failure(const struct rf_host *table, const char *mode, char *e
  * the host's filter_passes (tables of rf_plugin_host only): their count,
  * 1 with radius 0 when it declared none; and forgetting them. */
 struct rf_host;
+/* The table plugin p is to get: table itself, or for a plugin built for
+ * ABI 1.1 or before a view of it with the probes at that ABI's stride;
+ * NULL, with err saying why, when such a plugin reads probes and the
+ * frame has one of a shape it cannot see. */
+const struct rf_host *rf__host_for_plugin(const struct rf_host *table,
+                                          const struct rf_plugin *p, char *err,
+                                          size_t errlen);
 uint32_t rf__host_filter_passes(const struct rf_host *table, uint32_t *radius);
 void rf__host_filter_reset(const struct rf_host *table);
 

@@ -94,6 +94,9 @@ rf__plugin_instance(const struct rf_plugin *p, const struct rf__call_site *site,
 	char msg[400] = "";
 	int failed;
 
+	*state = NULL;
+	if (!(host = rf__host_for_plugin(host, p, err, errlen)))
+		return RF_EPLUGIN;
 	rf__call_enter(site, "create", 0, 0, 0);
 	failed = p->create(host, values, state, msg, sizeof(msg));
 	rf__call_leave();
@@ -238,6 +241,9 @@ rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
 	int c, t;
 
 	*out = NULL;
+	/* a frame may bring a probe that an old mode cannot see */
+	if (!rf__host_for_plugin(s->host, s->p, err, errlen))
+		return RF_EPLUGIN;
 	rf_header_destroy(s->out_h);
 	if (rf_header_dup(&s->out_h, in) < 0)
 		return RF_ENOMEM;

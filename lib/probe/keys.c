@@ -67,7 +67,8 @@ rf_probe_to_header(const struct rf_probe *probe, rf_header *h)
 		mx[i] = probe->box_max[i];
 		c[i] = probe->center[i];
 	}
-	if ((i = rf__header_set_probe_keys(h, 0, mn, mx, c, probe->box_projection)) < 0)
+	if ((i = rf__header_set_probe_keys(h, 0, mn, mx, c, probe->box_projection)) < 0 ||
+	    (i = rf__probe_shape_write(h, 0, probe)) < 0)
 		return i;
 	if (probe->bevel > 0.0f) {
 		char v[64];
@@ -156,6 +157,10 @@ rf_probe_resolve(struct rf_probe *probe, const rf_header *h, const char *box_arg
 				return RF_EINVAL;
 			}
 	}
+	/* a box given on the command line is that box, whatever the stream's
+	 * probe was */
+	if (!box_arg && rf__probe_shape_read(h, 0, probe, err, errlen) < 0)
+		return RF_EINVAL;
 	v = projection_arg ? projection_arg : rf_header_get(h, RF_KEY_PROBE_BOX_PROJECTION);
 	if (v) {
 		if (!strcmp(v, "1") || !strcmp(v, "on"))
@@ -191,7 +196,8 @@ rf__probe_blend_parse(const char *v, float face[6])
  * and its blend distance; 1 when it has a box, 0 when not, RF_EINVAL for
  * a value that does not parse. */
 static int
-probe_at(const rf_header *h, size_t index, struct rf_probe *probe, float *blend)
+probe_at(const rf_header *h, size_t index, struct rf_probe *probe, float *blend, char *err,
+         size_t errlen)
 {
 	char key[64];
 	float box[6];
@@ -229,6 +235,8 @@ probe_at(const rf_header *h, size_t index, struct rf_probe *probe, float *blend)
 		for (i = 0; i < 6; i++)
 			*blend = face[i] > *blend ? face[i] : *blend;
 	}
+	if (rf__probe_shape_read(h, index, probe, err, errlen) < 0)
+		return RF_EINVAL;
 	return 1;
 }
 
@@ -238,7 +246,17 @@ rf_probe_list_read(struct rf_probe *probes, float *blend, size_t max, const rf_h
 	size_t n = 0;
 	int rc = 0;
 
-	while (n < max && (rc = probe_at(h, n, &probes[n], &blend[n])) == 1)
+	while (n < max && (rc = probe_at(h, n, &probes[n], &blend[n], NULL, 0)) == 1)
 		n++;
 	return rc < 0 && n == 0 ? rc : (int)n;
+}
+
+int
+rf__probe_why_not(const rf_header *h, size_t index, char *err, size_t errlen)
+{
+	struct rf_probe probe;
+	float blend;
+
+	err[0] = '\0';
+	return probe_at(h, index, &probe, &blend, err, errlen);
 }

@@ -59,6 +59,8 @@ rf_blend_read(struct rf_blend *b, const rf_header *h, char *err, size_t errlen)
 	memset(b->face_blend, 0, sizeof(b->face_blend));
 	n = rf_probe_list_read(b->probes, b->blend, RF_PROBES_MAX, h);
 	if (n < 0) {
+		if (err && errlen && rf__probe_why_not(h, 0, err, errlen) < 0 && *err)
+			return n;
 		rf__format(err, errlen, "the frame's first probe keys (PROBE_BOX ...) do "
 		           "not parse");
 		return n;
@@ -70,6 +72,13 @@ rf_blend_read(struct rf_blend *b, const rf_header *h, char *err, size_t errlen)
 		char blend[64];
 
 		rf__header_probe_key(blend, sizeof(blend), b->nprobes, RF_KEY_PROBE_BLEND);
+		if (err && errlen && rf__probe_why_not(h, b->nprobes, err, errlen) < 0 && *err) {
+			char why[200];
+
+			snprintf(why, sizeof(why), "%s", err);
+			rf__format(err, errlen, "probe %u: %s", (unsigned)b->nprobes + 1, why);
+			return RF_EFORMAT;
+		}
 		rf__format(err, errlen, "probe %u: its keys (%s, %s...) do not parse: a box "
 		           "of 6 numbers with min < max, a centre of 3, one or six blend "
 		           "distances of 0 or more", (unsigned)b->nprobes + 1, key, blend);

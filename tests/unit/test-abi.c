@@ -12,7 +12,9 @@
 #include <stdint.h>
 #include <stdlib.h>
 
+#include "reflect/host.h"
 #include "reflect/plugin.h"
+#include "reflect/probe.h"
 #include "reflect/reflect.h"
 #include "tap.h"
 
@@ -106,13 +108,21 @@ static const struct abi_entry abi_table[] = {
 	OFFSET(struct rf_span, radius, 64),
 	OFFSET(struct rf_span, pass, 68),
 
-	SIZE(struct rf_probe, 48),
+	SIZE(struct rf_probe, 160),
 	OFFSET(struct rf_probe, center, 0),
 	OFFSET(struct rf_probe, box_min, 12),
 	OFFSET(struct rf_probe, box_max, 24),
 	OFFSET(struct rf_probe, box_projection, 36),
 	OFFSET(struct rf_probe, bevel, 40), /* ABI 1.1 */
 	OFFSET(struct rf_probe, bevel_grown, 44),
+	OFFSET(struct rf_probe, shape, 48), /* ABI 1.2 */
+	OFFSET(struct rf_probe, rotated, 52),
+	OFFSET(struct rf_probe, rotation, 56),
+	OFFSET(struct rf_probe, proxy_shape, 92),
+	OFFSET(struct rf_probe, proxy_rotated, 96),
+	OFFSET(struct rf_probe, proxy_min, 100),
+	OFFSET(struct rf_probe, proxy_max, 112),
+	OFFSET(struct rf_probe, proxy_rotation, 124),
 };
 #define HAVE_ABI_TABLE 1
 #endif
@@ -138,7 +148,12 @@ TEST(struct_layout)
 TEST(constants)
 {
 	ASSERT_EQ(RF_PLUGIN_ABI_MAJOR, 1);
-	ASSERT_EQ(RF_PLUGIN_ABI_MINOR, 1);
+	ASSERT_EQ(RF_PLUGIN_ABI_MINOR, 2);
+	ASSERT_EQ(RF_SHAPE_SAME, 0);
+	ASSERT_EQ(RF_SHAPE_BOX, 1);
+	ASSERT_EQ(RF_SHAPE_SPHERE, 2);
+	ASSERT_EQ(RF_SHAPE_INFINITE, 3);
+	ASSERT_EQ(RF_PROBE_SIZE_1_1, 48);
 	ASSERT_STR_EQ(RF_PLUGIN_ENTRY, "rf_plugin_entry");
 	ASSERT_EQ(RF_KIND_PROJECTION, 1);
 	ASSERT_EQ(RF_KIND_SHADE, 2);
@@ -631,6 +646,60 @@ TEST(stage_runs_plugin)
 	rf_module_unload(m);
 }
 
+/* A mode built for ABI 1.1 reads the probes array at 1.1's stride (48
+ * bytes a probe), and is refused a frame with a probe it cannot see. */
+TEST(old_modes_see_old_probes)
+{
+	rf_plugin_host *host;
+	rf_module *m;
+	rf_stage *s;
+	rf_header *h, *out;
+	struct rf_probe probe;
+	float in[3] = { 0.0f, 0.0f, 1.0f }, res[11];
+
+	if (!test_plugins())
+		ASSERT(0);
+	ASSERT_EQ(load("probes_abi_1_1", RF_KIND_PROJECTION, &m), 0);
+	ASSERT_EQ(rf_header_create(&h), 0);
+	ASSERT_EQ(rf_header_set_size(h, 1, 1), 0);
+	ASSERT_EQ(rf_header_set_channels(h, "N.X N.Y N.Z"), 0);
+	ASSERT_EQ(rf_header_set(h, RF_KEY_PROBE_BOX, "-1 -2 -3 1 2 3"), 0);
+	ASSERT_EQ(rf_header_set(h, "PROBE2_BOX", "-7 -8 -9 7 8 9.5"), 0);
+	ASSERT_EQ(rf_plugin_host_create(&host), 0);
+	rf_plugin_host_set_frame(host, h);
+	ASSERT_EQ(rf_probe_resolve(&probe, h, NULL, NULL, NULL, msg, sizeof(msg)), 0);
+	rf_plugin_host_set_probe(host, &probe);
+	ASSERT_EQ(rf_stage_create(&s, rf_module_plugin(m), NULL, rf_plugin_host_table(host), 1,
+	                          msg, sizeof(msg)), 0);
+	ASSERT_EQ(rf_stage_begin_frame(s, h, &out, msg, sizeof(msg)), 0);
+	ASSERT_EQ(rf_stage_run(s, in, res, 0, 1), 0);
+	ASSERT_NEAR(res[3], -1, 0);
+	ASSERT_NEAR(res[4], -7, 0);  /* 112 bytes on, where 1.2's stride would miss */
+	ASSERT_NEAR(res[5], 9.5, 0);
+	ASSERT_NEAR(res[6], 2, 0);
+	/* a frame whose second probe turns: refused, the probe named */
+	ASSERT_EQ(rf_header_set(h, "PROBE2_ROTATION", "0 30 0"), 0);
+	rf_plugin_host_set_frame(host, h);
+	msg[0] = '\0';
+	ASSERT_EQ(rf_stage_begin_frame(s, h, &out, msg, sizeof(msg)), RF_EPLUGIN);
+	ASSERT(strstr(msg, "mode 'probes_abi_1_1' was built for plugin ABI 1.1, which knows "
+	                   "axis-aligned probe boxes only, and probe 2 is a rotated box") != NULL);
+	rf_stage_destroy(s);
+	/* and refused at once when the frame has it already; a sphere */
+	ASSERT_EQ(rf_header_unset(h, "PROBE2_ROTATION"), 0);
+	ASSERT_EQ(rf_header_set(h, RF_KEY_PROBE_SHAPE, "sphere"), 0);
+	ASSERT_EQ(rf_header_set(h, RF_KEY_PROBE_BOX, "-1 -1 -1 1 1 1"), 0);
+	ASSERT_EQ(rf_probe_resolve(&probe, h, NULL, NULL, NULL, msg, sizeof(msg)), 0);
+	rf_plugin_host_set_frame(host, h);
+	rf_plugin_host_set_probe(host, &probe);
+	ASSERT_EQ(rf_stage_create(&s, rf_module_plugin(m), NULL, rf_plugin_host_table(host), 1,
+	                          msg, sizeof(msg)), RF_EPLUGIN);
+	ASSERT(strstr(msg, "probe 1 is a sphere") != NULL);
+	rf_header_destroy(h);
+	rf_plugin_host_destroy(host);
+	rf_module_unload(m);
+}
+
 int
 main(void)
 {
@@ -652,5 +721,6 @@ main(void)
 	RUN(loader_refusals);
 	RUN(loader_by_name);
 	RUN(stage_runs_plugin);
+	RUN(old_modes_see_old_probes);
 	TAP_DONE();
 }
