@@ -20,6 +20,7 @@
 /* The box's geometry as the projection plugins have it, to the bit. */
 #include "probe/projection.h"
 #include "probe/bevel.h"
+#include "probe/shape.h"
 #include "maths/sequences.h"
 #include "maths/soa.h"
 
@@ -39,9 +40,10 @@ struct rf_plugin_host {
 	rf_cubemap *plain;
 	struct rf__rgba_levels levels;
 	int vector;
-	struct rf__box box;
+	struct rf__box box;     /* the proxy's box, in its frame; the capture point */
+	struct rf__proxy proxy; /* the shape rays leave by */
 	int wide_rays; /* project_rays in eight lanes (AVX2) */
-	struct rf__bevel bevel; /* the probe's rounded box, when probe.bevel > 0 */
+	struct rf__bevel bevel; /* the proxy's rounded box, when probe.bevel > 0 */
 	/* The first fail() of a block: set once (failed), read after the
 	 * block's threads are joined. */
 	int failed;
@@ -200,11 +202,22 @@ project_rays_bevel(const rf_plugin_host *h, uint32_t n, const float p[3], const 
 {
 	uint32_t i;
 
+	const struct rf__frame *frame = &h->proxy.frame;
+	float q[3];
+
+	if (h->proxy.rotated)
+		rf__frame_point_in(frame, p, q);
+	else
+		q[0] = p[0], q[1] = p[1], q[2] = p[2];
 	for (i = 0; i < n; i++) {
 		const float *dir = dirs + 3 * i;
-		float *d = lookup + 3 * i, t, reach, nrm[3], cos_c, cos_p;
+		float *d = lookup + 3 * i, t, reach, nrm[3], e[3], cos_c, cos_p;
 
-		if (!h->probe.box_projection || rf__bevel_exit(&h->bevel, p, dir, &t, nrm) < 0) {
+		if (h->proxy.rotated)
+			rf__frame_vector_in(frame, dir, e);
+		else
+			e[0] = dir[0], e[1] = dir[1], e[2] = dir[2];
+		if (!h->probe.box_projection || rf__bevel_exit(&h->bevel, q, e, &t, nrm) < 0) {
 			d[0] = dir[0];
 			d[1] = dir[1];
 			d[2] = dir[2];
@@ -212,6 +225,42 @@ project_rays_bevel(const rf_plugin_host *h, uint32_t n, const float p[3], const 
 			jacobian[i] = 1.0f;
 			continue;
 		}
+		if (h->proxy.rotated) {
+			float local[3] = { nrm[0], nrm[1], nrm[2] };
+
+			rf__frame_vector_out(frame, local, nrm);
+		}
+		rf__lookup_from_hit(&h->box, p, dir, t, d, &reach);
+		dist[i] = t;
+		cos_c = fabsf(d[0] * nrm[0] + d[1] * nrm[1] + d[2] * nrm[2]);
+		cos_p = fabsf(dir[0] * nrm[0] + dir[1] * nrm[1] + dir[2] * nrm[2]);
+		jacobian[i] = reach > 0.0f && cos_p > 0.0f ? t * t * cos_c / (reach * reach * cos_p)
+		                                           : 1.0f;
+	}
+}
+
+/* The rays' exits from an oriented box or a sphere, as rf__proxy_exit
+ * finds them for reflect-project, the Jacobian's cosines taken to the
+ * shape's normal at each exit; an infinite proxy keeps every direction. */
+static void
+project_rays_shape(const rf_plugin_host *h, uint32_t n, const float p[3], const float *dirs,
+                   float *lookup, float *dist, float *jacobian)
+{
+	uint32_t i;
+
+	for (i = 0; i < n; i++) {
+		const float *dir = dirs + 3 * i;
+		float *d = lookup + 3 * i, t, reach, nrm[3], cos_c, cos_p;
+
+		if (!h->probe.box_projection || rf__proxy_exit(&h->proxy, p, dir, &t) < 0) {
+			d[0] = dir[0];
+			d[1] = dir[1];
+			d[2] = dir[2];
+			dist[i] = INFINITY;
+			jacobian[i] = 1.0f;
+			continue;
+		}
+		rf__proxy_normal(&h->proxy, p, dir, t, nrm);
 		rf__lookup_from_hit(&h->box, p, dir, t, d, &reach);
 		dist[i] = t;
 		cos_c = fabsf(d[0] * nrm[0] + d[1] * nrm[1] + d[2] * nrm[2]);
@@ -235,6 +284,10 @@ project_rays(void *ctx, uint32_t n, const float p[3], const float *dirs, float *
 
 	if (h->probe.bevel > 0.0f) {
 		project_rays_bevel(h, n, p, dirs, lookup, dist, jacobian);
+		return;
+	}
+	if (h->proxy.kind != RF_SHAPE_BOX || h->proxy.rotated) {
+		project_rays_shape(h, n, p, dirs, lookup, dist, jacobian);
 		return;
 	}
 	for (k = 0; k < 3; k++)
@@ -427,12 +480,18 @@ static int
 declare_bevel(void *ctx, float radius, int grown)
 {
 	rf_plugin_host *h = ctx;
+	struct rf_probe aligned;
+	struct rf__frame frame;
+	int rotated;
 
-	if (!(radius >= 0.0f) || !h->table.probe || radius > rf__bevel_max_radius(&h->probe))
+	if (!(radius >= 0.0f) || !h->table.probe ||
+	    rf__probe_proxy_aligned(&h->probe, &aligned, &frame, &rotated) != RF_SHAPE_BOX ||
+	    radius > rf__bevel_max_radius(&aligned))
 		return -1;
 	h->probe.bevel = radius;
 	h->probe.bevel_grown = radius > 0.0f && grown;
-	h->bevel = rf__bevel_of_probe(&h->probe, radius, grown);
+	h->bevel = rf__bevel_of_probe(&aligned, radius, grown);
+	sync_legacy(h);
 	return 0;
 }
 
@@ -572,9 +631,15 @@ void
 rf_plugin_host_set_probe(rf_plugin_host *h, const struct rf_probe *probe)
 {
 	if (probe) {
+		struct rf_probe aligned;
+		struct rf__frame frame;
+		int rotated;
+
 		h->probe = *probe;
-		h->box = rf__box_of_probe(probe);
-		h->bevel = rf__bevel_of_probe(probe, probe->bevel, probe->bevel_grown);
+		h->proxy = rf__proxy_of_probe(probe);
+		h->box = h->proxy.box;
+		rf__probe_proxy_aligned(probe, &aligned, &frame, &rotated);
+		h->bevel = rf__bevel_of_probe(&aligned, probe->bevel, probe->bevel_grown);
 	}
 	h->table.probe = probe ? &h->probe : NULL;
 	if (probe) {

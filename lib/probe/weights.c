@@ -14,13 +14,17 @@
 #include <string.h>
 
 #include "probe/probe-internal.h"
+#include "probe/shape.h"
 #include "util/util.h"
 
 static float
 volume(const struct rf_probe *p)
 {
-	return (p->box_max[0] - p->box_min[0]) * (p->box_max[1] - p->box_min[1]) *
-	       (p->box_max[2] - p->box_min[2]);
+	float v = (p->box_max[0] - p->box_min[0]) * (p->box_max[1] - p->box_min[1]) *
+	          (p->box_max[2] - p->box_min[2]);
+
+	/* the sphere inscribed in its cube: pi / 6 of it */
+	return p->shape == RF_SHAPE_SPHERE ? v * (float)(3.14159265358979323846 / 6.0) : v;
 }
 
 void
@@ -105,14 +109,39 @@ rf_blend_read(struct rf_blend *b, const rf_header *h, char *err, size_t errlen)
 /* The probe's influence at p before the smoothstep: the least over its
  * faces of sat(d / blend), a face without a blend distance 1 where p is
  * inside; -1 outside the box (or for a p that is not finite).  *near is
- * set when p lies within some face's blend distance. */
+ * set when p lies within some face's blend distance.  An oriented box
+ * measures in its own frame; a sphere by the distance to its surface,
+ * with the widest face's blend distance, as HDRP's sphere has one. */
 static float
 influence(const struct rf_probe *b, const float *blend, const float p[3], int *near)
 {
-	float w = 1.0f;
+	float w = 1.0f, q[3];
 	int a;
 
 	*near = 0;
+	if (b->shape == RF_SHAPE_SPHERE) {
+		float o[3], r = 0.5f * (b->box_max[0] - b->box_min[0]), d, bf = 0.0f;
+
+		for (a = 0; a < 3; a++)
+			o[a] = p[a] - (0.5f * b->box_min[a] + 0.5f * b->box_max[a]);
+		for (a = 0; a < 6; a++)
+			bf = blend[a] > bf ? blend[a] : bf;
+		d = r - sqrtf(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
+		if (!(d >= 0.0f))
+			return -1.0f;
+		if (bf > 0.0f && d < bf) {
+			*near = 1;
+			w = d / bf;
+		}
+		return w;
+	}
+	if (b->rotated) {
+		struct rf__frame f;
+
+		rf__frame_of(&f, b->box_min, b->box_max, b->rotation);
+		rf__frame_point_in(&f, p, q);
+		p = q;
+	}
 	for (a = 0; a < 3; a++) {
 		const float d[2] = { b->box_max[a] - p[a], p[a] - b->box_min[a] };
 		int s;

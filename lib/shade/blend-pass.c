@@ -14,7 +14,7 @@
 
 #include "envmap/rgba_levels.h"
 #include "envmap/rgba_levels_simd.h"
-#include "probe/projection.h"
+#include "probe/shape.h"
 #include "shade/blend-pass.h"
 #include "util/util.h"
 
@@ -35,7 +35,7 @@ struct rf__blend_pass {
 	int vector[RF_PROBES_MAX + 1], first_vector;
 	enum rf_mapping mapping[RF_PROBES_MAX + 1];
 	float steps[RF_PROBES_MAX + 1];
-	struct rf__box box[RF_PROBES_MAX];
+	struct rf__proxy proxy[RF_PROBES_MAX]; /* the shapes each probe's lookups leave by */
 	size_t ncols;
 	int nthreads;
 	/* per thread: a batch per probe and one for the fallback, weights */
@@ -105,7 +105,7 @@ rf__blend_pass_create(struct rf__blend_pass **out, const struct rf_blend *b,
 	bp->nthreads = nthreads;
 	for (i = 0; i <= b->nprobes; i++) {
 		if (i < b->nprobes)
-			bp->box[i] = rf__box_of_probe(&b->probes[i]);
+			bp->proxy[i] = rf__proxy_of_probe(&b->probes[i]);
 		if (i == b->nprobes && fallback != RF_BLEND_SKY)
 			break;
 		bp->mapping[i] = mappings[i];
@@ -211,8 +211,8 @@ rf__blend_pass_row(const struct rf__blend_pass *bp, int thread, const float *in,
 			if (!(w[k] > 0.0f))
 				continue;
 			if (bp->blend.probes[k].box_projection &&
-			    rf__box_exit(&bp->box[k], pos, r, &t) == 0)
-				rf__lookup_from_hit(&bp->box[k], pos, r, t, d, &reach);
+			    rf__proxy_exit(&bp->proxy[k], pos, r, &t) == 0)
+				rf__lookup_from_hit(&bp->proxy[k].box, pos, r, t, d, &reach);
 			add(&batches[k], (uint32_t)x, d,
 			    rf_roughness_to_lod(bp->mapping[k], bp->steps[k], reff));
 		}

@@ -19,7 +19,7 @@
 #include "util/pool.h"
 #include "reflect/shading.h"
 #include "reflect/plugin.h"
-#include "probe/projection.h"
+#include "probe/shape.h"
 
 
 /* Input channels; -1 when absent (only the optional ones may be). */
@@ -59,7 +59,7 @@ struct rf_shade {
 	float sh[27];
 	float shq[3][9];  /* the same as a quadratic in N */
 	int sh_known;     /* sh holds the environment's (given or projected) */
-	struct rf__box box;
+	struct rf__proxy proxy; /* the probe's, for the diffuse lookups */
 	int in[IN_COUNT];
 	/* The stream says what its walls emit (a scene's G-buffer): walls
 	 * show it, and --final adds it to reflective pixels, instead of
@@ -313,7 +313,7 @@ rf_shade_set_probe(rf_shade *s, const struct rf_probe *probe)
 {
 	s->has_box = probe != NULL;
 	if (probe)
-		s->box = rf__box_of_probe(probe);
+		s->proxy = rf__proxy_of_probe(probe);
 }
 
 void
@@ -715,8 +715,8 @@ diffuse_light(const rf_shade *s, const float *p, const float albedo[3], float me
 		const float pos[3] = { p[s->in[IN_PX]], p[s->in[IN_PY]], p[s->in[IN_PZ]] };
 		float u[3] = { dir[0], dir[1], dir[2] }, l;
 
-		if (rf__box_exit(&s->box, pos, u, &t) == 0) {
-			rf__lookup_from_hit(&s->box, pos, u, t, dir, &reach);
+		if (rf__proxy_exit(&s->proxy, pos, u, &t) == 0) {
+			rf__lookup_from_hit(&s->proxy.box, pos, u, t, dir, &reach);
 			l = sqrtf(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
 			if (!(l > 0.0f)) {
 				e[0] = e[1] = e[2] = 0.0f;

@@ -5,14 +5,18 @@
  * lerp(1, so, intensity), d the stream's hit.dist, so it follows
  * whatever projection made it (the bevel too, where the write-up always
  * used the plain box).  unit is 1 world unit (the write-up's, so a room
- * twice as large darkens half as wide), or with scale=box the probe
- * box's smallest half extent: the same picture at any scale.
+ * twice as large darkens half as wide), or with scale=box the smallest
+ * half extent of the shape the lookups leave by (the probe's proxy: its
+ * box, turned or not, or a sphere's radius): the same picture at any
+ * scale.
  */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "reflect/plugin.h"
+
+#include "probe/shape.h"
 
 enum { INTENSITY, MULTIPLIER, POWER, SCALE, NPARAMS };
 
@@ -40,16 +44,24 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	float unit = 1.0f;
 
 	if (values[SCALE] != 0.0) {
-		int i;
+		struct rf_probe proxy;
+		struct rf__frame frame;
+		int i, rotated;
 
 		if (!host->probe) {
 			snprintf(err, errlen, "scale=box needs the probe box: give a stream with "
 			         "PROBE_BOX (reflect-project writes it)");
 			return -1;
 		}
+		if (rf__probe_proxy_aligned(host->probe, &proxy, &frame, &rotated) ==
+		    RF_SHAPE_INFINITE) {
+			snprintf(err, errlen, "scale=box needs a size, and the probe's proxy is "
+			         "infinite: give scale=world");
+			return -1;
+		}
 		unit = INFINITY;
 		for (i = 0; i < 3; i++) {
-			float h = 0.5f * (host->probe->box_max[i] - host->probe->box_min[i]);
+			float h = 0.5f * (proxy.box_max[i] - proxy.box_min[i]);
 
 			unit = h < unit ? h : unit;
 		}

@@ -17,6 +17,7 @@
 
 #include "probe/bevel.h"
 #include "probe/projection.h"
+#include "probe/shape.h"
 
 enum { RADIUS, OFFSET, ROUGHEN, NPARAMS };
 
@@ -38,7 +39,9 @@ static const char *const outputs[] = {
 };
 
 struct bevel_mode {
-	struct rf_probe probe;
+	struct rf_probe probe; /* its box the proxy's, in the proxy's frame */
+	struct rf__frame frame;
+	int rotated;
 	float radius, roughen, max_radius;
 	int grown;
 };
@@ -48,17 +51,26 @@ create(const struct rf_host *host, const double *values, void **state, char *err
        size_t errlen)
 {
 	struct bevel_mode *m;
+	struct rf_probe aligned;
+	struct rf__frame frame;
+	int rotated;
 
 	if (!host->probe) {
 		snprintf(err, errlen, "no probe box: give --box and --center or a "
 		         "stream with PROBE_BOX and PROBE_CENTER");
 		return -1;
 	}
-	if (values[RADIUS] > rf__bevel_max_radius(host->probe)) {
+	if (rf__probe_proxy_aligned(host->probe, &aligned, &frame, &rotated) != RF_SHAPE_BOX) {
+		snprintf(err, errlen, "the probe's proxy is %s, and bevel rounds a box: use "
+		         "mode box", host->probe->proxy_shape == RF_SHAPE_INFINITE
+		                         ? "infinite" : "a sphere");
+		return -1;
+	}
+	if (values[RADIUS] > rf__bevel_max_radius(&aligned)) {
 		snprintf(err, errlen, "radius %g is more than the probe box's smallest half "
 		         "extent, %g: give radius=%g or less", values[RADIUS],
-		         (double)rf__bevel_max_radius(host->probe),
-		         (double)rf__bevel_max_radius(host->probe));
+		         (double)rf__bevel_max_radius(&aligned),
+		         (double)rf__bevel_max_radius(&aligned));
 		return -1;
 	}
 	if (host->size < offsetof(struct rf_host, declare_bevel) + sizeof(host->declare_bevel) ||
@@ -72,11 +84,13 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 		snprintf(err, errlen, "out of memory");
 		return -1;
 	}
-	m->probe = *host->probe;
+	m->probe = aligned;
+	m->frame = frame;
+	m->rotated = rotated;
 	m->radius = (float)values[RADIUS];
 	m->grown = values[OFFSET] != 0.0;
 	m->roughen = (float)values[ROUGHEN];
-	m->max_radius = rf__bevel_max_radius(host->probe);
+	m->max_radius = rf__bevel_max_radius(&aligned);
 	*state = m;
 	return 0;
 }
@@ -94,15 +108,23 @@ run(void *state, const struct rf_span *span)
 
 	for (i = 0; i < span->npix; i++, in += 10, out += 8) {
 		float p[3] = { in[0], in[1], in[2] }, r[3], d[3], hit = 0.0f, reach = 0.0f;
+		float q[3], e[3]; /* p and r in the box's frame */
 		int ok;
 
 		rf__reflection_vector(in + 3, in + 6, r);
+		if (m->rotated) {
+			rf__frame_point_in(&m->frame, p, q);
+			rf__frame_vector_in(&m->frame, r, e);
+		} else {
+			q[0] = p[0], q[1] = p[1], q[2] = p[2];
+			e[0] = r[0], e[1] = r[1], e[2] = r[2];
+		}
 		if (!projecting)
 			ok = -1;
 		else if (m->radius == 0.0f && m->roughen == 0.0f)
-			ok = rf__box_exit(&box, p, r, &hit); /* exactly box */
+			ok = rf__box_exit(&box, q, e, &hit); /* exactly box */
 		else
-			ok = rf__bevel_exit(&shape, p, r, &hit, NULL);
+			ok = rf__bevel_exit(&shape, q, e, &hit, NULL);
 		if (ok == 0 && m->roughen > 0.0f && in[9] > 0.0f) {
 			const float alpha = in[9] * in[9];
 			float grown = m->radius + m->roughen * 2.0f * alpha * hit;
@@ -111,7 +133,7 @@ run(void *state, const struct rf_span *span)
 			if (grown > m->max_radius)
 				grown = m->max_radius;
 			wider = rf__bevel_of_probe(&m->probe, grown, m->grown);
-			ok = rf__bevel_exit(&wider, p, r, &hit, NULL);
+			ok = rf__bevel_exit(&wider, q, e, &hit, NULL);
 		}
 		if (ok == 0)
 			rf__lookup_from_hit(&box, p, r, hit, d, &reach);

@@ -3,7 +3,7 @@
 
 #include "reflect/plugin.h"
 
-#include "probe/projection.h"
+#include "probe/shape.h"
 
 static const char *const inputs[] = {
 	"P.X", "P.Y", "P.Z", "N.X", "N.Y", "N.Z", "V.X", "V.Y", "V.Z", NULL
@@ -23,7 +23,7 @@ static void
 run(void *state, const struct rf_span *span)
 {
 	const struct rf_probe *probe = state;
-	const struct rf__box box = rf__box_of_probe(probe);
+	const struct rf__proxy proxy = rf__proxy_of_probe(probe);
 	const int projecting = probe->box_projection;
 	const float *in = span->in;
 	float *out = span->out;
@@ -34,9 +34,9 @@ run(void *state, const struct rf_span *span)
 		int ok;
 
 		rf__reflection_vector(in + 3, in + 6, r);
-		ok = projecting ? rf__box_exit(&box, p, r, &hit) : -1;
+		ok = projecting ? rf__proxy_exit(&proxy, p, r, &hit) : -1;
 		if (ok == 0)
-			rf__lookup_from_hit(&box, p, r, hit, d, &reach);
+			rf__lookup_from_hit(&proxy.box, p, r, hit, d, &reach);
 		rf__projection_out(out, ok, r, d, hit, reach);
 	}
 }
