@@ -41,6 +41,18 @@ struct rf_scene_probe {
 	const char *env;            /* environment file (relative paths resolved
 	                               against the scene file's directory), or
 	                               NULL for the embedded default */
+	/* Its shapes, as struct rf_probe has them (RF_SHAPE_*): the
+	 * influence a box (turned about its centre by rotation, row-major,
+	 * when rotated) or the sphere inscribed in the box; the proxy the
+	 * influence (RF_SHAPE_SAME), a box or sphere of its own, or
+	 * infinite. */
+	int shape;
+	int rotated;
+	double rotation[9];
+	int proxy_shape;
+	int proxy_rotated;
+	double proxy_min[3], proxy_max[3];
+	double proxy_rotation[9];
 };
 
 /* Parses a scene.  `name` is the file name used in messages

@@ -230,7 +230,7 @@ set_rotation(rf_header *h, const char *key, int rotated, const float m[9])
 	if (!rotated)
 		return rf_header_unset(h, key);
 	for (i = 0; i < 9; i++)
-		d[i] = m[i];
+		d[i] = m[i] + 0.0; /* -0 is written as 0 */
 	return rf__header_set_numbers(h, key, d, 9);
 }
 

@@ -30,7 +30,7 @@
 
 #include "envmap/envmap-internal.h"
 #include "envmap/rgba_levels.h"
-#include "probe/projection.h"
+#include "probe/shape.h"
 #include "surface/surface-internal.h"
 #include "util/pool.h"
 #include "scene/accel.h"
@@ -75,7 +75,7 @@ struct capture {
 	enum rf_mapping mapping;
 	float steps;
 	float shq[3][9];
-	struct rf__box box;
+	struct rf__proxy proxy; /* the probe's, its lookups in the bounces */
 	rf_cubemap *out;
 	size_t n;
 	size_t edge_samples, object_samples; /* of the bounce being rendered */
@@ -324,8 +324,8 @@ shade_object(const struct capture *c, const struct rf_hit *h, const double d[3],
 	nv = n[0] * v[0] + n[1] * v[1] + n[2] * v[2];
 	for (k = 0; k < 3; k++)
 		dir[k] = r[k] = 2.0f * nv * n[k] - v[k];
-	if (c->probe->box_projection && rf__box_exit(&c->box, p, r, &t) == 0)
-		rf__lookup_from_hit(&c->box, p, r, t, dir, &reach);
+	if (c->probe->box_projection && rf__proxy_exit(&c->proxy, p, r, &t) == 0)
+		rf__lookup_from_hit(&c->proxy.box, p, r, t, dir, &reach);
 	lod = rf_roughness_to_lod(c->mapping, c->steps, h->roughness);
 	{
 		/* the shading pass's own read of the levels (reflect-shade -m
@@ -573,15 +573,8 @@ rf_scene_capture(const rf_scene *s, size_t probe, const struct rf_capture_option
 	c.o = o;
 	for (i = 0; i < 3; i++)
 		c.origin[i] = c.probe->center[i];
-	for (i = 0; i < 3; i++) {
-		pr.center[i] = (float)c.probe->center[i];
-		pr.box_min[i] = (float)c.probe->box_min[i];
-		pr.box_max[i] = (float)c.probe->box_max[i];
-	}
-	pr.box_projection = c.probe->box_projection;
-	pr.bevel = 0;
-	pr.bevel_grown = 0;
-	c.box = rf__box_of_probe(&pr);
+	rf__scene_probe_shape(c.probe, &pr);
+	c.proxy = rf__proxy_of_probe(&pr);
 	make_frames(c.frames);
 	c.k = calloc(s->nobjects + 1, RF__ORIGIN_STRIDE * sizeof(double));
 	c.visible = calloc(s->nobjects + s->nmeshes + 1, sizeof(*c.visible));

@@ -564,7 +564,7 @@ parse_probe(struct parser *p, const struct rf__token *kw)
 {
 	struct rf_scene_probe pr, *probes;
 	const struct rf__token *key, *t;
-	double box[6];
+	double box[6], radius = 0.0;
 	int rc, i;
 
 	memset(&pr, 0, sizeof(pr));
@@ -606,16 +606,25 @@ parse_probe(struct parser *p, const struct rf__token *kw)
 				rc = header_value(p, t->line, t->col, tok_is(t, "capture")
 				                  ? "the capture of this scene file" : "an environment path",
 				                  pr.env, strlen(pr.env));
-		} else {
+		} else if ((rc = rf__parse_probe_shape(p, key, &pr, &radius)) == 0) {
 			rc = unknown_attribute(p, key, "probe",
-			                       "center, box, env, blend, importance or projection");
+			                       "center, box, sphere, rotate, matrix, proxy, "
+			                       "proxy_rotate, proxy_matrix, env, blend, importance "
+			                       "or projection");
 		}
 		if (rc < 0)
 			break;
 	}
-	if (rc >= 0 && !(key = seen(p, "box")))
+	if (rc >= 0 && pr.shape == RF_SHAPE_SPHERE) {
+		/* the sphere is around the capture point: it needs one, and no box */
+		if ((key = seen(p, "box")))
+			rc = FAIL_TOK(p, key, "a probe is a box or a sphere, not both: remove "
+			              "'box' or 'sphere'");
+		else if (!seen(p, "center") && !seen(p, "centre"))
+			rc = missing(p, kw, "'center X Y Z' (the sphere's centre)");
+	} else if (rc >= 0 && !(key = seen(p, "box")))
 		rc = missing(p, kw, "'box XMIN YMIN ZMIN XMAX YMAX ZMAX'");
-	if (rc >= 0) {
+	else if (rc >= 0) {
 		for (i = 0; i < 3; i++) {
 			pr.box_min[i] = box[i];
 			pr.box_max[i] = box[i + 3];
@@ -625,7 +634,9 @@ parse_probe(struct parser *p, const struct rf__token *kw)
 	if (rc >= 0 && !seen(p, "center") && !seen(p, "centre"))
 		for (i = 0; i < 3; i++)
 			pr.center[i] = 0.5 * (pr.box_min[i] + pr.box_max[i]);
-	for (i = 0; rc >= 0 && i < 3; i++)
+	if (rc >= 0)
+		rc = rf__probe_shape_finish(p, kw, &pr, radius, p->s->nprobes);
+	for (i = 0; rc >= 0 && !pr.rotated && i < 3; i++)
 		if (!(pr.center[i] >= pr.box_min[i] && pr.center[i] <= pr.box_max[i])) {
 			t = seen(p, "center") ? seen(p, "center") : seen(p, "centre");
 			rc = FAIL_TOK(p, t, "expected the probe's centre inside its box, "

@@ -53,6 +53,16 @@ int rf__parse_unknown_attribute(struct parser *p, const struct rf__token *key,
 
 /* parse_mesh.c: the mesh statement, after its keyword kw. */
 int rf__parse_mesh(struct parser *p, const struct rf__token *kw);
+/* parse_shape.c: a probe's shape attributes (rotate, matrix, sphere,
+ * proxy, proxy_rotate, proxy_matrix): 1 when key is one (its values read
+ * into pr; a sphere's radius into *radius), 0 when not. */
+int rf__parse_probe_shape(struct parser *p, const struct rf__token *key,
+                          struct rf_scene_probe *pr, double *radius);
+/* After the statement: the sphere's box from its radius, the proxy
+ * sphere's around the capture point, the capture point inside the
+ * influence; index is the probe's (0: the room's). */
+int rf__probe_shape_finish(struct parser *p, const struct rf__token *kw,
+                           struct rf_scene_probe *pr, double radius, size_t index);
 /* sky.c: the sky statement, after its keyword kw. */
 int rf__parse_sky(struct parser *p, const struct rf__token *kw);
 

@@ -10,6 +10,7 @@
 #include "scene/mesh.h"
 #include "scene/vector.h"
 #include "util/util.h"
+#include "reflect/plugin.h"
 #include "reflect/scene.h"
 
 enum nm_kind { NM_NONE = 0, NM_TILES, NM_BUMPS, NM_NOISE, NM_IMAGE };
@@ -133,6 +134,8 @@ struct rf_scene {
 
 /* scene.c */
 rf_scene *rf__scene_create(void);
+/* The scene's probe as the plugins see it, its shapes included. */
+void rf__scene_probe_shape(const struct rf_scene_probe *sp, struct rf_probe *out);
 /* A material with the defaults of an object (or of the room). */
 void rf__material_default(struct material *m, int room);
 /* An image loaded once for the whole scene, with at least min_channels

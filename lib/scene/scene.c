@@ -529,8 +529,12 @@ rf_scene_frame_keys(const rf_scene *s, const struct rf_camera *cam, size_t frame
 	for (i = 0; i < s->nprobes; i++) {
 		const struct rf_scene_probe *p = &s->probes[i];
 
+		struct rf_probe shape;
+
+		rf__scene_probe_shape(p, &shape);
 		if ((rc = rf__header_set_probe_keys(h, i, p->box_min, p->box_max, p->center,
-		                                    p->box_projection)) < 0)
+		                                    p->box_projection)) < 0 ||
+		    (rc = rf__probe_shape_write(h, i, &shape)) < 0)
 			return rc;
 		rf__header_probe_key(key, sizeof(key), i, RF_KEY_PROBE_ENV);
 		if ((rc = rf_header_set(h, key, p->env ? p->env : "default")) < 0)
@@ -546,4 +550,28 @@ rf_scene_frame_keys(const rf_scene *s, const struct rf_camera *cam, size_t frame
 	}
 	snprintf(buf, sizeof(buf), "%zu", frame);
 	return rf_header_set(h, RF_KEY_FRAME, buf);
+}
+
+void
+rf__scene_probe_shape(const struct rf_scene_probe *sp, struct rf_probe *out)
+{
+	int i;
+
+	memset(out, 0, sizeof(*out));
+	for (i = 0; i < 3; i++) {
+		out->center[i] = (float)sp->center[i];
+		out->box_min[i] = (float)sp->box_min[i];
+		out->box_max[i] = (float)sp->box_max[i];
+		out->proxy_min[i] = (float)sp->proxy_min[i];
+		out->proxy_max[i] = (float)sp->proxy_max[i];
+	}
+	out->box_projection = sp->box_projection;
+	out->shape = sp->shape == RF_SHAPE_SPHERE ? RF_SHAPE_SPHERE : RF_SHAPE_BOX;
+	out->rotated = sp->rotated != 0;
+	out->proxy_shape = (uint32_t)sp->proxy_shape;
+	out->proxy_rotated = sp->proxy_rotated != 0;
+	for (i = 0; i < 9; i++) {
+		out->rotation[i] = (float)sp->rotation[i];
+		out->proxy_rotation[i] = (float)sp->proxy_rotation[i];
+	}
 }
