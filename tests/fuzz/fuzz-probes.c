@@ -26,6 +26,24 @@
 #define HARNESS "fuzz-probes"
 #include "harness.h"
 
+/* Rows orthonormal to the key's tolerance, and no reflection. */
+static int
+rotation(const float *m)
+{
+	int i, j;
+
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++) {
+			double d = (double)m[3 * i] * m[3 * j] + (double)m[3 * i + 1] * m[3 * j + 1] +
+			           (double)m[3 * i + 2] * m[3 * j + 2];
+
+			if (!(fabs(d - (i == j)) <= 1e-3))
+				return 0;
+		}
+	return m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
+	           m[2] * (m[3] * m[7] - m[4] * m[6]) > 0.0f;
+}
+
 static void
 check_probe(const struct rf_probe *p)
 {
@@ -36,6 +54,11 @@ check_probe(const struct rf_probe *p)
 		check(p->box_min[i] < p->box_max[i], "an empty box taken");
 		check(isfinite(p->center[i]), "a centre not finite");
 	}
+	check(p->shape == RF_SHAPE_BOX || p->shape == RF_SHAPE_SPHERE, "an unknown shape taken");
+	check(p->proxy_shape <= RF_SHAPE_INFINITE, "an unknown proxy taken");
+	check(!p->rotated || rotation(p->rotation), "a rotation that is none taken");
+	check(!p->proxy_rotated || rotation(p->proxy_rotation),
+	      "a proxy rotation that is none taken");
 }
 
 /* Points at the corners, the centre and just outside every box. */
