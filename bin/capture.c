@@ -12,7 +12,7 @@ static void
 usage(void)
 {
 	fprintf(stderr, "usage: %s [-V] [-p PROBE|all] [-n SIZE] [-j THREADS] "
-	        "[--bounces=N] [--hide-reflective] [--edge-samples=N] "
+	        CLI_PROGRESS_USAGE " [--bounces=N] [--hide-reflective] [--edge-samples=N] "
 	        "[--object-samples=N] [--bounce-size=N] [-o FILE] [-f a|f] [-h] "
 	        "[scene]\n", argv0);
 	exit(EXIT_BAD_INPUT);
@@ -21,6 +21,7 @@ usage(void)
 enum { OPT_BOUNCES = 256, OPT_HIDE, OPT_EDGE, OPT_OBJECT, OPT_BOUNCE_SIZE, OPT_HELP };
 
 static const struct option long_options[] = {
+	CLI_PROGRESS_OPTION,
 	{ "bounces", required_argument, NULL, OPT_BOUNCES },
 	{ "hide-reflective", no_argument, NULL, OPT_HIDE },
 	{ "edge-samples", required_argument, NULL, OPT_EDGE },
@@ -46,9 +47,21 @@ help(void)
 	       "  --object-samples=N  N x N rays where it may see an object (4)\n"
 	       "  --bounce-size=N   texels a face of the earlier bounces (128)\n"
 	       "  -o FILE  output (%%d numbers the probes)   -j N  threads\n"
-	       "  -f a|f  stream format   -h  no header   -V  versions\n", argv0);
+	       "  -f a|f  stream format   -h  no header   -V  versions\n"
+	       CLI_PROGRESS_HELP, argv0);
 	fshut(stdout, "<stdout>");
 	exit(0);
+}
+
+/* The capture's rows for cli_progress: each probe a frame. */
+static void
+progress(void *arg, size_t done, size_t total)
+{
+	(void)arg;
+	if (!done)
+		cli_progress_frame(total);
+	else
+		cli_progress_rows(done);
 }
 
 /* The cube as an N x 6N OpenEXR image of floats (faces +X -X +Y -Y +Z -Z
@@ -135,7 +148,7 @@ main(int argc, char **argv)
 
 	cli_init(argc, argv);
 	rf_capture_options_init(&o);
-	while ((c = getopt_long(argc, argv, "Vp:n:j:o:f:h", long_options, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "Vp:n:j:o:f:hq", long_options, NULL)) != -1) {
 		switch (c) {
 		case 'V': print_version(); break;
 		case 'p': which = optarg; break;
@@ -157,7 +170,9 @@ main(int argc, char **argv)
 			o.bounce_size = (size_t)parse_whole("bounce-size", optarg, 1, 8192);
 			break;
 		case OPT_HELP: help(); break;
-		default: usage();
+		default:
+			if (!cli_progress_option(c))
+				usage();
 		}
 	}
 	if (argc - optind > 1)
@@ -188,6 +203,8 @@ main(int argc, char **argv)
 			    : !strcmp(file, "-") ? "<stdin>" : file, n, n == 1 ? "" : "s");
 		}
 	}
+	o.progress = progress;
+	cli_progress_frames(last - first + 1);
 	for (k = first; k <= last; k++) {
 		char err[1024], path[4096];
 		const char *dot;
@@ -198,6 +215,8 @@ main(int argc, char **argv)
 			rf_scene_destroy(s);
 			die_status(rc, err);
 		}
+		if (k == last)
+			cli_progress_end();
 		if (output)
 			output_name(path, sizeof(path), output, k);
 		dot = output ? strrchr(path, '.') : NULL;

@@ -50,6 +50,26 @@ test_expect_success 'trace --progress: the same bytes in smaller blocks' '
 	grep -E "^reflect-trace: 100%, frame 2/2, row 64/64, " last
 '
 
+# reflect-capture tells its rows over every bounce, a face at a time:
+# two bounces of 6 x 8 rows (--bounce-size) and one of 6 x 16, each probe
+# of -p all a frame.
+test_expect_success 'capture --progress: the rows of every bounce, the same cube' '
+	cat >two.scene <<-\EOF &&
+	probe center 0 1.5 0 box -3 0 -2 3 3 2
+	probe center 1 1 0 box 0 0 -1 2 2 1
+	sphere center 0 1 0 radius 0.5
+	EOF
+	reflect-capture -n 16 --bounces=2 --bounce-size=8 -p all -h -o plain%d.rfl two.scene &&
+	reflect-capture -n 16 --bounces=2 --bounce-size=8 -p all -h -o out%d.rfl --progress \
+		two.scene 2>err &&
+	cmp plain1.rfl out1.rfl && cmp plain2.rfl out2.rfl &&
+	tail -n 1 err >last &&
+	grep -E "^reflect-capture: 100%, frame 2/2, row 192/192, [0-9]+:[0-9][0-9] elapsed$" last &&
+	! grep -v -E "$LINE" err &&
+	reflect-capture -n 16 -q two.scene >out 2>err &&
+	test ! -s err
+'
+
 # reflect-accumulate's result, written after the last frame, is a pass
 # of its own: a third.
 test_expect_success 'the stream stages: frame by frame, as many as come' '

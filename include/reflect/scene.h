@@ -200,6 +200,11 @@ struct rf_capture_options {
 	unsigned object_samples; /* 4 */
 	size_t bounce_size;      /* 128 */
 	int nthreads;            /* 1 */
+	/* How far the capture is (NULL: not told), called from the calling
+	 * thread: rows of cube faces done of the total over every bounce,
+	 * first with 0 done, then after each face. */
+	void (*progress)(void *arg, size_t rows_done, size_t rows_total);
+	void *progress_arg;
 };
 struct rf_cubemap;
 RF_EXTERN void rf_capture_options_init(struct rf_capture_options *o);

@@ -76,6 +76,8 @@ struct capture {
 	float steps;
 	float shq[3][9];
 	struct rf__proxy proxy; /* the probe's, its lookups in the bounces */
+	size_t rows_done, rows_total; /* for the progress callback */
+	size_t row_base; /* the face's first row, for capture_face_row */
 	rf_cubemap *out;
 	size_t n;
 	size_t edge_samples, object_samples; /* of the bounce being rendered */
@@ -490,11 +492,20 @@ capture_row(void *arg, size_t task, int thread)
 	}
 }
 
+/* Row task of the face that render() runs now. */
+static void
+capture_face_row(void *arg, size_t task, int thread)
+{
+	const struct capture *c = arg;
+
+	capture_row(arg, c->row_base + task, thread);
+}
+
 /* One bounce at face size n, objects shaded from env (NULL: black). */
 static int
 render(struct capture *c, size_t n, struct rf__pool *pool, rf_cubemap **cube)
 {
-	size_t t;
+	size_t t, f;
 	int rc;
 
 	if ((rc = rf_cubemap_create(cube, n, 1)) < 0)
@@ -507,11 +518,19 @@ render(struct capture *c, size_t n, struct rf__pool *pool, rf_cubemap **cube)
 		*cube = NULL;
 		return RF_ENOMEM;
 	}
-	if (pool)
-		rf__pool_run(pool, 6 * n, capture_row, c);
-	else
-		for (t = 0; t < 6 * n; t++)
-			capture_row(c, t, 0);
+	/* a face at a time, so that progress is told between them (the rows
+	 * do not depend on how they are batched) */
+	for (f = 0; f < 6; f++) {
+		c->row_base = f * n;
+		if (pool)
+			rf__pool_run(pool, n, capture_face_row, c);
+		else
+			for (t = f * n; t < (f + 1) * n; t++)
+				capture_row(c, t, 0);
+		c->rows_done += n;
+		if (c->o->progress)
+			c->o->progress(c->o->progress_arg, c->rows_done, c->rows_total);
+	}
 	free(c->corners);
 	c->corners = NULL;
 	rf_cubemap_seal_level(*cube, 0);
@@ -613,6 +632,11 @@ rf_scene_capture(const rf_scene *s, size_t probe, const struct rf_capture_option
 	if (o->nthreads > 1)
 		rf__pool_create(&pool, o->nthreads);
 	/* Without objects to light, bounces change nothing. */
+	for (b = c.nvisible ? 0 : o->bounces; b <= o->bounces; b++)
+		c.rows_total += 6 * (b < o->bounces && o->bounce_size < o->size ? o->bounce_size
+		                                                                 : o->size);
+	if (o->progress)
+		o->progress(o->progress_arg, 0, c.rows_total);
 	for (b = c.nvisible ? 0 : o->bounces; b <= o->bounces; b++) {
 		const size_t n = b < o->bounces && o->bounce_size < o->size ? o->bounce_size
 		                                                            : o->size;
