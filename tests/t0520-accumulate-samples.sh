@@ -1,0 +1,107 @@
+#!/bin/sh
+test_description='SAMPLES: weighted merges in reflect-accumulate'
+. "$srcdir/tests/lib.sh"
+. "$srcdir/tests/shade-lib.sh"
+
+# frame FILE KEYS V1 V2: appends a 2x1 frame, spec.R = V1 and V2, with the
+# header lines KEYS ("" for none, else e.g. "SAMPLES=3").
+frame () {
+	{
+		printf '#?REFLECT1\n' &&
+		if test -n "$2"
+		then
+			printf '%s\n' "$2"
+		fi &&
+		printf 'NCOLS=2\nNROWS=1\nNCOMP=1\nCHANNELS=spec.R\nFORMAT=ascii\n\n%s\n%s\n' \
+			"$3" "$4"
+	} >>"$1"
+}
+
+# relmax A B: the largest |a - b| / |a| over the numbers of two column files
+# (|a| below 1e-6 counts as 1e-6).
+relmax () {
+	paste -d " " "$1" "$2" | awk '{
+		n = NF / 2
+		for (i = 1; i <= n; i++) {
+			d = $i - $(i + n); if (d < 0) d = -d
+			m = $i < 0 ? -$i : $i; if (m < 1e-6) m = 1e-6
+			if (d / m > mx) mx = d / m
+		}
+	} END { printf "%.3g\n", mx + 0 }'
+}
+
+# 1 once and 3 three times: (1 + 3 x 3) / 4 = 2.5, and 10, 30: 25.  The
+# spread (West): M2 = 3 (3 - 1)(3 - 2.5) = 3, 30 times 10 for the second
+# pixel; the mean's variance M2 / ((n - 1) W) = 3 / 4, SE 0.8660254.
+test_expect_success 'mean: frames weighted by SAMPLES, hand-derived' '
+	frame w.txt SAMPLES=1 1 10 &&
+	frame w.txt SAMPLES=3 3 30 &&
+	reflect-accumulate --stats -fa w.txt >out.txt &&
+	column out.txt spec.R spec.R.se >got &&
+	printf "2.5 0.8660254\n25 8.660254\n" >expect &&
+	test_cmp_numbers expect got 1e-6 &&
+	test_grep "^SAMPLES=4$" out.txt &&
+	test_grep "^ACCUMULATED=2$" out.txt
+'
+
+test_expect_success 'mean: a frame without SAMPLES counts one sample' '
+	frame n.txt "" 1 10 &&
+	frame n.txt SAMPLES=3 3 30 &&
+	reflect-accumulate -fa n.txt >out.txt &&
+	column out.txt spec.R >got &&
+	printf "2.5\n25\n" >expect &&
+	diff -u expect got &&
+	test_grep "^SAMPLES=4$" out.txt
+'
+
+test_expect_success 'mean: SAMPLES=1 everywhere gives the bytes of no SAMPLES' '
+	for v in 1 2 4 8 0.3 7.1
+	do
+		frame plain.txt "" $v $v &&
+		frame ones.txt SAMPLES=1 $v $v || return 1
+	done &&
+	reflect-accumulate -a --stats -fa plain.txt >plain-a.txt &&
+	reflect-accumulate -a --stats -fa ones.txt >ones-a.txt &&
+	column plain-a.txt spec.R spec.R.se >a &&
+	column ones-a.txt spec.R spec.R.se >b &&
+	test $(wc -l <a) -eq 12 &&
+	diff -u a b
+'
+
+test_expect_success 'mean: -a gives the running sum of SAMPLES, --reset starts it afresh' '
+	frame r.txt "SAMPLES=2
+FRAME=0" 1 1 &&
+	frame r.txt "SAMPLES=5
+FRAME=0" 1 1 &&
+	frame r.txt "SAMPLES=7
+FRAME=1" 1 1 &&
+	reflect-accumulate -a --reset=FRAME -fa r.txt >out.txt &&
+	test "$(grep "^SAMPLES=" out.txt | tr "\n" " ")" = "SAMPLES=2 SAMPLES=7 SAMPLES=7 "
+'
+
+# ema weighs frames by age, not by SAMPLES (reflect-mode-ema(7)).
+test_expect_success 'ema: the same values with and without SAMPLES' '
+	frame e1.txt "" 1 10 && frame e1.txt "" 3 30 && frame e1.txt "" 2 5 &&
+	frame e2.txt SAMPLES=1 1 10 && frame e2.txt SAMPLES=9 3 30 &&
+	frame e2.txt SAMPLES=2 2 5 &&
+	reflect-accumulate -fa -m ema:weight=0.5 e1.txt >o1.txt &&
+	reflect-accumulate -fa -m ema:weight=0.5 e2.txt >o2.txt &&
+	column o1.txt spec.R >a && column o2.txt spec.R >b &&
+	printf "2\n12.5\n" >expect &&
+	diff -u expect a && diff -u a b &&
+	test_grep "^SAMPLES=12$" o2.txt
+'
+
+for bad in 0 -1 x 1.5 " 2" 4294967296 99999999999999999999 ""
+do
+	test_expect_success "mean: SAMPLES='$bad' is refused, naming the key and the file" "
+		rm -f bad.txt &&
+		frame bad.txt SAMPLES=1 1 1 &&
+		frame bad.txt 'SAMPLES=$bad' 1 1 &&
+		test_expect_code 1 reflect-accumulate bad.txt >out 2>err &&
+		test_grep \"reflect-accumulate: 'bad.txt': frame 2: header key SAMPLES='$bad' is not a whole number\" err &&
+		test ! -s out
+	"
+done
+
+test_done
