@@ -1,5 +1,5 @@
 #!/bin/sh
-test_description='SAMPLES: weighted merges in reflect-accumulate'
+test_description='SAMPLES: weighted merges in reflect-accumulate, the key from reflect-shade'
 . "$srcdir/tests/lib.sh"
 . "$srcdir/tests/shade-lib.sh"
 
@@ -103,5 +103,13 @@ do
 		test ! -s out
 	"
 done
+
+test_expect_success 'raytraced: SAMPLES is its samples=, other modes write none' '
+	reflect-gbuffer -x 48 -y 32 | reflect-project >g.rfl &&
+	reflect-shade -m raytraced:samples=12 g.rfl | reflect-info >info &&
+	test_grep "^	SAMPLES=12$" info &&
+	reflect-shade -m raytraced:samples=4 g.rfl | reflect-shade -m hdrp | reflect-info >info &&
+	! grep SAMPLES= info
+'
 
 test_done
