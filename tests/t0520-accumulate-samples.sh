@@ -1,5 +1,5 @@
 #!/bin/sh
-test_description='SAMPLES: weighted merges in reflect-accumulate, sample ranges of raytraced'
+test_description='SAMPLES: weighted merges in reflect-accumulate, sample ranges of raytraced and reflect-trace'
 . "$srcdir/tests/lib.sh"
 . "$srcdir/tests/shade-lib.sh"
 
@@ -194,5 +194,41 @@ test_expect_success 'white noise: seeded runs of 4 and 12 rays merge into 16 ray
 	awk -v o=$e_one -v w=$e_w -v u=$e_u \
 		"BEGIN { exit !(w < 1.1 * o && o < 1.1 * w && u > 1.08 * w) }"
 '
+
+test_expect_success 'reflect-trace: SAMPLES is its --samples' '
+	reflect-trace -x 8 -y 6 --samples=12 | reflect-info >info &&
+	test_grep "^	SAMPLES=12$" info &&
+	test_grep "^	TRACE_SAMPLES=12$" info
+'
+
+test_expect_success 'reflect-trace: a range past --total is refused' '
+	test_expect_code 1 reflect-trace -x 8 -y 6 --samples=4 --first=13 --total=16 \
+		>out 2>err &&
+	test_grep "reflect-trace: --first=13 and --samples=4 reach past --total=16" err &&
+	test ! -s out
+'
+
+# The trace's samples are summed in double: the bound above holds with
+# room to spare.  An odd first= splits the two sets unevenly.
+for split in "0:4 4:4 8:4 12:4" "0:3 3:13" "0:5 5:6 11:5"
+do
+	test_expect_success "reflect-trace: ranges $split of 16 merge into 16 samples" "
+		reflect-trace -x 48 -y 32 --samples=16 -fa >full.txt &&
+		for r in $split
+		do
+			reflect-trace -x 48 -y 32 --first=\${r%:*} --samples=\${r#*:} --total=16 ||
+				return 1
+		done | reflect-accumulate -fa >merged.txt &&
+		test_grep '^SAMPLES=16$' merged.txt &&
+		column full.txt R G B >a &&
+		column merged.txt R G B >b &&
+		r=\$(relmax a b) && echo \"largest relative difference \$r\" &&
+		awk -v r=\$r 'BEGIN { exit !(r <= 2.4e-6) }' &&
+		reflect-trace -x 48 -y 32 --first=4 --samples=4 --total=16 -fa >one.txt &&
+		column one.txt R G B >c &&
+		r=\$(relmax a c) && echo \"one range alone: \$r\" &&
+		awk -v r=\$r 'BEGIN { exit !(r > 1e-2) }'
+	"
+done
 
 test_done
