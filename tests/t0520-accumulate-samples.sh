@@ -195,6 +195,31 @@ test_expect_success 'white noise: seeded runs of 4 and 12 rays merge into 16 ray
 		"BEGIN { exit !(w < 1.1 * o && o < 1.1 * w && u > 1.08 * w) }"
 '
 
+# The issue's case: an accumulation of 16 one-ray frames (frames=16: the
+# frames' blocks make one set of 16 rays) split by frame range into 4 and
+# 12 frames, each accumulated (SAMPLES=4 and 12), then merged: the 16
+# frames' mean to float rounding.  Merged as equals it would be far off.
+test_expect_success 'an accumulation split by frame range, 4 + 12, merges into all 16' '
+	M=raytraced:samples=1:animate=1:frames=16 &&
+	reflect-gbuffer -x 48 -y 32 -n 16 | reflect-project | reflect-shade -m $M |
+		reflect-accumulate -fa >all.txt &&
+	for r in 0-3 4-15
+	do
+		reflect-gbuffer -x 48 -y 32 -n 16 --frames=$r | reflect-project |
+			reflect-shade -m $M | reflect-accumulate -fa || return 1
+	done >parts.txt &&
+	reflect-accumulate -fa parts.txt >merged.txt &&
+	test_grep "^SAMPLES=16$" merged.txt &&
+	column all.txt spec.R spec.G spec.B >a &&
+	column merged.txt spec.R spec.G spec.B >b &&
+	r=$(relmax a b) && echo "largest relative difference $r" &&
+	awk -v r=$r "BEGIN { exit !(r <= 2.4e-6) }" &&
+	sed "/^SAMPLES=/d" parts.txt | reflect-accumulate -fa >equals.txt &&
+	column equals.txt spec.R spec.G spec.B >c &&
+	r=$(relmax a c) && echo "merged as equals: $r" &&
+	awk -v r=$r "BEGIN { exit !(r > 1e-2) }"
+'
+
 test_expect_success 'reflect-trace: SAMPLES is its --samples' '
 	reflect-trace -x 8 -y 6 --samples=12 | reflect-info >info &&
 	test_grep "^	SAMPLES=12$" info &&
