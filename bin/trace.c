@@ -12,12 +12,14 @@ usage(void)
 {
 	fprintf(stderr, "usage: %s [-V] [-x WIDTH] [-y HEIGHT] " CLI_FRAME_USAGE " "
 	        CLI_PROGRESS_USAGE " [-j THREADS] [--samples=N] [--masking=separable|correlated] "
-	        "[--objects=hidden|visible] [--seed=N] [--halves] [-f a|f] [-h] "
+	        "[--objects=hidden|visible] [--seed=N] [--first=N --total=N] [--halves] "
+	        "[-f a|f] [-h] "
 	        "[scene]\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
 
-enum { OPT_SAMPLES = 256, OPT_MASKING, OPT_OBJECTS, OPT_SEED, OPT_HALVES, OPT_HELP };
+enum { OPT_SAMPLES = 256, OPT_MASKING, OPT_OBJECTS, OPT_SEED, OPT_HALVES, OPT_FIRST,
+       OPT_TOTAL, OPT_HELP };
 
 static const struct option long_options[] = {
 	CLI_FRAME_OPTIONS,
@@ -27,6 +29,8 @@ static const struct option long_options[] = {
 	{ "objects", required_argument, NULL, OPT_OBJECTS },
 	{ "seed", required_argument, NULL, OPT_SEED },
 	{ "halves", no_argument, NULL, OPT_HALVES },
+	{ "first", required_argument, NULL, OPT_FIRST },
+	{ "total", required_argument, NULL, OPT_TOTAL },
 	{ "help", no_argument, NULL, OPT_HELP },
 	{ NULL, 0, NULL, 0 },
 };
@@ -46,6 +50,7 @@ help(void)
 	       "  --masking=separable|correlated  Smith G (separable, as Cycles 3.4)\n"
 	       "  --objects=hidden|visible  reflective objects in reflected rays\n"
 	       "  --seed=N   --halves  half1.R G B and half2.R G B too\n"
+	       "  --first=I --total=T  samples I .. I+N-1 of a run of T (a split)\n"
 	       "  -j N  threads   -f a|f  output format   -h  no header   -V  versions\n",
 	       argv0);
 	fshut(stdout, "<stdout>");
@@ -64,7 +69,8 @@ frame_header(const rf_scene *s, const rf_tracer *t, const struct rf_camera *cam,
 		if (rf_header_add_channel(h, rf_tracer_channel(t, k)) < 0)
 			die_sys("out of memory");
 	snprintf(buf, sizeof(buf), "%u", samples);
-	if (rf_header_set(h, "TRACE_SAMPLES", buf) < 0)
+	if (rf_header_set(h, "TRACE_SAMPLES", buf) < 0 ||
+	    rf_header_set(h, RF_KEY_SAMPLES, buf) < 0)
 		die_sys("out of memory");
 	return h;
 }
@@ -118,6 +124,8 @@ main(int argc, char **argv)
 			break;
 		case OPT_SEED: o.seed = (uint32_t)parse_whole("seed", optarg, 0, 4294967295.0); break;
 		case OPT_HALVES: o.halves = 1; break;
+		case OPT_FIRST: o.first = (unsigned)parse_whole("first", optarg, 0, 16777215); break;
+		case OPT_TOTAL: o.total = (unsigned)parse_whole("total", optarg, 1, 16777216); break;
 		case OPT_HELP: help(); break;
 		default:
 			if (!cli_frames_option(&frames, c, optarg) && !cli_progress_option(c))
@@ -131,6 +139,10 @@ main(int argc, char **argv)
 	if (o.halves && o.samples < 2)
 		die("--halves: %u sample%s cannot make two halves (2 or more for halves)",
 		    o.samples, o.samples == 1 ? "" : "s");
+	if ((unsigned long)o.first + o.samples > (o.total ? o.total : o.samples))
+		die("--first=%u and --samples=%u reach past --total=%u: a run's samples are "
+		    "first .. first + samples - 1 of the total", o.first, o.samples,
+		    o.total ? o.total : o.samples);
 	cli_check_frame("-x -y", width, height);
 	s = cli_load_scene(file);
 	o.nthreads = cli_threads(threads);

@@ -156,6 +156,13 @@ RF_EXTERN const char *rf_header_line(const rf_header *h, size_t i);
 #define RF_SUPERSAMPLE_MAX 16
 RF_EXTERN int rf_header_supersample(const rf_header *h, size_t *factor);
 
+/* How many samples each value of the frame is the mean of
+ * (RF_KEY_SAMPLES): 1 without the key, so that frames of one sample
+ * each, as most tools make, merge as they always did; RF_EFORMAT when
+ * the value is not a whole number in [1, RF_SAMPLES_MAX]. */
+#define RF_SAMPLES_MAX 4294967295u
+RF_EXTERN int rf_header_samples(const rf_header *h, uint64_t *samples);
+
 /*
  * The header keys the tools share (reflect-stream(5) lists them).  Each
  * name is defined here once; the probe's keys are written and read only
@@ -165,6 +172,7 @@ RF_EXTERN int rf_header_supersample(const rf_header *h, size_t *factor);
 #define RF_KEY_CAMERA "CAMERA"         /* position, target, up (3 each), fov */
 #define RF_KEY_FRAME "FRAME"           /* the frame's number, from 0 */
 #define RF_KEY_SUPERSAMPLE "SUPERSAMPLE" /* N: a pixel is N x N samples */
+#define RF_KEY_SAMPLES "SAMPLES"       /* N: each value a mean of N samples */
 #define RF_KEY_PROBE_BOX "PROBE_BOX"   /* XMIN YMIN ZMIN XMAX YMAX ZMAX */
 #define RF_KEY_PROBE_CENTER "PROBE_CENTER" /* X Y Z, the capture point */
 #define RF_KEY_PROBE_BOX_PROJECTION "PROBE_BOX_PROJECTION" /* 1 or 0 */

@@ -231,6 +231,11 @@ struct rf_trace_options {
 	int halves;
 	uint32_t seed;
 	int nthreads;
+	/* A sample range: the pixel's samples are first .. first + samples - 1
+	 * of the total a whole run traces (0: samples), sample s the point
+	 * s / 2 of half s mod 2, so that runs of a split, merged by their
+	 * SAMPLES, are the whole run. */
+	unsigned first, total;
 };
 typedef struct rf_tracer rf_tracer;
 

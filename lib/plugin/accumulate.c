@@ -49,6 +49,7 @@ struct rf_accumulator {
 	size_t ncols, nrows, in_ncomp, out_ncomp;
 	size_t frames; /* begun so far */
 	uint32_t count; /* frames in the state, this one included */
+	uint64_t samples; /* their SAMPLES summed: the result's */
 	float *state;   /* nrows x ncols x nvalues x nslots */
 	float *kept;    /* the last frame's rows, output layout (keep) */
 	/* The batch rf_accumulator_run or _result is running. */
@@ -233,6 +234,7 @@ rf_accumulator_begin_frame(rf_accumulator *a, const rf_header *in, rf_header **o
                            char *err, size_t errlen)
 {
 	char count[32];
+	uint64_t samples;
 	size_t i;
 	int rc;
 
@@ -242,14 +244,26 @@ rf_accumulator_begin_frame(rf_accumulator *a, const rf_header *in, rf_header **o
 		rc = same_shape(a, in, err, errlen);
 	if (rc < 0)
 		return rc;
-	if (reset_due(a, in))
+	/* The mode reads the key itself (header_get); what it reads is
+	 * checked here, once, with a message for a person. */
+	if (rf_header_samples(in, &samples) < 0) {
+		rf__format(err, errlen, "frame %zu: header key %s='%s' is not a whole number "
+		           "from 1 to %u (how many samples each value is the mean of)",
+		           a->frames + 1, RF_KEY_SAMPLES, rf_header_get(in, RF_KEY_SAMPLES),
+		           RF_SAMPLES_MAX);
+		return RF_EFORMAT;
+	}
+	if (reset_due(a, in)) {
 		a->count = 0;
+		a->samples = 0;
+	}
 	if (a->count == UINT32_MAX) {
 		rf__format(err, errlen, "frame %zu: more frames than an accumulator counts",
 		           a->frames + 1);
 		return RF_EINVAL;
 	}
 	a->count++;
+	a->samples += samples; /* 2^32 frames of 2^32 samples at most: no overflow */
 	rf_header_destroy(a->last);
 	a->last = NULL;
 	if ((rc = rf_header_dup(&a->last, in)) < 0)
@@ -279,6 +293,9 @@ rf_accumulator_begin_frame(rf_accumulator *a, const rf_header *in, rf_header **o
 	}
 	snprintf(count, sizeof(count), "%u", a->count);
 	if ((rc = rf_header_set(a->out_h, RF_KEY_ACCUMULATED, count)) < 0)
+		return rc;
+	snprintf(count, sizeof(count), "%llu", (unsigned long long)a->samples);
+	if ((rc = rf_header_set(a->out_h, RF_KEY_SAMPLES, count)) < 0)
 		return rc;
 	a->out_ncomp = rf_header_nchannels(a->out_h);
 	if (a->o.keep && !a->kept &&

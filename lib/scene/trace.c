@@ -39,10 +39,14 @@ struct rf_tracer {
 	size_t nseen;
 	unsigned flags;
 	double *k;          /* per thread: rf__trace_prepare for a pixel */
-	/* cos and sin of 2 pi rf__ggx_radical_inverse(i) for a half's samples: a
-	 * pixel's rotation turns them by angle addition instead of a sincos
-	 * a sample (a tenth of the time) */
+	/* cos and sin of 2 pi rf__ggx_radical_inverse(i) for a half's samples,
+	 * i from turn0: a pixel's rotation turns them by angle addition
+	 * instead of a sincos a sample (a tenth of the time) */
 	float *turn;
+	uint32_t turn0;
+	/* Each half's points of the range: lo[j] .. lo[j] + n[j] - 1 of a set
+	 * of all[j] (the whole run's half) */
+	uint32_t lo[2], n[2], all[2];
 	struct rf__pool *pool;
 };
 
@@ -80,6 +84,14 @@ rf_tracer_create(struct rf_tracer **tp, const rf_scene *s, size_t width, size_t 
 		           "for halves)", o->samples);
 		return RF_EINVAL;
 	}
+	if (o->total > (1u << 24) ||
+	    (uint64_t)o->first + o->samples > (o->total ? o->total : o->samples)) {
+		rf__format(err, errlen, "samples %u .. %llu of %u: a range must lie in the "
+		           "total, at most 16777216", o->first,
+		           (unsigned long long)o->first + o->samples - 1,
+		           o->total ? o->total : o->samples);
+		return RF_EINVAL;
+	}
 	if (!(t = calloc(1, sizeof(*t))))
 		return RF_ENOMEM;
 	t->s = s;
@@ -93,14 +105,27 @@ rf_tracer_create(struct rf_tracer **tp, const rf_scene *s, size_t width, size_t 
 	t->kcam = calloc(s->nobjects + 1, RF__ORIGIN_STRIDE * sizeof(double));
 	t->k = calloc((size_t)t->o.nthreads * (s->nobjects + 1), RF__ORIGIN_STRIDE *
 	              sizeof(double));
+	{
+		/* sample s is point s / 2 of half s mod 2: the halves' shares of
+		 * [first, first + samples), and of the whole run's [0, total) */
+		uint32_t T = o->total ? o->total : o->samples, e = o->first + o->samples, j;
+
+		for (j = 0; j < 2; j++) {
+			t->lo[j] = (o->first + 1 - j) / 2;
+			t->n[j] = (e + 1 - j) / 2 - t->lo[j];
+			t->all[j] = (T + 1 - j) / 2;
+		}
+		t->turn0 = t->lo[1];
+	}
 	/* padded to whole chunks: integrate() reads a chunk whole */
-	t->turn = calloc(((size_t)o->samples + 1) / 2 + TRACE_CHUNK, 2 * sizeof(float));
+	t->turn = calloc((size_t)(t->lo[0] + t->n[0] - t->turn0) + TRACE_CHUNK,
+	                 2 * sizeof(float));
 	if (!t->kcam || !t->k || !t->turn) {
 		rf_tracer_destroy(t);
 		return RF_ENOMEM;
 	}
-	for (i = 0; i < ((size_t)o->samples + 1) / 2; i++) {
-		double a = 2.0 * M_PI * rf__ggx_radical_inverse((uint32_t)i);
+	for (i = 0; i < (size_t)(t->lo[0] + t->n[0] - t->turn0); i++) {
+		double a = 2.0 * M_PI * rf__ggx_radical_inverse(t->turn0 + (uint32_t)i);
 
 		t->turn[2 * i] = (float)cos(a);
 		t->turn[2 * i + 1] = (float)sin(a);
@@ -177,8 +202,9 @@ hash(uint32_t x)
 	return x;
 }
 
-/* The lobe's integral at a hit seen along -v over a Hammersley set of K
- * samples turned by rot: their sum (of weight x radiance) into acc. */
+/* The lobe's integral at a hit seen along -v over points lo .. lo + K - 1
+ * of a Hammersley set of n_all samples turned by rot: their sum (of
+ * weight x radiance) into acc. */
 #if defined(__GNUC__) && !defined(__clang__)
 /* No floating-point traps are looked at: selects may be computed on
  * both sides, which lets the direction pass become vector code. */
@@ -186,7 +212,8 @@ __attribute__((optimize("no-trapping-math")))
 #endif
 static void
 integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
-          const double *k, uint32_t rot, uint32_t K, double acc[3])
+          const double *k, uint32_t rot, uint32_t lo, uint32_t K, uint32_t n_all,
+          double acc[3])
 {
 	const double alpha = (double)h->roughness * h->roughness;
 	const double a = alpha > 1e-4 ? alpha : 1e-4, alpha2 = a * a;
@@ -238,7 +265,7 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 		const float t2x = (float)t2[0], t2y = (float)t2[1], t2z = (float)t2[2];
 		const float vhx = (float)vh[0], vhy = (float)vh[1], vhz = (float)vh[2];
 		const float vx = (float)vl[0], vy = (float)vl[1], vz = (float)vl[2];
-		const float inv_k = 1.0f / (float)K;
+		const float inv_k = 1.0f / (float)n_all;
 		const float fx[3] = { (float)x[0], (float)x[1], (float)x[2] };
 		const float fy[3] = { (float)y[0], (float)y[1], (float)y[2] };
 		const float fn[3] = { (float)n[0], (float)n[1], (float)n[2] };
@@ -259,12 +286,12 @@ integrate(const struct rf_tracer *t, const struct rf_hit *h, const double v[3],
 			 * alias their stores would keep the loop scalar */
 			float turn[2 * TRACE_CHUNK];
 
-			memcpy(turn, t->turn + 2 * (size_t)i0, sizeof(turn));
+			memcpy(turn, t->turn + 2 * ((size_t)(lo - t->turn0) + i0), sizeof(turn));
 			m = K - i0 < TRACE_CHUNK ? K - i0 : TRACE_CHUNK;
 			/* whole chunks, the lanes past K not ok: a fixed trip
 			 * count needs no scalar epilogue, and -O2 vectorizes it */
 			for (j = 0; j < TRACE_CHUNK; j++) {
-				i = i0 + j;
+				i = lo + i0 + j;
 				float u0 = ((float)i + 0.5f) * inv_k + (float)u0r;
 				const float c0 = turn[2 * j], s0 = turn[2 * j + 1];
 				/* cos and sin of 2 pi (rf__ggx_radical_inverse(i) + u1r) */
@@ -405,12 +432,11 @@ trace_row(void *arg, size_t task, int thread)
 				uint32_t rot = hash((uint32_t)x * 0x9e3779b9u ^ hash((uint32_t)y +
 				                    hash(t->o.seed * 2u + (uint32_t)j)));
 
-				integrate(t, &h, v, k, rot, j ? t->o.samples / 2
-				                                  : (t->o.samples + 1) / 2, half[j]);
+				integrate(t, &h, v, k, rot, t->lo[j], t->n[j], t->all[j], half[j]);
 			}
 		}
 		for (c = 0; c < 3; c++) {
-			const uint32_t K = t->o.samples, n0 = (K + 1) / 2, n1 = K / 2;
+			const uint32_t K = t->o.samples, n0 = t->n[0], n1 = t->n[1];
 			/* reflection through the mask, the surface's own light over it */
 			const double refl = (half[0][c] + half[1][c]) / K;
 

@@ -408,19 +408,40 @@ blend_stages(rf_shader *s, const rf_header *in, char *err, size_t errlen)
 	return 0;
 }
 
+/* The SAMPLES the output's values are means of: a mode's whole-number
+ * parameter samples= (reflect-plugin(7)), so that reflect-accumulate
+ * weighs its frames by it; 0 for a mode without one, whose values are
+ * no estimate to weigh. */
+static uint64_t
+mode_samples(const struct rf_shader_options *o)
+{
+	uint32_t i;
+
+	for (i = 0; o->mode && o->values && i < o->mode->nparams; i++)
+		if (!strcmp(o->mode->params[i].name, "samples") &&
+		    (o->mode->params[i].flags & RF_PARAM_INTEGER) && o->values[i] >= 1.0 &&
+		    o->values[i] <= (double)RF_SAMPLES_MAX)
+			return (uint64_t)o->values[i];
+	return 0;
+}
+
 /* What the output's header says of the shading, after the caller's keys. */
 static int
 set_keys(rf_shader *s, rf_header *out, const struct rf_probe *probe, char *err,
          size_t errlen)
 {
 	const struct rf_shader_options *o = &s->o;
-	char steps[64];
+	uint64_t samples = mode_samples(o);
+	char steps[64], count[32];
 	int rc;
 
 	if (o->header && (rc = o->header(o->header_arg, out)) < 0)
 		return bare(rc, err, errlen);
 	snprintf(steps, sizeof(steps), "%.9g", (double)s->env[0].steps);
-	if ((rc = rf_header_set(out, RF_KEY_SHADE, o->spec)) < 0 ||
+	snprintf(count, sizeof(count), "%llu", (unsigned long long)samples);
+	if ((rc = samples ? rf_header_set(out, RF_KEY_SAMPLES, count)
+	                  : rf_header_unset(out, RF_KEY_SAMPLES)) < 0 ||
+	    (rc = rf_header_set(out, RF_KEY_SHADE, o->spec)) < 0 ||
 	    (rc = rf_header_set(out, RF_KEY_ENV_MAPPING,
 	                        rf_mapping_name(s->env[0].mapping))) < 0 ||
 	    (rc = rf_header_set(out, RF_KEY_ENV_STEPS, steps)) < 0 ||

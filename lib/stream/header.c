@@ -279,6 +279,27 @@ rf_header_supersample(const rf_header *h, size_t *factor)
 }
 
 int
+rf_header_samples(const rf_header *h, uint64_t *samples)
+{
+	const char *v = rf_header_get(h, RF_KEY_SAMPLES);
+	unsigned long long n = 1;
+	char *end;
+
+	*samples = 1;
+	if (v) {
+		/* digits only: strtoull would take a sign or leading spaces */
+		if (*v < '0' || *v > '9')
+			return RF_EFORMAT;
+		errno = 0;
+		n = strtoull(v, &end, 10);
+		if (*end || errno || n < 1 || n > RF_SAMPLES_MAX)
+			return RF_EFORMAT;
+	}
+	*samples = n;
+	return 0;
+}
+
+int
 rf__header_push_line(rf_header *h, const char *line)
 {
 	char **lines;

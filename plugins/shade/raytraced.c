@@ -41,7 +41,7 @@
 #include "raytraced-mis.h"
 
 enum { SAMPLES, PATTERN, ANIMATE, SAMPLER, ESTIMATOR, MASKING, MIPOFFSET, SEED, FRAMES,
-       NPARAMS };
+       FIRST, TOTAL, NPARAMS };
 /* the pattern= choices, in sequences.h's order */
 enum { PATTERN_WHITE = SEQUENCE_WHITE, PATTERN_BLUE = SEQUENCE_BLUE,
        PATTERN_DETERMINISTIC = SEQUENCE_LOW_DISCREPANCY };
@@ -72,6 +72,12 @@ static const struct rf_param params[NPARAMS] = {
 	{ "frames", "frames the output will be averaged over (reflect-accumulate): "
 	  "each ray's footprint is that of samples x frames rays", 1, 1e6, 1,
 	  RF_PARAM_INTEGER, NULL },
+	{ "first", "index of the first ray in the set of total= rays: a run of samples= "
+	  "rays from it, merged by reflect-accumulate with the others of the set", 0,
+	  16777215, 0, RF_PARAM_INTEGER, NULL },
+	{ "total", "rays in the whole set the runs share (0: samples=); footprints "
+	  "and the patterns are those of one run of total rays", 0, 16777216, 0,
+	  RF_PARAM_INTEGER, NULL },
 };
 
 static const char *const inputs[] = {
@@ -87,8 +93,9 @@ static const char *const outputs[] = { RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHAD
 struct raytraced {
 	const struct rf_host *host;
 	uint32_t samples, frame, seed;
-	float rays; /* samples x frames: how many rays share the lobe */
-	float *ham0, *ham1; /* the Hammersley set of `samples` points */
+	uint32_t first, total; /* the rays are first .. first + samples - 1 of total */
+	float rays; /* total x frames: how many rays share the lobe */
+	float *ham0, *ham1; /* points first .. of the Hammersley set of total */
 	int pattern, animate, estimator, masking, mipoffset;
 	uint32_t frames; /* frames=: how many the output will be averaged over */
 	int split;       /* frames' rays are blocks of one set (create) */
@@ -119,7 +126,7 @@ random_pairs(const struct raytraced *rt, uint32_t px, uint32_t py, uint32_t n,
              float *restrict u0, float *restrict u1)
 {
 	rf__sequence_pairs(rt->pattern, rt->seed, rt->animate ? rt->frame : 0, rt->r2_step, px, py,
-	               0, n, rt->ham0, rt->ham1, u0, u1);
+	               rt->first, n, rt->ham0, rt->ham1, u0, u1);
 }
 
 /* ---- the lobe ------------------------------------------------------------ */
@@ -643,10 +650,19 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	rt->masking = (int)values[MASKING];
 	rt->mipoffset = values[MIPOFFSET] != 0.0;
 	rt->seed = (uint32_t)values[SEED] + host->seed;
-	rt->rays = (float)(values[SAMPLES] * values[FRAMES]);
+	rt->first = (uint32_t)values[FIRST];
+	rt->total = values[TOTAL] > 0.0 ? (uint32_t)values[TOTAL] : rt->samples;
+	if ((uint64_t)rt->first + rt->samples > rt->total) {
+		snprintf(err, errlen, "first=%u and samples=%u reach past total=%u: a run's "
+		         "rays are first .. first + samples - 1 of the total", rt->first,
+		         rt->samples, rt->total);
+		free(rt);
+		return -1;
+	}
+	rt->rays = (float)((double)rt->total * values[FRAMES]);
 	rt->frames = (uint32_t)values[FRAMES];
 	rt->split = rt->animate && rt->frames > 1 && rt->pattern != PATTERN_WHITE &&
-	            values[SAMPLES] * values[FRAMES] < 2147483648.0;
+	            (double)rt->total * values[FRAMES] < 2147483648.0;
 	if ((frame = host->header_get(host->ctx, "FRAME")))
 		rt->frame = (uint32_t)strtoul(frame, NULL, 10);
 	if ((int)values[SAMPLER] == SAMPLER_MIS) {
@@ -663,11 +679,13 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 		 * to 24 it has 3, ten reads, which keeps the cost under twice
 		 * the lobe's (1.97x at 4 rays, 1.81x at 16, 1920x1080) and
 		 * lowers the error on both test scenes.  Below 4 rays ten reads
-		 * would cost more than twice: the lobe's technique alone. */
-		while (2 * (rt->grid + 2) * (rt->grid + 1) <= rt->samples && rt->grid < 16)
+		 * would cost more than twice: the lobe's technique alone.  The
+		 * table is the whole set's (total=): a sample range draws its
+		 * rays as one run of them all does. */
+		while (2 * (rt->grid + 2) * (rt->grid + 1) <= rt->total && rt->grid < 16)
 			rt->grid++;
 		if (rt->grid < 3)
-			rt->grid = rt->samples >= 4 ? 3 : 0;
+			rt->grid = rt->total >= 4 ? 3 : 0;
 	}
 	/* One block: per ray 3 + 3 + 1 + 1 + 3 + 1 + 4 + 1 + 1 + 2 + 1 floats
 	 * and an index, for the rays or the table's cells if more. */
@@ -694,8 +712,10 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	rt->dens = rt->ham1 + k;
 	rt->index = (uint32_t *)(rt->dens + k);
 	rt->table = (float *)(rt->index + k);
+	/* A sample range (first=, total=) takes its rays from the set of
+	 * total, so the runs of a split together are that set, ray for ray. */
 	for (i = 0; i < rt->samples; i++) {
-		rf__hammersley((uint32_t)i, rt->samples, &rt->ham0[i], &rt->ham1[i]);
+		rf__hammersley(rt->first + (uint32_t)i, rt->total, &rt->ham0[i], &rt->ham1[i]);
 	}
 	rt->r2_step = rt->animate ? rt->frame : 0;
 	if (rt->split) {
@@ -713,7 +733,7 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 		 * 16 rays, on the default scene; so is one frame of Sobol's 16
 		 * points, against Hammersley's.  R2 steps alone: 1.38x worse.) */
 		uint32_t g = (uint32_t)((double)rt->frames * 0.6180339887 + 0.5), x, y, t, part;
-		float n_all = (float)rt->samples * (float)rt->frames;
+		float n_all = (float)rt->total * (float)rt->frames;
 
 		for (;; g++) {
 			for (x = g, y = rt->frames; y; t = x % y, x = y, y = t)
@@ -724,7 +744,7 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 		part = (uint32_t)(((uint64_t)(rt->frame % rt->frames) * g) % rt->frames);
 		rt->r2_step = rt->frame / rt->frames;
 		for (i = 0; i < rt->samples; i++) {
-			uint32_t j = part * rt->samples + (uint32_t)i;
+			uint32_t j = part * rt->total + rt->first + (uint32_t)i;
 
 			rt->ham0[i] = ((float)j + 0.5f) / n_all;
 			rt->ham1[i] = rf__radical_inverse(j);

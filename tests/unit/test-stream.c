@@ -662,6 +662,34 @@ TEST(messages_are_one_printable_line)
 		ASSERT((unsigned char)err[i] >= 0x20 && err[i] != 0x7f);
 }
 
+/* SAMPLES: 1 without the key, whole numbers 1 .. 2^32 - 1, nothing else
+ * (no sign, space, exponent or fraction that strtoull would pass). */
+TEST(samples_key)
+{
+	static const char *const bad[] = { "0", "-1", "+3", " 3", "3 ", "1e3", "1.5", "",
+	                                   "0x10", "4294967296", "18446744073709551617" };
+	rf_header *h;
+	uint64_t n = 0;
+	size_t i;
+
+	ASSERT_EQ(rf_header_create(&h), 0);
+	ASSERT_EQ(rf_header_samples(h, &n), 0);
+	ASSERT_EQ(n, 1);
+	ASSERT_EQ(rf_header_set(h, RF_KEY_SAMPLES, "12"), 0);
+	ASSERT_EQ(rf_header_samples(h, &n), 0);
+	ASSERT_EQ(n, 12);
+	ASSERT_EQ(rf_header_set(h, RF_KEY_SAMPLES, "4294967295"), 0);
+	ASSERT_EQ(rf_header_samples(h, &n), 0);
+	ASSERT_EQ(n, 4294967295ll);
+	for (i = 0; i < sizeof(bad) / sizeof(*bad); i++) {
+		ASSERT_EQ(rf_header_set(h, RF_KEY_SAMPLES, bad[i]), 0);
+		n = 7;
+		ASSERT_EQ(rf_header_samples(h, &n), RF_EFORMAT);
+		ASSERT_EQ(n, 1);
+	}
+	rf_header_destroy(h);
+}
+
 int
 main(void)
 {
@@ -687,5 +715,6 @@ main(void)
 	RUN(set_channels_keeps_the_old_list_on_error);
 	RUN(command_line_too_long);
 	RUN(messages_are_one_printable_line);
+	RUN(samples_key);
 	TAP_DONE();
 }
