@@ -378,12 +378,21 @@
 	show();
 	window.addEventListener('load', function () {
 		fit();
-		if (location.hash === '#selftest') {
-			try {
-				selftest();
-			} catch (err) {
-				$('selftest').textContent = 'selftest: FAIL: ' + err;
-			}
+		var hash = location.hash;
+		if (hash !== '#selftest' && hash !== '#selftest-colour')
+			return;
+		try {
+			selftest();
+		} catch (err) {
+			$('selftest').textContent = 'selftest: FAIL: ' + err;
+		}
+		/* For a browser that can take a screenshot but not hand back
+		 * the page (Firefox headless): the whole page one colour, pure
+		 * green for a pass and pure red for a failure. */
+		if (hash === '#selftest-colour') {
+			document.body.style.visibility = 'hidden';
+			document.documentElement.style.background =
+				/^selftest: pass/.test($('selftest').textContent) ? '#00ff00' : '#ff0000';
 		}
 	});
 }());
