@@ -22,7 +22,7 @@
 	var R = JSON.parse($('report-data').textContent);
 	var npic = R.pictures.length;
 	var W = R.width, H = R.height;
-	var st = { a: 0, b: npic > 1 ? 1 : 0, wipe: 100, e: R.stop0, s: 1, tx: 0, ty: 0 };
+	var st = { a: 0, b: 0, wipe: 100, e: R.stop0, s: 1, tx: 0, ty: 0 };
 	var picsA = [], picsB = [], heats = [];
 
 	function shot(i, e) { return $('shot-' + i + '-' + e).src; }
@@ -66,7 +66,7 @@
 
 	/* Shows the state: the pictures, the wipe, the map, the exposure. */
 	function show() {
-		var i, hm = st.a ? st.a : st.b, rows, cards;
+		var i, hm = st.a || st.b || (npic > 1 ? 1 : 0), rows, cards;
 		for (i = 0; i < npic; i++) {
 			picsA[i].className = i === st.a ? 'on' : '';
 			picsB[i].className = i === st.b ? 'on' : '';
@@ -80,8 +80,7 @@
 		$('tag-a').textContent = 'A ' + st.a + ': ' + R.pictures[st.a].name;
 		$('tag-b').textContent = st.wipe < 100 ? 'B ' + st.b + ': ' + R.pictures[st.b].name : '';
 		$('tag-b').style.display = st.wipe < 100 ? '' : 'none';
-		$('tag-heat').textContent = hm ? 'FLIP map: ' + R.pictures[hm].name
-		                               : 'the truth against itself: no map';
+		$('tag-heat').textContent = hm ? 'FLIP map: ' + R.pictures[hm].name : 'no mode: no map';
 		$('sel-a').value = String(st.a);
 		$('sel-b').value = String(st.b);
 		$('wipe').value = String(st.wipe);
@@ -104,7 +103,9 @@
 		var t = 'translate(' + st.tx + 'px,' + st.ty + 'px) scale(' + st.s + ')';
 		$('layer-pic').style.transform = t;
 		$('layer-heat').style.transform = t;
-		$('wipe-line').style.borderLeftWidth = (1 / st.s) + 'px';
+		/* one screen pixel at any zoom: a width, as a border's is
+		 * rounded up to a pixel before the scale */
+		$('wipe-line').style.width = (1 / st.s) + 'px';
 	}
 
 	function fit() {
@@ -304,6 +305,7 @@
 		check(shown(heats) === 1, 'key 1 does not show mode 1\'s map');
 		key('ArrowRight');
 		check(shown(picsA) === 2 % npic, 'the right arrow does not show the next');
+		check(npic < 3 || shown(heats) === 2, 'the right arrow does not show its map');
 		key('ArrowLeft');
 		key('ArrowLeft');
 		check(shown(picsA) === 0, 'the left arrow does not go back to the truth');
@@ -365,7 +367,7 @@
 		      Math.max.apply(null, r), 'FLIP is not sorted down');
 
 		st.a = 0;
-		st.b = npic > 1 ? 1 : 0;
+		st.b = 0;
 		st.wipe = 100;
 		show();
 		check(problems.length === 0, problems.join('; '));
