@@ -35,19 +35,23 @@ split(const char *opt, char *arg)
 	return eq + 1;
 }
 
-/* --caption and --time name modes given on the command line. */
+/* --caption and --time name modes given on the command line; the
+ * report is let go before a refusal, as after any other. */
 static void
-name_mode(const rf_report *r, const char *opt, const char *name)
+name_mode(rf_report *r, const char *opt, const char *name)
 {
-	if (rf_report_find(r, name) < 0)
+	if (rf_report_find(r, name) < 0) {
+		rf_report_destroy(r);
 		die("%s: no mode is named '%s' (name a mode as NAME=FILE)", opt, name);
+	}
 }
 
 /* A picture refused: bad input, as reflect-compare has it, a file that
  * cannot be read included; out of memory is the system's. */
 static void
-refuse(int rc, const char *err)
+refuse(rf_report *r, int rc, const char *err)
 {
+	rf_report_destroy(r);
 	if (rc == RF_ENOMEM)
 		die_status(rc, err);
 	die("%s", err);
@@ -57,7 +61,8 @@ int
 main(int argc, char **argv)
 {
 	const char *out = NULL, *title = "reflect-report", *threads = NULL;
-	char **captions, **times, err[1024];
+	char **captions, **times, **captext, err[1024];
+	double *ns;
 	size_t ncaptions = 0, ntimes = 0, i;
 	rf_output *o = NULL;
 	rf_report *r;
@@ -67,6 +72,8 @@ main(int argc, char **argv)
 	cli_init(argc, argv);
 	captions = emalloc((size_t)argc * sizeof(*captions));
 	times = emalloc((size_t)argc * sizeof(*times));
+	captext = emalloc((size_t)argc * sizeof(*captext));
+	ns = emalloc((size_t)argc * sizeof(*ns));
 	while ((c = getopt_long(argc, argv, "Vo:j:", long_options, NULL)) != -1) {
 		switch (c) {
 		case 'V': print_version(); break;
@@ -93,43 +100,50 @@ main(int argc, char **argv)
 	if (argc - optind < 2)
 		usage();
 	nthreads = cli_threads(threads);
+	/* the command line whole before the first picture is read */
+	for (i = (size_t)optind + 1; i < (size_t)argc; i++)
+		if (!strchr(argv[i], '=') || argv[i][0] == '=')
+			die("'%s' has no name: give each mode as NAME=FILE",
+			    argv[i] + (argv[i][0] == '='));
+	for (i = 0; i < ncaptions; i++)
+		captext[i] = split("--caption", captions[i]);
+	for (i = 0; i < ntimes; i++)
+		ns[i] = parse_number("time", split("--time", times[i]), 0, INFINITY);
 	if ((rc = rf_report_create(&r, argv[optind], err, sizeof(err))) < 0)
-		refuse(rc, err);
+		refuse(NULL, rc, err);
 	for (i = (size_t)optind + 1; i < (size_t)argc; i++) {
 		char *eq = strchr(argv[i], '=');
 
-		if (!eq)
-			die("'%s' has no name: give each mode as NAME=FILE", argv[i]);
 		*eq = '\0';
-		if ((rc = rf_report_add(r, argv[i], eq + 1, NAN, nthreads, err,
-		                        sizeof(err))) < 0)
-			refuse(rc, err);
+		if ((rc = rf_report_add(r, argv[i], eq + 1, NAN, nthreads, err, sizeof(err))) < 0)
+			refuse(r, rc, err);
 	}
 	for (i = 0; i < ncaptions; i++) {
-		const char *text = split("--caption", captions[i]);
-
 		name_mode(r, "--caption", captions[i]);
-		if (rf_report_caption(r, captions[i], text) < 0)
-			die_status(RF_ENOMEM, "out of memory");
+		if (rf_report_caption(r, captions[i], captext[i]) < 0)
+			refuse(r, RF_ENOMEM, "out of memory");
 	}
 	for (i = 0; i < ntimes; i++) {
-		const char *ns = split("--time", times[i]);
-
 		name_mode(r, "--time", times[i]);
-		rf_report_time(r, times[i], parse_number("time", ns, 0, INFINITY));
+		rf_report_time(r, times[i], ns[i]);
 	}
-	if (out && (rc = rf_output_open(&o, out, &fp, err, sizeof(err))) < 0)
+	if (out && (rc = rf_output_open(&o, out, &fp, err, sizeof(err))) < 0) {
+		rf_report_destroy(r);
 		die_status(rc, err);
+	}
 	if (!out)
 		fp = stdout;
-	if ((rc = rf_report_write(r, fp, title, err, sizeof(err))) < 0)
+	rc = rf_report_write(r, fp, title, err, sizeof(err));
+	rf_report_destroy(r);
+	if (rc < 0)
 		die_status(rc, err);
 	if (o && (rc = rf_output_commit(o, err, sizeof(err))) < 0)
 		die_status(rc, err);
 	if (!o)
 		fshut(stdout, "<stdout>");
-	rf_report_destroy(r);
 	free(captions);
 	free(times);
+	free(captext);
+	free(ns);
 	return 0;
 }

@@ -227,6 +227,20 @@ test_expect_success '--help on stdout; an unknown option: the usage, exit 1' '
 	test_grep "^usage: reflect-report " err
 '
 
+test_expect_success 'a page that cannot be written: the reason, exit 2' '
+	test_expect_code 2 reflect-report -o nodir/page.html truth.rfl a=noisy.rfl 2>err &&
+	echo "reflect-report: cannot write ${SQ}nodir/page.html${SQ}: No such file or directory" >want &&
+	diff -u want err
+'
+
+test_expect_success 'the command line is checked before a picture is read' '
+	test_expect_code 1 reflect-report nope.rfl a=nope.rfl b 2>err &&
+	echo "reflect-report: ${SQ}b${SQ} has no name: give each mode as NAME=FILE" >want &&
+	diff -u want err &&
+	test_expect_code 1 reflect-report --time=a=fast nope.rfl a=nope.rfl 2>err &&
+	test_grep "fast" err
+'
+
 if test -w /dev/full
 then
 	test_expect_success 'a full disk: a system error, exit 2' '
