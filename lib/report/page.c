@@ -124,7 +124,7 @@ viewer(FILE *fp)
 	        RF__REPORT_NSTOPS - 1, -RF__REPORT_STOP_MIN);
 	fputs("<button id=\"fit\">fit</button> <button id=\"one\">1:1</button>\n</div>\n"
 	      "<p class=\"keys\">Keys: 0 shows the truth as A, 1 to 9 a mode, &larr; and "
-	      "&rarr; the previous or next; + and &minus; the exposure. The slider wipes from A "
+	      "&rarr; the previous or next; + (or =) and &minus; the exposure. The slider wipes from A "
 	      "(left) to B (right). The wheel zooms, a drag pans, a double click fits; the "
 	      "picture and its FLIP map move together.</p>\n"
 	      "<div class=\"views\">\n"

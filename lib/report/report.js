@@ -176,6 +176,7 @@
 		$('sel-a').addEventListener('change', function () { st.a = +this.value; show(); });
 		$('sel-b').addEventListener('change', function () { st.b = +this.value; show(); });
 		$('fit').addEventListener('click', fit);
+		window.addEventListener('resize', fit);
 		$('one').addEventListener('click', function () {
 			var v = $('view-pic');
 			zoomAt(v, v.getBoundingClientRect().left + v.clientWidth / 2,
@@ -190,8 +191,9 @@
 			} else if ((k === 'ArrowRight' || k === 'ArrowLeft') &&
 			           tag !== 'INPUT' && tag !== 'SELECT') {
 				st.a = (st.a + (k === 'ArrowRight' ? 1 : npic - 1)) % npic;
-			} else if (k === '+' || k === '-') {
-				setExposure(st.e + (k === '+' ? 1 : -1));
+			} else if (k === '+' || k === '=' || k === '-') {
+				/* '=' is '+' without shift on most keyboards */
+				setExposure(st.e + (k === '-' ? -1 : 1));
 				return;
 			} else {
 				return;
@@ -353,6 +355,11 @@
 			check(picsA[0].src === shot(0, R.stop0 + 1) && picsA[0].src !== v,
 			      'the exposure does not change the pictures');
 			setExposure(R.stop0);
+			key('-');
+			check(st.e === R.stop0 - 1 && picsA[0].src === shot(0, R.stop0 - 1),
+			      'the key - does not lower the exposure');
+			key('=');
+			check(st.e === R.stop0, 'the key = does not raise the exposure');
 		}
 
 		/* sorting: ascending by FLIP, then descending */
