@@ -17,7 +17,7 @@ else
 fi
 
 for tool in reflect-info reflect-project reflect-export reflect-accumulate reflect-filter reflect-capture reflect-trace reflect-montage \
-	reflect-occlude reflect-compare
+	reflect-occlude reflect-compare reflect-report
 do
 	test_expect_success "$tool(1) documents every option of its usage line" '
 		page="$srcdir/doc/$tool.1" &&

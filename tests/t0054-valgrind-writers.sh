@@ -51,9 +51,14 @@ then
 		valgrind_ok "$builddir/bin/reflect-montage" -o m.exr A=a.rfl B=b.rfl &&
 		test -s m.png && test -s m.exr
 	'
+	# PNG files made in memory, for the page's data: URIs
+	test_expect_success 'reflect-report -o' '
+		valgrind_ok "$builddir/bin/reflect-report" -o r.html a.rfl b=b.rfl &&
+		test_grep "data:image/png;base64," r.html
+	'
 else
 	for t in 'reflect-export -o, PNG and OpenEXR' 'reflect-compare -o' \
-		'reflect-montage -o'
+		'reflect-montage -o' 'reflect-report -o'
 	do
 		test_skip "$t" "${valgrind_reason:-no valgrind}"
 	done

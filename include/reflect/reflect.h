@@ -523,9 +523,10 @@ RF_EXTERN const char *rf_filter_error(const rf_filter *f);
 }
 #endif
 
-/* Images and their comparison have headers of their own; they are part
- * of this one. */
+/* Images, their comparison and reports of modes against the truth have
+ * headers of their own; they are part of this one. */
 #include "reflect/image.h"
 #include "reflect/compare.h"
+#include "reflect/report.h"
 
 #endif

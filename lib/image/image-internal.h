@@ -13,4 +13,11 @@
 int rf__image_read_memory(rf_image **img, const void *data, size_t size, const char *ext,
                           const char *name, char *err, size_t errlen);
 
+/* An 8-bit PNG of width x height pixels of nchannels (1 to 4: grey, grey
+ * and alpha, RGB, RGBA) made in memory, as PNG files are written: values
+ * clamped to [0, 1], rounded, tagged sRGB.  *data (malloc'd, the
+ * caller's to free) and *len; RF_EINVAL for a bad size, RF_ENOMEM. */
+int rf__png_encode(unsigned char **data, size_t *len, const float *pixels, size_t width,
+                   size_t height, size_t nchannels);
+
 #endif

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "image/image-internal.h"
 #include "image/writers.h"
 #include "util/util.h"
 
@@ -50,6 +51,14 @@ on_error(png_structp png, png_const_charp msg)
 
 	if (!w->reason[0])
 		rf__format(w->reason, sizeof(w->reason), "%s", msg);
+	png_longjmp(png, 1);
+}
+
+/* rf__png_encode's: no writer to hold a reason; the status says it. */
+static void
+on_memory_error(png_structp png, png_const_charp msg)
+{
+	(void)msg;
 	png_longjmp(png, 1);
 }
 
@@ -269,4 +278,115 @@ rf__png_writer_close(struct rf__png_writer *w, char *err, size_t errlen)
 	w->fp = NULL;
 	destroy(w);
 	return rc;
+}
+
+/* The encoded bytes of a PNG made in memory, grown as libpng writes. */
+struct png_memory {
+	unsigned char *data;
+	size_t len, cap;
+	int nomem;
+};
+
+static void
+write_memory(png_structp png, png_bytep data, size_t len)
+{
+	struct png_memory *m = png_get_io_ptr(png);
+
+	if (len > m->cap - m->len) {
+		size_t cap = m->cap ? m->cap : 4096;
+		unsigned char *p;
+
+		while (len > cap - m->len && cap < (size_t)-1 / 2)
+			cap *= 2;
+		if (len > cap - m->len || !(p = realloc(m->data, cap))) {
+			m->nomem = 1;
+			png_error(png, "out of memory");
+		}
+		m->data = p;
+		m->cap = cap;
+	}
+	memcpy(m->data + m->len, data, len);
+	m->len += len;
+}
+
+static void
+flush_memory(png_structp png)
+{
+	(void)png;
+}
+
+/* Outside rf__png_encode so that no variable of its loop lives across
+ * the setjmp there. */
+static void
+encode_rows(png_structp png, png_infop info, const float *pixels, size_t width, size_t height,
+            size_t nchannels, unsigned char *row)
+{
+	static const int colour[] = { PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
+	                              PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGB_ALPHA };
+	const size_t n = width * nchannels;
+	size_t y, i;
+
+	png_set_user_limits(png, 0x7fffffff, 0x7fffffff);
+	png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8,
+	             colour[nchannels - 1], PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+	             PNG_FILTER_TYPE_DEFAULT);
+	png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_ABSOLUTE);
+	png_set_compression_level(png, PNG_ZLIB_LEVEL);
+	png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_ROW_FILTER);
+	png_set_compression_buffer_size(png, PNG_ZBUF_BYTES);
+	png_write_info(png, info);
+	for (y = 0; y < height; y++, pixels += n) {
+		for (i = 0; i < n; i++)
+			row[i] = (unsigned char)quantise(pixels[i], 255.0f);
+		png_write_row(png, row);
+	}
+	png_write_end(png, NULL);
+}
+
+/* The setjmp's own frame, so that nothing it returns through lives
+ * across it in a register. */
+static int
+encode_guarded(png_structp png, png_infop info, struct png_memory *m, const float *pixels,
+               size_t width, size_t height, size_t nchannels, unsigned char *row)
+{
+	if (setjmp(png_jmpbuf(png)))
+		return m->nomem ? RF_ENOMEM : RF_EIMAGE;
+	png_set_write_fn(png, m, write_memory, flush_memory);
+	encode_rows(png, info, pixels, width, height, nchannels, row);
+	return 0;
+}
+
+int
+rf__png_encode(unsigned char **data, size_t *len, const float *pixels, size_t width,
+               size_t height, size_t nchannels)
+{
+	struct png_memory m = { NULL, 0, 0, 0 };
+	png_structp png = NULL;
+	png_infop info = NULL;
+	unsigned char *row;
+	int rc;
+
+	*data = NULL;
+	*len = 0;
+	if (!width || !height || width > 0x7fffffff || height > 0x7fffffff || nchannels < 1 ||
+	    nchannels > 4 || width > (size_t)-1 / nchannels)
+		return RF_EINVAL;
+	if (!(row = malloc(width * nchannels)))
+		return RF_ENOMEM;
+	if (!(png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, on_memory_error,
+	                                    on_warning)) ||
+	    !(info = png_create_info_struct(png)))
+		rc = RF_ENOMEM;
+	else
+		rc = encode_guarded(png, info, &m, pixels, width, height, nchannels, row);
+	if (png)
+		png_destroy_write_struct(&png, info ? &info : NULL);
+	free(row);
+	if (rc < 0) {
+		free(m.data);
+		return rc;
+	}
+	*data = m.data;
+	*len = m.len;
+	return 0;
 }
