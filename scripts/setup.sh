@@ -11,7 +11,7 @@ setup_packages="autoconf automake libtool pkg-config make gcc g++ \
 libopenimageio-dev libopenexr-dev libpng-dev libzstd-dev libembree-dev \
 libassimp-dev"
 # Used by some tests when present (they skip otherwise).
-setup_optional_packages="python3-numpy valgrind clang strace chromium firefox-esr"
+setup_optional_packages="python3-numpy valgrind clang strace parallel chromium firefox-esr"
 
 setup_missing () {
 	missing=""
@@ -49,6 +49,10 @@ setup_optional_missing () {
 		test -f "$(clang -print-file-name=libclang_rt.fuzzer-x86_64.a)" ||
 		missing="$missing libclang-rt-14-dev"
 	command -v strace >/dev/null 2>&1 || missing="$missing strace"
+	# GNU parallel, for the farm recipes (doc/farm.md); moreutils has
+	# another program of that name
+	parallel --version 2>/dev/null | grep -q 'GNU parallel' ||
+		missing="$missing parallel"
 	# reflect-report's page, tested in a real browser
 	command -v chromium >/dev/null 2>&1 || missing="$missing chromium"
 	command -v firefox >/dev/null 2>&1 || missing="$missing firefox-esr"
