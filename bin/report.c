@@ -57,12 +57,17 @@ refuse(rf_report *r, int rc, const char *err)
 	die("%s", err);
 }
 
+/* The --caption and --time arguments, as many as the command line's:
+ * file-scope, so that they stay reachable on every way out (--help,
+ * usage(), die()) and LeakSanitizer does not count them lost. */
+static char **captions, **times, **captext;
+static double *ns;
+
 int
 main(int argc, char **argv)
 {
 	const char *out = NULL, *title = "reflect-report", *threads = NULL;
-	char **captions, **times, **captext, err[1024];
-	double *ns;
+	char err[1024];
 	size_t ncaptions = 0, ntimes = 0, i;
 	rf_output *o = NULL;
 	rf_report *r;
