@@ -193,17 +193,42 @@ project_rays_vector(const rf_plugin_host *h, uint32_t n, const float p[3], const
 	return i;
 }
 
+/* A ray without an exit keeps its direction, dist +inf, Jacobian 1. */
+static void
+ray_kept(const float dir[3], float d[3], float *dist, float *jacobian)
+{
+	d[0] = dir[0];
+	d[1] = dir[1];
+	d[2] = dir[2];
+	*dist = INFINITY;
+	*jacobian = 1.0f;
+}
+
+/* A ray from p that leaves the shape at t, where its outward normal is
+ * nrm: the lookup from the capture point, and dw_C / dw_P =
+ * |x - P|^2 cos_C / (|x - C|^2 cos_P), the cosines taken to nrm. */
+static void
+ray_leaves(const rf_plugin_host *h, const float p[3], const float dir[3], float t,
+           const float nrm[3], float d[3], float *dist, float *jacobian)
+{
+	float reach, cos_c, cos_p;
+
+	rf__lookup_from_hit(&h->box, p, dir, t, d, &reach);
+	*dist = t;
+	cos_c = fabsf(d[0] * nrm[0] + d[1] * nrm[1] + d[2] * nrm[2]);
+	cos_p = fabsf(dir[0] * nrm[0] + dir[1] * nrm[1] + dir[2] * nrm[2]);
+	*jacobian = reach > 0.0f && cos_p > 0.0f ? t * t * cos_c / (reach * reach * cos_p) : 1.0f;
+}
+
 /* The rays' exits from the rounded box, as the bevel mode finds them
- * (rf__bevel_exit), the Jacobian's cosines taken to the shape's normal at
- * each exit. */
+ * (rf__bevel_exit) in the box's frame, each normal taken back out. */
 static void
 project_rays_bevel(const rf_plugin_host *h, uint32_t n, const float p[3], const float *dirs,
                    float *lookup, float *dist, float *jacobian)
 {
-	uint32_t i;
-
 	const struct rf__frame *frame = &h->proxy.frame;
 	float q[3];
+	uint32_t i;
 
 	if (h->proxy.rotated)
 		rf__frame_point_in(frame, p, q);
@@ -211,18 +236,14 @@ project_rays_bevel(const rf_plugin_host *h, uint32_t n, const float p[3], const 
 		q[0] = p[0], q[1] = p[1], q[2] = p[2];
 	for (i = 0; i < n; i++) {
 		const float *dir = dirs + 3 * i;
-		float *d = lookup + 3 * i, t, reach, nrm[3], e[3], cos_c, cos_p;
+		float t, nrm[3], e[3];
 
 		if (h->proxy.rotated)
 			rf__frame_vector_in(frame, dir, e);
 		else
 			e[0] = dir[0], e[1] = dir[1], e[2] = dir[2];
 		if (!h->probe.box_projection || rf__bevel_exit(&h->bevel, q, e, &t, nrm) < 0) {
-			d[0] = dir[0];
-			d[1] = dir[1];
-			d[2] = dir[2];
-			dist[i] = INFINITY;
-			jacobian[i] = 1.0f;
+			ray_kept(dir, lookup + 3 * i, dist + i, jacobian + i);
 			continue;
 		}
 		if (h->proxy.rotated) {
@@ -230,18 +251,13 @@ project_rays_bevel(const rf_plugin_host *h, uint32_t n, const float p[3], const 
 
 			rf__frame_vector_out(frame, local, nrm);
 		}
-		rf__lookup_from_hit(&h->box, p, dir, t, d, &reach);
-		dist[i] = t;
-		cos_c = fabsf(d[0] * nrm[0] + d[1] * nrm[1] + d[2] * nrm[2]);
-		cos_p = fabsf(dir[0] * nrm[0] + dir[1] * nrm[1] + dir[2] * nrm[2]);
-		jacobian[i] = reach > 0.0f && cos_p > 0.0f ? t * t * cos_c / (reach * reach * cos_p)
-		                                           : 1.0f;
+		ray_leaves(h, p, dir, t, nrm, lookup + 3 * i, dist + i, jacobian + i);
 	}
 }
 
 /* The rays' exits from an oriented box or a sphere, as rf__proxy_exit
- * finds them for reflect-project, the Jacobian's cosines taken to the
- * shape's normal at each exit; an infinite proxy keeps every direction. */
+ * finds them for reflect-project; an infinite proxy keeps every
+ * direction. */
 static void
 project_rays_shape(const rf_plugin_host *h, uint32_t n, const float p[3], const float *dirs,
                    float *lookup, float *dist, float *jacobian)
@@ -250,23 +266,14 @@ project_rays_shape(const rf_plugin_host *h, uint32_t n, const float p[3], const 
 
 	for (i = 0; i < n; i++) {
 		const float *dir = dirs + 3 * i;
-		float *d = lookup + 3 * i, t, reach, nrm[3], cos_c, cos_p;
+		float t, nrm[3];
 
 		if (!h->probe.box_projection || rf__proxy_exit(&h->proxy, p, dir, &t) < 0) {
-			d[0] = dir[0];
-			d[1] = dir[1];
-			d[2] = dir[2];
-			dist[i] = INFINITY;
-			jacobian[i] = 1.0f;
+			ray_kept(dir, lookup + 3 * i, dist + i, jacobian + i);
 			continue;
 		}
 		rf__proxy_normal(&h->proxy, p, dir, t, nrm);
-		rf__lookup_from_hit(&h->box, p, dir, t, d, &reach);
-		dist[i] = t;
-		cos_c = fabsf(d[0] * nrm[0] + d[1] * nrm[1] + d[2] * nrm[2]);
-		cos_p = fabsf(dir[0] * nrm[0] + dir[1] * nrm[1] + dir[2] * nrm[2]);
-		jacobian[i] = reach > 0.0f && cos_p > 0.0f ? t * t * cos_c / (reach * reach * cos_p)
-		                                           : 1.0f;
+		ray_leaves(h, p, dir, t, nrm, lookup + 3 * i, dist + i, jacobian + i);
 	}
 }
 
@@ -311,11 +318,7 @@ project_rays(void *ctx, uint32_t n, const float p[3], const float *dirs, float *
 			}
 		}
 		if (!(t < INFINITY)) {
-			d[0] = dir[0];
-			d[1] = dir[1];
-			d[2] = dir[2];
-			dist[i] = INFINITY;
-			jacobian[i] = 1.0f;
+			ray_kept(dir, d, dist + i, jacobian + i);
 			continue;
 		}
 		if (t < 0.0f)
