@@ -48,3 +48,14 @@ gb_frame_pixels () {
 gb_data () {
 	awk '/^#\?REFLECT/ { body = 0; next } !body && /^$/ { body = 1; next } body' "$1"
 }
+
+# bad_scene 'MESSAGE' < scene: reflect-gbuffer refuses the scene with
+# status 1 and one line on stderr, "reflect-gbuffer: bad.scene:MESSAGE",
+# and writes nothing.
+bad_scene () {
+	cat >bad.scene &&
+	test_expect_code 1 reflect-gbuffer bad.scene >out 2>err &&
+	test_one_line_message reflect-gbuffer err &&
+	test_grep "^reflect-gbuffer: bad.scene:$1" err &&
+	test ! -s out
+}

@@ -1,16 +1,7 @@
 #!/bin/sh
 test_description='bad scene files: each error names file:line:column and what was expected'
 . "$srcdir/tests/lib.sh"
-
-# bad_scene 'MESSAGE' < scene: reflect-gbuffer refuses the scene with
-# status 1 and one line on stderr: "reflect-gbuffer: bad.scene:MESSAGE".
-bad_scene () {
-	cat >bad.scene &&
-	test_expect_code 1 reflect-gbuffer bad.scene >out 2>err &&
-	test_one_line_message reflect-gbuffer err &&
-	test_grep "^reflect-gbuffer: bad.scene:$1" err &&
-	test ! -s out
-}
+. "$srcdir/tests/scene-lib.sh"
 
 test_expect_success 'unknown keyword' '
 	bad_scene "3:1: unknown keyword .spehre. (expected name, camera, probe, room, sphere, box, rect, mesh, sky, pattern, wall or window)$" <<-\EOF

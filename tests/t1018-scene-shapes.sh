@@ -1,14 +1,7 @@
 #!/bin/sh
 test_description='probe shapes in the scene: rotate, matrix, sphere and proxy'
 . "$srcdir/tests/lib.sh"
-
-bad_scene () {
-	cat >bad.scene &&
-	test_expect_code 1 reflect-gbuffer bad.scene >out 2>err &&
-	test_one_line_message reflect-gbuffer err &&
-	test_grep "^reflect-gbuffer: bad.scene:$1" err &&
-	test ! -s out
-}
+. "$srcdir/tests/scene-lib.sh"
 
 test_expect_success 'the shapes become the stream keys' '
 	cat >s.scene <<-\EOF &&
