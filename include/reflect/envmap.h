@@ -192,7 +192,9 @@ RF_EXTERN void rf_prefilter_defaults(struct rf_prefilter_options *o);
 /* Convolves every level k >= 1 of `out` from level 0 of `src` with the
  * GGX lobe of the roughness the mapping gives level k (V = N, N.L
  * weighted, normalised); level 0 of out is a copy of src's level 0 when
- * the sizes match, else a box-filtered copy.  RF_EINVAL for a NaN or
+ * the sizes match, else a box-filtered copy.  The filtered method samples
+ * the source clamped at 16 times its mean and integrates the texels above
+ * (a sun) exactly, within a bound on their number.  RF_EINVAL for a NaN or
  * infinite texel in src's level 0, which would spread over the levels,
  * or one past a quarter of the float range. */
 RF_EXTERN int rf_prefilter(const rf_cubemap *src, rf_cubemap *out,

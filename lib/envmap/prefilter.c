@@ -5,6 +5,7 @@
 
 #include "util/pool.h"
 #include "envmap/envmap-internal.h"
+#include "envmap/prefilter_bright.h"
 #include "envmap/rgba_levels_simd.h"
 #include "envmap/rgba_levels.h"
 #include "reflect/envmap.h"
@@ -27,6 +28,9 @@ struct job {
 	/* The same samples as columns, for the vector kernel, when usable. */
 	const struct rf__lobe_table *table;
 	const struct rf__rgba_levels *levels;
+	/* the source's bright texels, added exactly (NULL: none) */
+	const struct rf__bright *bright;
+	double lobe_integral;
 	enum rf_prefilter_method method;
 	/* brute force: integration points of the source */
 	const float *src_dir;
@@ -330,8 +334,11 @@ filter_row(void *arg, size_t task, int thread)
 		if (jb->method == RF_PREFILTER_BRUTE)
 			brute_texel(jb->src_dir, jb->src_omega, jb->src_radiance,
 			            jb->src_count, d, alpha, out);
-		else
+		else {
 			filtered_texel(jb, d, out);
+			if (jb->bright)
+				rf__bright_add(jb->bright, d, alpha, jb->lobe_integral, out);
+		}
 	}
 }
 
@@ -392,7 +399,9 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 	rf_cubemap *chain = NULL;
 	struct rf__rgba_levels rgba = { 0 };
 	float *dirs = NULL, *omega = NULL, *radiance = NULL;
-	size_t count = 0, sub = 0;
+	size_t count = 0, sub = 0, nbright = 0;
+	rf_cubemap *resid = NULL;
+	struct rf__bright bright = { 0 };
 	struct rf__pool *pool = NULL;
 	int rc = 0;
 
@@ -427,9 +436,6 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 		return rc;
 	rf__cubemap_copy_level(chain, 0, src, 0);
 	rf_cubemap_box_chain(chain, 0);
-	if (o->method == RF_PREFILTER_FILTERED &&
-	    (rc = rf__rgba_levels_from_cube(&rgba, chain)) < 0)
-		goto out;
 	for (base = 0; (n0 >> base) != nout; base++)
 		;
 	if (base >= rf_cubemap_levels(chain)) {
@@ -439,6 +445,19 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 		goto out;
 	}
 	rf__cubemap_copy_level(out, 0, chain, base);
+	/* The samples read the source without its bright texels; those are
+	 * added exactly (prefilter_bright.c). */
+	if (o->method == RF_PREFILTER_FILTERED) {
+		float r1 = rf_lod_to_roughness(o->mapping, steps, 1.0f);
+
+		if ((rc = rf__bright_split(chain, brute_subdivision(n0, (double)r1 * r1), &resid,
+		                           &nbright)) < 0)
+			goto out;
+		if (resid)
+			rf_cubemap_box_chain(chain, 0);
+		if ((rc = rf__rgba_levels_from_cube(&rgba, chain)) < 0)
+			goto out;
+	}
 	if (o->method == RF_PREFILTER_FILTERED &&
 	    !(samples = malloc(rf_prefilter_level_samples(o->samples, levels - 1) * sizeof(*samples)))) {
 		rc = RF_ENOMEM;
@@ -491,6 +510,16 @@ rf_prefilter(const rf_cubemap *src, rf_cubemap *out,
 				rc = RF_ENOMEM;
 				goto out;
 			}
+			if (resid) {
+				size_t want = brute_subdivision(n0, (double)jb.roughness * jb.roughness);
+
+				if (want != bright.sub &&
+				    (rc = rf__bright_points(&bright, resid, want)) < 0)
+					goto out;
+				jb.bright = &bright;
+				jb.lobe_integral = rf__ggx_lobe_integral((double)jb.roughness *
+				                                         jb.roughness);
+			}
 			if (vector) {
 				size_t i;
 
@@ -522,5 +551,7 @@ out:
 	free(radiance);
 	rf__rgba_levels_destroy(&rgba);
 	rf_cubemap_destroy(chain);
+	rf_cubemap_destroy(resid);
+	rf__bright_destroy(&bright);
 	return rc;
 }

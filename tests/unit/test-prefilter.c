@@ -216,6 +216,115 @@ TEST(sun_energy_near_corner)
 	check_energy(sun, "a cube corner");
 }
 
+/* A sky (radiance 1.2 at the horizon to 0.4 at the zenith, bluer above,
+ * 0.3 below) and a sun of angular radius `radius` and radiance `power`:
+ * an outdoor environment, supersampled into level 0. */
+static rf_cubemap *
+sky_cube(size_t n, const float sun[3], double radius, double power)
+{
+	enum { SS = 8 };
+	double cos_r = cos(radius), len = sqrt(sun[0] * sun[0] + sun[1] * sun[1] + sun[2] * sun[2]);
+	rf_cubemap *c;
+	size_t i, j;
+	int f, a, b, ch;
+
+	if (rf_cubemap_create(&c, n, 1) < 0)
+		return NULL;
+	for (f = 0; f < 6; f++)
+		for (j = 0; j < n; j++)
+			for (i = 0; i < n; i++) {
+				float *t = rf_cubemap_texel(c, 0, (enum rf_face)f, i, j);
+				double acc[3] = { 0, 0, 0 };
+
+				for (b = 0; b < SS; b++)
+					for (a = 0; a < SS; a++) {
+						float d[3];
+						double dl, y;
+
+						rf_cube_direction((enum rf_face)f, (i + (a + 0.5f) / SS) / n,
+						                  (j + (b + 0.5f) / SS) / n, d);
+						dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+						y = d[1] / dl;
+						if ((d[0] * sun[0] + d[1] * sun[1] + d[2] * sun[2]) / (dl * len) > cos_r) {
+							acc[0] += power;
+							acc[1] += 0.975 * power;
+							acc[2] += 0.925 * power;
+						} else if (y < 0.0) {
+							acc[0] += 0.3;
+							acc[1] += 0.28;
+							acc[2] += 0.25;
+						} else {
+							acc[0] += 1.2 - 0.9 * y;
+							acc[1] += 1.2 - 0.7 * y;
+							acc[2] += 1.2 - 0.4 * y;
+						}
+					}
+				for (ch = 0; ch < 3; ch++)
+					t[ch] = (float)(acc[ch] / (SS * SS));
+			}
+	rf_cubemap_seal_level(c, 0);
+	return c;
+}
+
+/*
+ * A sun 1.5 degrees across of radiance 4000 on a sky: at the default 64
+ * samples every level is within 1% RMS of brute force, near a face
+ * centre and near a cube corner (the samples alone, without the bright
+ * texels apart, left level 1 7% and 42% off), and the bytes are the
+ * same on one thread and on three.
+ */
+static void
+check_sun(const float sun[3], const char *where)
+{
+	rf_cubemap *src = sky_cube(32, sun, 0.75 * M_PI / 180.0, 4000.0);
+	rf_cubemap *ref = src ? prefiltered(src, 6, 0, RF_PREFILTER_BRUTE, 2) : NULL;
+	rf_cubemap *one = src ? prefiltered(src, 6, 64, RF_PREFILTER_FILTERED, 1) : NULL;
+	rf_cubemap *three = src ? prefiltered(src, 6, 64, RF_PREFILTER_FILTERED, 3) : NULL;
+	size_t k, n, i, j;
+	int f;
+
+	if (!src || !ref || !one || !three) {
+		TAP_FAIL("sun near %s: no cube", where);
+		goto out;
+	}
+	for (k = 1; k < 6; k++) {
+		double e = level_error(one, ref, k);
+
+		printf("# sun near %s: level %zu relative RMS error %.4f\n", where, k, e);
+		if (!(e < 0.01))
+			TAP_FAIL("sun near %s: level %zu is %.2f%% off brute force", where, k,
+			         100.0 * e);
+		n = rf_cubemap_level_size(one, k);
+		for (f = 0; f < 6; f++)
+			for (j = 0; j < n; j++)
+				for (i = 0; i < n; i++)
+					if (memcmp(rf_cubemap_texel_const(one, k, (enum rf_face)f, i, j),
+					           rf_cubemap_texel_const(three, k, (enum rf_face)f, i, j),
+					           3 * sizeof(float)))
+						TAP_FAIL("sun near %s: level %zu face %d texel %zu,%zu differs "
+						         "between 1 and 3 threads", where, k, f, i, j);
+	}
+out:
+	rf_cubemap_destroy(src);
+	rf_cubemap_destroy(ref);
+	rf_cubemap_destroy(one);
+	rf_cubemap_destroy(three);
+}
+
+TEST(sun_on_sky_matches_brute_force_at_face_centre)
+{
+	const float sun[3] = { 0.1f, 0.05f, 1.0f };
+
+	check_sun(sun, "a face centre");
+}
+
+TEST(sun_on_sky_matches_brute_force_at_corner)
+{
+	const float sun[3] = { 0.97f, 0.95f, -1.0f };
+
+	check_sun(sun, "a cube corner");
+}
+
 /* The same bytes with one thread and with three. */
 TEST(deterministic_across_threads)
 {
@@ -398,6 +507,8 @@ main(void)
 	RUN(constant_stays_constant);
 	RUN(sun_energy_near_face_centre);
 	RUN(sun_energy_near_corner);
+	RUN(sun_on_sky_matches_brute_force_at_face_centre);
+	RUN(sun_on_sky_matches_brute_force_at_corner);
 	RUN(deterministic_across_threads);
 	RUN(vector_kernel_matches_scalar);
 	RUN(bad_parameters_refused);
