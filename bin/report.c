@@ -1,5 +1,7 @@
 /* reflect-report: one HTML page of modes against the truth. */
+#include <errno.h>
 #include <getopt.h>
+#include <stdlib.h>
 #include <math.h>
 #include <string.h>
 
@@ -8,17 +10,18 @@
 static void
 usage(void)
 {
-	fprintf(stderr, "usage: %s [-V] [-o FILE] [-j N] [--title=TEXT] [--caption=NAME=TEXT]... "
-	        "[--time=NAME=NS]... TRUTH NAME=FILE...\n", argv0);
+	fprintf(stderr, "usage: %s [-V] [-o FILE] [-j N] [--title=TEXT] [--stops=LO,HI] "
+	        "[--caption=NAME=TEXT]... [--time=NAME=NS]... TRUTH NAME=FILE...\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
 
-enum { OPT_TITLE = 256, OPT_CAPTION, OPT_TIME, OPT_HELP };
+enum { OPT_TITLE = 256, OPT_CAPTION, OPT_TIME, OPT_STOPS, OPT_HELP };
 
 static const struct option long_options[] = {
 	{ "title", required_argument, NULL, OPT_TITLE },
 	{ "caption", required_argument, NULL, OPT_CAPTION },
 	{ "time", required_argument, NULL, OPT_TIME },
+	{ "stops", required_argument, NULL, OPT_STOPS },
 	{ "help", no_argument, NULL, OPT_HELP },
 	{ NULL, 0, NULL, 0 },
 };
@@ -33,6 +36,31 @@ split(const char *opt, char *arg)
 		die("%s: '%s' is not NAME=%s", opt, arg, strcmp(opt, "--time") ? "TEXT" : "NS");
 	*eq = '\0';
 	return eq + 1;
+}
+
+/* --stops=LO,HI: whole stops, LO <= HI, at most 16 of them. */
+static void
+parse_stops(const char *arg, int *lo, int *hi)
+{
+	char *end;
+	long a, b;
+
+	errno = 0;
+	a = strtol(arg, &end, 10);
+	if (end == arg || *end != ',')
+		goto bad;
+	arg = end + 1;
+	b = strtol(arg, &end, 10);
+	if (end == arg || *end || errno || a > b || a < -RF_REPORT_STOP_LIMIT ||
+	    b > RF_REPORT_STOP_LIMIT || b - a >= 16)
+		goto bad;
+	*lo = (int)a;
+	*hi = (int)b;
+	return;
+bad:
+	die("--stops: '%s' is not LO,HI: whole stops from -%d to %d, LO no more than HI, "
+	    "at most 16 of them (e.g. --stops=-2,1)", optarg, RF_REPORT_STOP_LIMIT,
+	    RF_REPORT_STOP_LIMIT);
 }
 
 /* --caption and --time name modes given on the command line; the
@@ -72,7 +100,7 @@ main(int argc, char **argv)
 	rf_output *o = NULL;
 	rf_report *r;
 	FILE *fp;
-	int c, rc, nthreads;
+	int c, rc, nthreads, lo = 0, hi = 0, stops = 0;
 
 	cli_init(argc, argv);
 	captions = emalloc((size_t)argc * sizeof(*captions));
@@ -87,6 +115,7 @@ main(int argc, char **argv)
 		case OPT_TITLE: title = optarg; break;
 		case OPT_CAPTION: captions[ncaptions++] = optarg; break;
 		case OPT_TIME: times[ntimes++] = optarg; break;
+		case OPT_STOPS: parse_stops(optarg, &lo, &hi); stops = 1; break;
 		case OPT_HELP:
 			printf("usage: %s [options] TRUTH NAME=FILE...\n"
 			       "One HTML page of every mode against the truth: a table of their\n"
@@ -94,6 +123,7 @@ main(int argc, char **argv)
 			       "The pictures are streams or image files. See reflect-report(1).\n"
 			       "  -o FILE  the page (default: standard output)\n"
 			       "  --title=TEXT  its title   -j N  threads   -V  versions\n"
+			       "  --stops=LO,HI  linear pictures' exposures (default -4,3)\n"
 			       "  --caption=NAME=TEXT  a mode's caption\n"
 			       "  --time=NAME=NS  a mode's time in nanoseconds a pixel\n",
 			       argv0);
@@ -116,6 +146,8 @@ main(int argc, char **argv)
 		ns[i] = parse_number("time", split("--time", times[i]), 0, INFINITY);
 	if ((rc = rf_report_create(&r, argv[optind], err, sizeof(err))) < 0)
 		refuse(NULL, rc, err);
+	if (stops && (rc = rf_report_stops(r, lo, hi)) < 0)
+		refuse(r, rc, rc == RF_ENOMEM ? "out of memory" : "--stops: refused");
 	for (i = (size_t)optind + 1; i < (size_t)argc; i++) {
 		char *eq = strchr(argv[i], '=');
 

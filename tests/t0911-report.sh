@@ -114,6 +114,51 @@ test_expect_success 'the pictures are reflect-export'"'"'s at each exposure' '
 	test_expect_code 3 reflect-compare -fa noisy1.png noisy-4.png >/dev/null
 '
 
+test_expect_success '--stops=LO,HI: those exposures alone, the viewer at 0 or the nearest' '
+	reflect-report --stops=-2,0 --time=noisy=2.5 -o stops.html truth.rfl bright=bright.rfl noisy=noisy.rfl \
+		flat=flat.rfl &&
+	grep -c "<img id=\"shot-[0-3]-[0-2]\" " stops.html >n &&
+	grep -c "<img id=\"shot-" stops.html >all &&
+	echo 12 >want &&
+	diff -u want n &&
+	diff -u want all &&
+	test_grep "\"stops\": \[-2, -1, 0\], \"stop0\": 2," stops.html &&
+	test_grep "id=\"exposure\" min=\"0\" max=\"2\" step=\"1\" value=\"2\"" stops.html &&
+	png stops.html shot-2-0 noisy-2.png &&
+	reflect-export -e -2 -o noisy-2-export.png noisy.rfl &&
+	reflect-compare -fa noisy-2.png noisy-2-export.png | cut -d" " -f1,4 >got &&
+	echo "0 0" >want &&
+	test_cmp_numbers want got 0 &&
+	png stops.html shot-0-2 truth0s.png &&
+	reflect-compare -fa truth0s.png truth0-export.png | cut -d" " -f1,4 >got &&
+	test_cmp_numbers want got 0 &&
+	# the figures do not hang on the exposures shown
+	figures stops.html >srows &&
+	diff -u rows srows &&
+	# all above 0: the viewer starts at the lowest, all below at the highest
+	reflect-report --stops=1,3 truth.rfl noisy=noisy.rfl >up.html &&
+	test_grep "\"stops\": \[1, 2, 3\], \"stop0\": 0," up.html &&
+	png up.html shot-0-0 truth1.png &&
+	reflect-export -e 1 -o truth1-export.png truth.rfl &&
+	reflect-compare -fa truth1.png truth1-export.png | cut -d" " -f1,4 >got &&
+	test_cmp_numbers want got 0 &&
+	reflect-report --stops=-3,-2 truth.rfl noisy=noisy.rfl >down.html &&
+	test_grep "\"stops\": \[-3, -2\], \"stop0\": 1," down.html &&
+	reflect-report --stops=-16,-1 truth.rfl noisy=noisy.rfl >wide.html &&
+	test $(grep -c "<img id=\"shot-" wide.html) = 32
+'
+
+test_expect_success '--stops refuses what is not two whole stops in order, at most 16' '
+	for s in 1 2,1 -17,0 0,17 -8,8 a,b 1,2x ""
+	do
+		test_expect_code 1 reflect-report --stops="$s" truth.rfl noisy=noisy.rfl \
+			>out 2>err &&
+		echo "reflect-report: --stops: ${SQ}$s${SQ} is not LO,HI: whole stops from -16 to 16, LO no more than HI, at most 16 of them (e.g. --stops=-2,1)" >want &&
+		diff -u want err &&
+		test_line_count 0 out || return 1
+	done
+'
+
 test_expect_success 'the maps are reflect-compare --metric=flip -o'"'"'s' '
 	png page.html heat-2 heat.png &&
 	test_expect_code 3 reflect-compare --metric=flip -o heat-compare.png noisy.rfl \
@@ -131,6 +176,9 @@ test_expect_success 'display pictures: LDR-FLIP, one exposure, reflect-compare'"
 	grep -c "<img id=\"shot-" ldr.html >n &&
 	echo 2 >want &&
 	diff -u want n &&
+	# exposures are for linear pictures: display ones are shown as they are
+	reflect-report --stops=-2,1 truth.png noisy=noisy.png >ldr-stops.html &&
+	diff -u ldr.html ldr-stops.html &&
 	figures ldr.html | cut -d" " -f1-4 >have &&
 	test_expect_code 3 reflect-compare -fa noisy.png truth.png >diff.out &&
 	test_expect_code 3 reflect-compare --metric=flip -fa noisy.png truth.png >flip.out &&

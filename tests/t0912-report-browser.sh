@@ -86,6 +86,19 @@ then
 		test_line_count 0 console.log
 	'
 
+	test_expect_success 'fewer exposures (--stops), the first the highest or the only: the self-test passes' '
+		reflect-report -o low.html --stops=-2,0 truth.rfl bright=bright.rfl noisy=noisy.rfl &&
+		selftest low.html &&
+		cat verdict &&
+		test_grep "^selftest: pass, [0-9]* checks$" verdict &&
+		test_line_count 0 console.log &&
+		reflect-report -o one.html --stops=1,1 truth.rfl noisy=noisy.rfl &&
+		selftest one.html &&
+		cat verdict &&
+		test_grep "^selftest: pass, [0-9]* checks$" verdict &&
+		test_line_count 0 console.log
+	'
+
 	test_expect_success 'the self-test sees a picture that does not decode' '
 		sed "s|\(<img id=\"shot-2-4\" [^>]*src=\"data:image/png;base64,\)[^\"]*|\1AAAA|" \
 			page.html >broken.html &&

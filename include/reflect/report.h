@@ -26,6 +26,15 @@ typedef struct rf_report rf_report;
 RF_EXTERN int rf_report_create(rf_report **r, const char *path, char *err, size_t errlen);
 RF_EXTERN void rf_report_destroy(rf_report *r);
 
+/* The exposures linear pictures are shown at: the whole stops lo to hi
+ * (default -4 to +3), each a PNG a picture, which is most of a page's
+ * size; called before the first rf_report_add.  RF_EINVAL when lo > hi,
+ * either is beyond RF_REPORT_STOP_LIMIT stops, more than 16 are asked
+ * for or a mode is added already; RF_ENOMEM.  Display pictures are shown
+ * as they are, at one exposure, whatever the stops. */
+#define RF_REPORT_STOP_LIMIT 16
+RF_EXTERN int rf_report_stops(rf_report *r, int lo, int hi);
+
 /* Adds a mode: its name (shown, and unique), the picture at path, of the
  * truth's size, colour and encoding (linear or display sRGB), every
  * value finite; ns its time in nanoseconds a pixel (NaN: not known).

@@ -111,8 +111,18 @@ table(const rf_report *r, FILE *fp)
 	fputs("</tbody>\n</table>\n", fp);
 }
 
+/* The exposure the viewer starts at: the pictures' own values, or the
+ * stop nearest them. */
+static int
+stop0(const rf_report *r)
+{
+	if (r->srgb || r->stop_lo > 0)
+		return 0;
+	return r->stop_lo + r->nstops - 1 < 0 ? r->nstops - 1 : -r->stop_lo;
+}
+
 static void
-viewer(FILE *fp)
+viewer(const rf_report *r, FILE *fp)
 {
 	fputs("<h2>Viewer</h2>\n<div class=\"controls\">\n"
 	      "<label>A <select id=\"sel-a\"></select></label>\n"
@@ -121,7 +131,7 @@ viewer(FILE *fp)
 	      "value=\"100\"></label>\n"
 	      "<label>exposure <input type=\"range\" id=\"exposure\" min=\"0\" max=\"", fp);
 	fprintf(fp, "%d\" step=\"1\" value=\"%d\"></label> <span id=\"exposure-value\"></span>\n",
-	        RF__REPORT_NSTOPS - 1, -RF__REPORT_STOP_MIN);
+	        r->srgb ? 0 : r->nstops - 1, stop0(r));
 	fputs("<button id=\"fit\">fit</button> <button id=\"one\">1:1</button>\n</div>\n"
 	      "<p class=\"keys\">Keys: 0 shows the truth as A, 1 to 9 a mode, &larr; and "
 	      "&rarr; the previous or next; + (or =) and &minus; the exposure. The slider wipes from A "
@@ -171,7 +181,7 @@ cards(const rf_report *r, FILE *fp)
 static void
 store(const rf_report *r, FILE *fp)
 {
-	const int nstops = r->srgb ? 1 : RF__REPORT_NSTOPS;
+	const int nstops = r->srgb ? 1 : r->nstops;
 	size_t i;
 	int e;
 
@@ -201,9 +211,9 @@ data(const rf_report *r, FILE *fp)
 	if (r->srgb)
 		fputs("0], \"stop0\": 0", fp);
 	else {
-		for (e = RF__REPORT_STOP_MIN; e <= RF__REPORT_STOP_MAX; e++)
-			fprintf(fp, "%s%d", e > RF__REPORT_STOP_MIN ? ", " : "", e);
-		fprintf(fp, "], \"stop0\": %d", -RF__REPORT_STOP_MIN);
+		for (e = 0; e < r->nstops; e++)
+			fprintf(fp, "%s%d", e ? ", " : "", r->stop_lo + e);
+		fprintf(fp, "], \"stop0\": %d", stop0(r));
 	}
 	fputs(", \"pictures\": [", fp);
 	for (i = 0; i < r->npics; i++) {
@@ -221,7 +231,7 @@ rf__report_page(const rf_report *r, FILE *fp, const char *title)
 {
 	head(r, fp, title);
 	table(r, fp);
-	viewer(fp);
+	viewer(r, fp);
 	cards(r, fp);
 	store(r, fp);
 	data(r, fp);

@@ -7,10 +7,12 @@
 
 /* The exposures linear pictures are shown at, in stops from the
  * pictures' own values: whole stops, as the viewer steps through them
- * (report.c says why these are images and not floats). */
+ * (report.c says why these are images and not floats); -4 to +3 unless
+ * rf_report_stops chooses others, at most RF__REPORT_NSTOPS of them
+ * from RF_REPORT_STOP_LIMIT down or up. */
 #define RF__REPORT_STOP_MIN (-4)
 #define RF__REPORT_STOP_MAX 3
-#define RF__REPORT_NSTOPS (RF__REPORT_STOP_MAX - RF__REPORT_STOP_MIN + 1)
+#define RF__REPORT_NSTOPS 16
 
 /* A picture as the page holds it: PNG files in base64, one an exposure
  * (display pictures: the first alone). */
@@ -26,6 +28,7 @@ struct rf_report {
 	int col[3];                 /* the truth's colour: R G B, else spec.* */
 	size_t width, height;
 	int srgb;                   /* display pictures: one exposure, LDR-FLIP */
+	int stop_lo, nstops;        /* linear pictures' exposures: stop_lo, stop_lo + 1... */
 	double ppd, start, stop;    /* FLIP's viewing, HDR-FLIP's exposures */
 	int nexposures;
 	struct rf__report_picture *pics; /* 0: the truth, then the modes */

@@ -10,8 +10,8 @@
  * frame 33 MB a picture, a fresh tone map on every flip), an <img>
  * zooms with nearest-neighbour pixels through CSS alone, and a picture
  * decoded once flips without a delay.  The cost is the exposure's
- * steps, a stop apart, and the page's size (RF__REPORT_NSTOPS PNGs a
- * picture).
+ * steps, a stop apart, and the page's size (a PNG a picture and a
+ * stop, which rf_report_stops lets the caller trade against the range).
  */
 #include <errno.h>
 #include <math.h>
@@ -170,7 +170,7 @@ shots(struct rf__report_picture *pic, const rf_report *r, const rf_picture *p, c
 
 	if (!rgb)
 		return RF_ENOMEM;
-	for (e = 0; e < (r->srgb ? 1 : RF__REPORT_NSTOPS) && !rc; e++) {
+	for (e = 0; e < (size_t)(r->srgb ? 1 : r->nstops) && !rc; e++) {
 		for (i = 0; i < n; i++) {
 			rgb[3 * i] = px[i * nch + (size_t)col[0]];
 			rgb[3 * i + 1] = px[i * nch + (size_t)col[1]];
@@ -178,7 +178,7 @@ shots(struct rf__report_picture *pic, const rf_report *r, const rf_picture *p, c
 		}
 		if (!r->srgb)
 			rf_display_encode(rgb, n, 3, 3,
-			                  (float)ldexp(1.0, RF__REPORT_STOP_MIN + (int)e),
+			                  (float)ldexp(1.0, r->stop_lo + (int)e),
 			                  RF_TONE_NONE, 1);
 		rc = encode(&pic->shots[e], rgb, r->width, r->height);
 	}
@@ -229,6 +229,8 @@ rf_report_create(rf_report **rp, const char *path, char *err, size_t errlen)
 	r->width = rf_picture_width(r->truth);
 	r->height = rf_picture_height(r->truth);
 	r->srgb = rf_picture_srgb(r->truth);
+	r->stop_lo = RF__REPORT_STOP_MIN;
+	r->nstops = RF__REPORT_STOP_MAX - RF__REPORT_STOP_MIN + 1;
 	r->ppd = RF_FLIP_PPD_DEFAULT;
 	r->start = r->stop = NAN;
 	if (!(pic = grow(r))) {
@@ -249,6 +251,24 @@ fail:
 	rf_report_destroy(r);
 	*rp = NULL;
 	return rc;
+}
+
+int
+rf_report_stops(rf_report *r, int lo, int hi)
+{
+	struct rf__report_picture *t = &r->pics[0];
+	int e;
+
+	if (lo > hi || lo < -RF_REPORT_STOP_LIMIT || hi > RF_REPORT_STOP_LIMIT ||
+	    hi - lo + 1 > RF__REPORT_NSTOPS || r->npics > 1)
+		return RF_EINVAL;
+	for (e = 0; e < RF__REPORT_NSTOPS; e++) {
+		free(t->shots[e]);
+		t->shots[e] = NULL;
+	}
+	r->stop_lo = lo;
+	r->nstops = hi - lo + 1;
+	return shots(t, r, r->truth, r->col);
 }
 
 int

@@ -243,7 +243,7 @@
 	 * as a user would and checks what it shows; the verdict is written
 	 * into the page, where a headless browser's dump of it is read. */
 	function selftest() {
-		var fails = [], n = 0, i, imgs, names, rows, sum0, sum1, p, q, r, t0, t1, th, v;
+		var fails = [], n = 0, e, i, imgs, names, rows, sum0, sum1, p, q, r, t0, t1, th, v;
 		function check(ok, what) {
 			n++;
 			if (!ok)
@@ -347,19 +347,22 @@
 		      'the views do not pan together');
 		fit();
 
-		/* the exposure, where the pictures are linear */
+		/* the exposure, where the pictures are linear: a stop either
+		 * side of the first, which may be the lowest or the highest */
 		if (R.stops.length > 1) {
 			v = picsA[0].src;
-			$('exposure').value = String(R.stop0 + 1);
+			e = R.stop0 + 1 < R.stops.length ? R.stop0 + 1 : R.stop0 - 1;
+			$('exposure').value = String(e);
 			$('exposure').dispatchEvent(new Event('input', { bubbles: true }));
-			check(picsA[0].src === shot(0, R.stop0 + 1) && picsA[0].src !== v,
+			check(picsA[0].src === shot(0, e) && picsA[0].src !== v,
 			      'the exposure does not change the pictures');
-			setExposure(R.stop0);
+			setExposure(R.stops.length - 1);
 			key('-');
-			check(st.e === R.stop0 - 1 && picsA[0].src === shot(0, R.stop0 - 1),
+			check(st.e === R.stops.length - 2 && picsA[0].src === shot(0, st.e),
 			      'the key - does not lower the exposure');
 			key('=');
-			check(st.e === R.stop0, 'the key = does not raise the exposure');
+			check(st.e === R.stops.length - 1, 'the key = does not raise the exposure');
+			setExposure(R.stop0);
 		}
 
 		/* sorting: ascending by FLIP, then descending */
