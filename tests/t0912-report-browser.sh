@@ -96,7 +96,11 @@ then
 		selftest one.html &&
 		cat verdict &&
 		test_grep "^selftest: pass, [0-9]* checks$" verdict &&
-		test_line_count 0 console.log
+		test_line_count 0 console.log &&
+		# one exposure of linear pictures is still named as one
+		test_grep "<span id=\"exposure-value\">+1 stop</span>" dom &&
+		selftest ldr.html &&
+		test_grep "<span id=\"exposure-value\">display pictures</span>" dom
 	'
 
 	test_expect_success 'the self-test sees a picture that does not decode' '

@@ -215,7 +215,7 @@ data(const rf_report *r, FILE *fp)
 			fprintf(fp, "%s%d", e ? ", " : "", r->stop_lo + e);
 		fprintf(fp, "], \"stop0\": %d", stop0(r));
 	}
-	fputs(", \"pictures\": [", fp);
+	fprintf(fp, ", \"linear\": %s, \"pictures\": [", r->srgb ? "false" : "true");
 	for (i = 0; i < r->npics; i++) {
 		fputs(i ? ", {\"name\": " : "{\"name\": ", fp);
 		json(fp, r->pics[i].name);

@@ -85,8 +85,8 @@
 		$('sel-b').value = String(st.b);
 		$('wipe').value = String(st.wipe);
 		$('exposure').value = String(st.e);
-		$('exposure-value').textContent = R.stops.length < 2 ? 'display pictures'
-		                                                     : stopText(R.stops[st.e]);
+		$('exposure-value').textContent = R.linear ? stopText(R.stops[st.e])
+		                                           : 'display pictures';
 		rows = document.querySelectorAll('#errors tbody tr');
 		for (i = 0; i < rows.length; i++)
 			rows[i].className = +rows[i].getAttribute('data-pic') === st.a ? 'shown' : '';
