@@ -111,8 +111,10 @@ frame(struct cli_stage_run *r, const rf_header *in)
 static void
 finish(struct cli_stage_run *r)
 {
-	if (!every && out)
+	if (!every && out) {
+		cli_progress_hold();
 		pass(&r->io, NULL, 1);
+	}
 	rf_accumulator_destroy(acc);
 }
 

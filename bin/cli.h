@@ -230,6 +230,9 @@ void cli_progress_frames(size_t count);
 int cli_progress_quiet(void);
 void cli_progress_frame(size_t rows_a_frame);
 void cli_progress_rows(size_t done);
+/* Nothing after this counts: the frames are made, and a pass that writes
+ * what they made (reflect-accumulate's result) is no frame of its own. */
+void cli_progress_hold(void);
 /* Erases a progress line before a message; cli_progress_end at the end
  * of the run (cli_io_close) also writes --progress's last line. */
 void cli_progress_clear(void);

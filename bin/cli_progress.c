@@ -24,6 +24,7 @@ static double start, last, frame_start;
  * frame, `rows` of this one done. */
 static size_t frame, nframes, nrows, rows;
 static int frame_started;
+static int held; /* cli_progress_hold: nothing more counts */
 
 static double
 now(void)
@@ -130,9 +131,15 @@ cli_progress_frames(size_t count)
 }
 
 void
+cli_progress_hold(void)
+{
+	held = 1;
+}
+
+void
 cli_progress_frame(size_t rows_a_frame)
 {
-	if (!is_active())
+	if (held || !is_active())
 		return;
 	if (frame_started)
 		frame++;
@@ -145,7 +152,8 @@ cli_progress_frame(size_t rows_a_frame)
 void
 cli_progress_rows(size_t done)
 {
-	if (!active || active < 0)
+	/* not decided (no frame begun) or off */
+	if (held || active <= 0)
 		return;
 	rows = done;
 	draw(0);
