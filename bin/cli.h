@@ -230,6 +230,9 @@ void cli_progress_frames(size_t count);
 int cli_progress_quiet(void);
 void cli_progress_frame(size_t rows_a_frame);
 void cli_progress_rows(size_t done);
+/* What the rows count, for a tool whose steps are no rows ("file",
+ * "step"; default "row"). */
+void cli_progress_unit(const char *name);
 /* Nothing after this counts: the frames are made, and a pass that writes
  * what they made (reflect-accumulate's result) is no frame of its own. */
 void cli_progress_hold(void);

@@ -24,7 +24,8 @@ static double start, last, frame_start;
  * frame, `rows` of this one done. */
 static size_t frame, nframes, nrows, rows;
 static int frame_started;
-static int held; /* cli_progress_hold: nothing more counts */
+static int held;                 /* cli_progress_hold: nothing more counts */
+static const char *unit = "row"; /* what rows are: cli_progress_unit */
 
 static double
 now(void)
@@ -83,12 +84,12 @@ draw(int final)
 	last = t;
 	done = nrows ? (double)rows / (double)nrows : 1.0;
 	if (nframes == 1)
-		snprintf(counts, sizeof(counts), "row %zu/%zu", rows, nrows);
+		snprintf(counts, sizeof(counts), "%s %zu/%zu", unit, rows, nrows);
 	else if (nframes)
-		snprintf(counts, sizeof(counts), "frame %zu/%zu, row %zu/%zu", frame + 1,
-		         nframes, rows, nrows);
+		snprintf(counts, sizeof(counts), "frame %zu/%zu, %s %zu/%zu", frame + 1,
+		         nframes, unit, rows, nrows);
 	else
-		snprintf(counts, sizeof(counts), "frame %zu, row %zu/%zu", frame + 1, rows,
+		snprintf(counts, sizeof(counts), "frame %zu, %s %zu/%zu", frame + 1, unit, rows,
 		         nrows);
 	/* Frames to come are taken to cost what this run's did so far; in a
 	 * stream of frames not known in advance, the ETA is this frame's. */
@@ -128,6 +129,12 @@ void
 cli_progress_frames(size_t count)
 {
 	nframes = count;
+}
+
+void
+cli_progress_unit(const char *name)
+{
+	unit = name;
 }
 
 void

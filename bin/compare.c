@@ -8,7 +8,7 @@
 static void
 usage(void)
 {
-	fprintf(stderr, "usage: %s [-V] [-c CHANNELS] [--mask[=CHANNEL]] [--objid=CHANNEL|none] "
+	fprintf(stderr, "usage: %s [-V] " CLI_PROGRESS_USAGE " [-c CHANNELS] [--mask[=CHANNEL]] [--objid=CHANNEL|none] "
 	        "[--erode=N] [--fail=A] [--failpercent=P] [--hardfail=H] [--warn=W] "
 	        "[--warnpercent=P] [--peak=P] [-o HEATMAP] [--scale=S] [-f a] [--json] "
 	        "[--metric=diff|flip|ldr-flip|hdr-flip] [--ppd=P|--viewing=D,W,PIXELS] "
@@ -51,6 +51,7 @@ static const struct option long_options[] = {
 	{ "start-exposure", required_argument, NULL, OPT_START },
 	{ "stop-exposure", required_argument, NULL, OPT_STOP },
 	{ "exposures", required_argument, NULL, OPT_EXPOSURES },
+	CLI_PROGRESS_OPTION,
 	{ NULL, 0, NULL, 0 },
 };
 
@@ -421,6 +422,7 @@ run_flip(struct compare_opts *o, const struct rf_compare_input *in, const char *
 		free(error);
 		die_status(rc, rc == RF_ENOMEM ? "out of memory for FLIP's sums" : rf_strerror(rc));
 	}
+	cli_progress_rows(3);
 	rf_flip_stats(&st, error, w, h, in->keep, o->fail, o->warn >= 0 ? o->warn : o->fail);
 	if (!st.npixels) {
 		free(error);
@@ -435,6 +437,8 @@ run_flip(struct compare_opts *o, const struct rf_compare_input *in, const char *
 		free(rgb);
 	}
 	free(error);
+	cli_progress_rows(o->heatmap ? 4 : 3);
+	cli_progress_end();
 	return report_flip(o, &st, an, bn, names);
 }
 
@@ -482,7 +486,7 @@ main(int argc, char **argv)
 
 	cli_init(argc, argv);
 	o.flip.ppd = RF_FLIP_PPD_DEFAULT;
-	while ((c = getopt_long(argc, argv, "Vc:o:f:j:", long_options, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "Vqc:o:f:j:", long_options, NULL)) != -1) {
 		switch (c) {
 		case 'V': print_version(); break;
 		case 'c': o.channels = optarg; break;
@@ -546,18 +550,29 @@ main(int argc, char **argv)
 			       "  --ppd=P  FLIP's pixels per degree (67, from --viewing=0.7,0.7,3840:\n"
 			       "      metres away, metres wide, pixels wide)\n"
 			       "  --start-exposure=C --stop-exposure=C --exposures=N  HDR-FLIP's\n"
-			       "      (from B's luminance)   -j N  threads\n",
-			       argv0);
+			       "      (from B's luminance)   -j N  threads\n"
+			       CLI_PROGRESS_HELP, argv0);
 			fshut(stdout, "<stdout>");
 			return 0;
-		default: usage();
+		default:
+			if (!cli_progress_option(c))
+				usage();
 		}
 	}
 	if (argc - optind != 2)
 		usage();
-	if (rf_picture_read(&a, argv[optind], err, sizeof(err)) < 0 ||
-	    rf_picture_read(&b, argv[optind + 1], err, sizeof(err)) < 0)
+	/* Two large EXRs take seconds to read and FLIP as long to measure:
+	 * progress counts the steps, each picture read, the measure and the
+	 * map written. */
+	cli_progress_unit("step");
+	cli_progress_frames(1);
+	cli_progress_frame(o.heatmap ? 4 : 3);
+	if (rf_picture_read(&a, argv[optind], err, sizeof(err)) < 0)
 		die("%s", err);
+	cli_progress_rows(1);
+	if (rf_picture_read(&b, argv[optind + 1], err, sizeof(err)) < 0)
+		die("%s", err);
+	cli_progress_rows(2);
 	if (rf_picture_width(a) != rf_picture_width(b) ||
 	    rf_picture_height(a) != rf_picture_height(b))
 		die("'%s' is %zux%zu, '%s' %zux%zu: compare pictures of one size", argv[optind],
@@ -588,6 +603,7 @@ main(int argc, char **argv)
 		return c;
 	}
 	rf_compare_stats(&st, &in, o.peak, o.fail, o.warn >= 0 ? o.warn : o.fail);
+	cli_progress_rows(3);
 	if (!st.npixels && o.mask)
 		die("'%s' against '%s': no pixel to compare: the mask '%s' is empty%s", argv[optind],
 		    argv[optind + 1], o.mask, o.erode ? " once eroded (try a smaller --erode)" : "");
@@ -598,6 +614,8 @@ main(int argc, char **argv)
 		write_heatmap(o.heatmap, &in, o.scale > 0 ? o.scale
 		                                          : (isfinite(st.max_error) && st.max_error > 0
 		                                                 ? st.max_error : 1.0));
+	cli_progress_rows(o.heatmap ? 4 : 3);
+	cli_progress_end();
 	c = report(&o, &st, warn_share, argv[optind], argv[optind + 1], names, chname);
 	free(keep);
 	rf_picture_destroy(a);

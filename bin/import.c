@@ -10,7 +10,8 @@
 static void
 usage(void)
 {
-	fprintf(stderr, "usage: %s [-vV] [-c OUT=IN]... [--preset=none|blender] "
+	fprintf(stderr, "usage: %s [-vV] " CLI_PROGRESS_USAGE " [-c OUT=IN]... "
+	        "[--preset=none|blender] "
 	        "[--up=y|z] [--camera=X,Y,Z] [--roughness=R|CHANNEL] "
 	        "[--box=XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX] [--center=X,Y,Z] [-f a|f] [-h] "
 	        "FILE...\n", argv0);
@@ -66,6 +67,7 @@ main(int argc, char **argv)
 		{ "box", required_argument, NULL, 'B' },
 		{ "center", required_argument, NULL, 'E' },
 		{ "help", no_argument, NULL, 'Q' },
+		CLI_PROGRESS_OPTION,
 		{ NULL, 0, NULL, 0 },
 	};
 	struct import_opts o;
@@ -82,7 +84,7 @@ main(int argc, char **argv)
 	cli_init(argc, argv);
 	memset(&o, 0, sizeof(o));
 	o.z_up = -1;
-	while ((c = getopt_long(argc, argv, "vVc:f:h", long_options, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "vVqc:f:h", long_options, NULL)) != -1) {
 		switch (c) {
 		case 'v': o.verbose = 1; break;
 		case 'V': print_version(); break;
@@ -113,10 +115,13 @@ main(int argc, char **argv)
 			       "  --up=y|z  the passes' up axis   --camera=X,Y,Z  derive V\n"
 			       "  --roughness=R|CHANNEL  a constant or a channel\n"
 			       "  --box=...  --center=X,Y,Z  the probe, as header keys\n"
-			       "  -f a|f  -h  -v  -V\n", argv0);
+			       "  -f a|f  -h  -v  -V\n"
+			       CLI_PROGRESS_HELP, argv0);
 			fshut(stdout, "<stdout>");
 			return 0;
-		default: usage();
+		default:
+			if (!cli_progress_option(c))
+				usage();
 		}
 	}
 	if (optind >= argc)
@@ -125,10 +130,16 @@ main(int argc, char **argv)
 		cli_refuse_terminal("a binary stream");
 	if (argc - optind > MAX_FILES)
 		die("more than %d input files", MAX_FILES);
+	/* A large EXR takes seconds to read, and its stream as long to
+	 * write: progress counts the files read and the stream written. */
+	cli_progress_unit("file");
+	cli_progress_frames(1);
+	cli_progress_frame((size_t)(argc - optind) + 1);
 	for (; optind < argc; optind++, nsrc++) {
 		src[nsrc].path = argv[optind];
 		if ((rc = rf_image_read(&src[nsrc].img, argv[optind], err, sizeof(err))) < 0)
 			die_status(rc == RF_ENOMEM ? rc : RF_EINVAL, err);
+		cli_progress_rows(nsrc + 1);
 	}
 	{
 		struct rf_import_options io;
@@ -176,6 +187,7 @@ main(int argc, char **argv)
 		die("--center needs --box");
 	}
 	if (o.verbose) {
+		cli_progress_clear();
 		fprintf(stderr, "%s: %zux%zu, channels", argv0, rf_header_ncols(h),
 		        rf_header_nrows(h));
 		for (i = 0; i < rf_header_nchannels(h); i++)
@@ -197,6 +209,8 @@ main(int argc, char **argv)
 	}
 	if ((rc = rf_writer_end_frame(w)) < 0)
 		die_status(rc, rf_writer_error(w));
+	cli_progress_rows(nsrc + 1);
+	cli_progress_end();
 	free(buf);
 	rf_writer_close(w);
 	rf_header_destroy(h);

@@ -9,7 +9,7 @@
 static void
 usage(void)
 {
-	fprintf(stderr, "usage: %s -o IMAGE [-V] [--columns=N] [-e STOPS] "
+	fprintf(stderr, "usage: %s -o IMAGE [-V] " CLI_PROGRESS_USAGE " [--columns=N] [-e STOPS] "
 	        "[--tone=none|filmic] [--srgb=on|off] [--label-scale=N] "
 	        "LABEL=FILE[:CHANNELS][:colour|grey|false|vector][:range=LO,HI]...\n",
 	        argv0);
@@ -24,6 +24,7 @@ static const struct option long_options[] = {
 	{ "srgb", required_argument, NULL, OPT_SRGB },
 	{ "label-scale", required_argument, NULL, OPT_LABEL_SCALE },
 	{ "help", no_argument, NULL, OPT_HELP },
+	CLI_PROGRESS_OPTION,
 	{ NULL, 0, NULL, 0 },
 };
 
@@ -37,7 +38,8 @@ help(void)
 	       "  --columns=N  cells a row (default: all in one row)\n"
 	       "  -e STOPS --tone=none|filmic --srgb=on|off  colour cells' encoding\n"
 	       "  --label-scale=N  pixels a font pixel (default: the height / 90)\n"
-	       "  -V  versions\n", argv0);
+	       "  -V  versions\n"
+	       CLI_PROGRESS_HELP, argv0);
 	fshut(stdout, "<stdout>");
 	exit(0);
 }
@@ -157,7 +159,7 @@ main(int argc, char **argv)
 	int c, rc, type;
 
 	cli_init(argc, argv);
-	while ((c = getopt_long(argc, argv, "Vo:e:", long_options, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "Vqo:e:", long_options, NULL)) != -1) {
 		switch (c) {
 		case 'V': print_version(); break;
 		case 'o': output = optarg; break;
@@ -177,7 +179,9 @@ main(int argc, char **argv)
 			mo.label_scale = (size_t)parse_whole("label-scale", optarg, 1, 64);
 			break;
 		case OPT_HELP: help(); break;
-		default: usage();
+		default:
+			if (!cli_progress_option(c))
+				usage();
 		}
 	}
 	if (!output || optind >= argc)
@@ -189,8 +193,15 @@ main(int argc, char **argv)
 		die("cannot write '%s': unknown image type", output);
 	n = (size_t)(argc - optind);
 	cells = ecalloc(n, sizeof(*cells));
-	for (k = 0; k < n; k++)
+	/* Large pictures take a second or more each to read: progress counts
+	 * the files, each cell read and the montage written. */
+	cli_progress_unit("file");
+	cli_progress_frames(1);
+	cli_progress_frame(n + 1);
+	for (k = 0; k < n; k++) {
 		load_cell(argv[optind + k], &cells[k]);
+		cli_progress_rows(k + 1);
+	}
 	if ((rc = rf_montage(cells, n, &mo, &px, &width, &height)) == RF_ETOOBIG)
 		cli_check_frame("the montage (fewer a row: --columns)", width, height);
 	if (rc < 0)
@@ -203,6 +214,8 @@ main(int argc, char **argv)
 		die_status(rc, rf_image_writer_error(w));
 	if ((rc = rf_image_writer_close(w, err, sizeof(err))) < 0)
 		die_status(rc, err);
+	cli_progress_rows(n + 1);
+	cli_progress_end();
 	for (k = 0; k < n; k++)
 		free((float *)cells[k].pixels);
 	free(cells);

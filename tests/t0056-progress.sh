@@ -3,7 +3,9 @@ test_description='progress on standard error: plain lines with --progress, a lin
 . "$srcdir/tests/lib.sh"
 
 # A line of --progress: percent, where, elapsed and (before the end) ETA.
-LINE='^reflect-[a-z]*: +[0-9]+%, (frame [0-9]+(/[0-9]+)?, )?row [0-9]+/[0-9]+, [0-9]+:[0-9][0-9] elapsed(, ETA [0-9]+:[0-9][0-9])?$'
+# Rows, or the files (import, montage) or steps (compare) of a tool
+# whose run is no rows.
+LINE='^reflect-[a-z]*: +[0-9]+%, (frame [0-9]+(/[0-9]+)?, )?(row|file|step) [0-9]+/[0-9]+, [0-9]+:[0-9][0-9] elapsed(, ETA [0-9]+:[0-9][0-9])?$'
 
 test_expect_success 'setup' '
 	cat >s.scene <<-\EOF &&
@@ -27,6 +29,53 @@ test_expect_success 'nothing on stderr without --progress when it is no terminal
 	reflect-trace -x 48 -y 30 --samples=16 s.scene >out 2>err &&
 	test ! -s err &&
 	reflect-shade p.rfl >out 2>err &&
+	test ! -s err &&
+	reflect-gbuffer -x 48 -y 30 s.scene >g1.rfl &&
+	reflect-export -c N -o n.exr g1.rfl &&
+	reflect-export -c P -o p.exr g1.rfl &&
+	reflect-import n.exr p.exr >i.rfl 2>err &&
+	test ! -s err &&
+	reflect-compare -fa -c N.X,N.Y,N.Z g1.rfl i.rfl >out 2>err &&
+	test ! -s err &&
+	reflect-montage -o m.png n=g1.rfl:N.X,N.Y,N.Z:vector p=i.rfl:P.Y 2>err &&
+	test ! -s err
+'
+
+# The tools whose time is in reading and writing pictures, not rows,
+# count what they read and write: reflect-import and reflect-montage
+# each file and the output, reflect-compare A, B, the measure and (-o)
+# the map.
+test_expect_success 'import, compare and montage --progress: files and steps, the same output' '
+	reflect-import -h n.exr p.exr >plain &&
+	reflect-import -h --progress n.exr p.exr >out 2>err &&
+	cmp plain out &&
+	! grep -v -E "$LINE" err &&
+	tail -n 1 err >last &&
+	grep -E "^reflect-import: 100%, file 3/3, [0-9]+:[0-9][0-9] elapsed$" last &&
+	reflect-compare -fa -c N.X,N.Y,N.Z g1.rfl i.rfl >plain &&
+	reflect-compare --progress -fa -c N.X,N.Y,N.Z g1.rfl i.rfl >out 2>err &&
+	cmp plain out &&
+	! grep -v -E "$LINE" err &&
+	tail -n 1 err >last &&
+	grep -E "^reflect-compare: 100%, step 3/3, [0-9]+:[0-9][0-9] elapsed$" last &&
+	reflect-compare --metric=flip -o plain.png -fa -c N.X,N.Y,N.Z g1.rfl i.rfl >plain &&
+	reflect-compare --progress --metric=flip -o out.png -fa -c N.X,N.Y,N.Z g1.rfl i.rfl \
+		>out 2>err &&
+	cmp plain out &&
+	cmp plain.png out.png &&
+	tail -n 1 err >last &&
+	grep -E "^reflect-compare: 100%, step 4/4, [0-9]+:[0-9][0-9] elapsed$" last &&
+	reflect-montage --progress -o out.png n=g1.rfl:N.X,N.Y,N.Z:vector p=i.rfl:P.Y 2>err &&
+	cmp m.png out.png &&
+	! grep -v -E "$LINE" err &&
+	tail -n 1 err >last &&
+	grep -E "^reflect-montage: 100%, file 3/3, [0-9]+:[0-9][0-9] elapsed$" last &&
+	# -q, last, silences them
+	reflect-import --progress -q n.exr >out 2>err &&
+	test ! -s err &&
+	reflect-compare --progress -q -fa -c N.X,N.Y,N.Z g1.rfl i.rfl >out 2>err &&
+	test ! -s err &&
+	reflect-montage --progress -q -o out.png n=g1.rfl:N.X 2>err &&
 	test ! -s err
 '
 
