@@ -163,6 +163,24 @@ RF_EXTERN int rf_header_supersample(const rf_header *h, size_t *factor);
 #define RF_SAMPLES_MAX 4294967295u
 RF_EXTERN int rf_header_samples(const rf_header *h, uint64_t *samples);
 
+/* Where a frame lies in a larger one, the full frame a tile of it was
+ * cut from (RF_KEY_REGION): its first pixel's column x0 and row y0 in a
+ * full frame of width x height pixels.  Without the key a frame is its
+ * own full frame (x0 = y0 = 0, its own size), so that streams made
+ * before tiles read as they always did. */
+struct rf_region {
+	size_t x0, y0;
+	size_t width, height;
+};
+/* The frame's region; RF_EFORMAT (and *r the whole frame) when the value
+ * is not four whole numbers or the frame does not lie within the full
+ * frame, whose sides are at most RF_FRAME_SIDE_MAX. */
+RF_EXTERN int rf_header_region(const rf_header *h, struct rf_region *r);
+/* Sets the key for a frame whose size is already set; a region that is
+ * the whole frame removes it.  RF_EINVAL when the frame does not lie
+ * within r. */
+RF_EXTERN int rf_header_set_region(rf_header *h, const struct rf_region *r);
+
 /*
  * The header keys the tools share (reflect-stream(5) lists them).  Each
  * name is defined here once; the probe's keys are written and read only
@@ -173,6 +191,8 @@ RF_EXTERN int rf_header_samples(const rf_header *h, uint64_t *samples);
 #define RF_KEY_FRAME "FRAME"           /* the frame's number, from 0 */
 #define RF_KEY_SUPERSAMPLE "SUPERSAMPLE" /* N: a pixel is N x N samples */
 #define RF_KEY_SAMPLES "SAMPLES"       /* N: each value a mean of N samples */
+#define RF_KEY_REGION "REGION"         /* X0 Y0 WIDTH HEIGHT: a tile's place in
+                                          the full frame, and that frame's size */
 #define RF_KEY_PROBE_BOX "PROBE_BOX"   /* XMIN YMIN ZMIN XMAX YMAX ZMAX */
 #define RF_KEY_PROBE_CENTER "PROBE_CENTER" /* X Y Z, the capture point */
 #define RF_KEY_PROBE_BOX_PROJECTION "PROBE_BOX_PROJECTION" /* 1 or 0 */
@@ -227,6 +247,14 @@ RF_EXTERN int rf_reader_read_rows(rf_reader *r, float *buf, size_t nrows);
 RF_EXTERN int rf_reader_map_rows(rf_reader *r, size_t nrows, const float **rows);
 /* Rows of the current frame not yet read. */
 RF_EXTERN size_t rf_reader_rows_left(const rf_reader *r);
+/* Reads of the current frame only its pixels x0 .. x1 - 1 of rows y0 ..
+ * y1 - 1, in the full frame's coordinates (its REGION), before any of
+ * its rows is read: *h is then the frame's header with the tile's size
+ * and REGION.  The rest of the frame is skipped, and map_rows maps
+ * nothing.  RF_EINVAL (the message says why) for an empty rectangle or
+ * one that the frame does not hold. */
+RF_EXTERN int rf_reader_crop(rf_reader *r, size_t x0, size_t y0, size_t x1, size_t y1,
+                             const rf_header **h);
 /* Index (from 0) of the current frame. */
 RF_EXTERN size_t rf_reader_frame_index(const rf_reader *r);
 RF_EXTERN const char *rf_reader_error(const rf_reader *r);
@@ -517,6 +545,11 @@ RF_EXTERN int rf_filter_frame(rf_filter *f, rf_filter_read_fn *read_rows,
                               rf_filter_write_fn *write_rows, void *arg);
 /* The passes the mode declared. */
 RF_EXTERN uint32_t rf_filter_passes(const rf_filter *f);
+/* How far a filtered pixel reaches, rows (and columns) each way: the
+ * sum of the passes' radii.  A tile filtered with that many more pixels
+ * around it (its halo, where the frame goes on) is the filtered full
+ * frame's tile. */
+RF_EXTERN size_t rf_filter_reach(const rf_filter *f);
 RF_EXTERN const char *rf_filter_error(const rf_filter *f);
 
 #ifdef __cplusplus

@@ -178,8 +178,13 @@ RF_EXTERN const char *rf_gbuffer_channel(const rf_gbuffer *g, size_t i);
 /* Sets the camera of the next rows (the scene's camera until then). */
 RF_EXTERN int rf_gbuffer_set_camera(rf_gbuffer *g, const struct rf_camera *cam,
                                     char *err, size_t errlen);
-/* Renders rows y .. y + nrows - 1 into out (width * nchannels floats a row). */
+/* Renders rows y .. y + nrows - 1 into out (width * nchannels floats a
+ * row; after rf_gbuffer_set_columns, ncols * nchannels). */
 RF_EXTERN int rf_gbuffer_render(rf_gbuffer *g, float *out, size_t y, size_t nrows);
+/* Renders only columns x0 .. x0 + ncols - 1 of the rows from now on (a
+ * tile): each pixel as the whole frame's, its ray through the same
+ * point.  RF_EINVAL for no column or one past the width. */
+RF_EXTERN int rf_gbuffer_set_columns(rf_gbuffer *g, size_t x0, size_t ncols);
 
 /*
  * Baking a probe (reflect-capture(1)): the scene from probe `probe`'s
@@ -247,8 +252,13 @@ RF_EXTERN void rf_tracer_destroy(rf_tracer *t);
 RF_EXTERN size_t rf_tracer_nchannels(const rf_tracer *t);
 RF_EXTERN const char *rf_tracer_channel(const rf_tracer *t, size_t i);
 RF_EXTERN int rf_tracer_set_camera(rf_tracer *t, const struct rf_camera *cam);
-/* Rows y .. y + nrows - 1 into out (width * nchannels floats a row). */
+/* Rows y .. y + nrows - 1 into out (width * nchannels floats a row;
+ * after rf_tracer_set_columns, ncols * nchannels). */
 RF_EXTERN int rf_tracer_render(rf_tracer *t, float *out, size_t y, size_t nrows);
+/* Only columns x0 .. x0 + ncols - 1 of the rows from now on (a tile),
+ * each pixel as the whole frame's, its samples and seed the same.
+ * RF_EINVAL for no column or one past the width. */
+RF_EXTERN int rf_tracer_set_columns(rf_tracer *t, size_t x0, size_t ncols);
 
 #ifdef __cplusplus
 }

@@ -549,6 +549,17 @@ rf_filter_passes(const rf_filter *f)
 	return f->npasses;
 }
 
+size_t
+rf_filter_reach(const rf_filter *f)
+{
+	size_t reach = 0;
+	uint32_t i;
+
+	for (i = 0; i < f->npasses; i++)
+		reach += f->radius[i];
+	return reach;
+}
+
 const char *
 rf_filter_error(const rf_filter *f)
 {

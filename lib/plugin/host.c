@@ -600,6 +600,7 @@ void
 rf_plugin_host_set_frame(rf_plugin_host *h, const rf_header *frame)
 {
 	const char *v = frame ? rf_header_get(frame, RF_KEY_CAMERA) : NULL;
+	struct rf_region full;
 	double c[10];
 	int k;
 
@@ -625,8 +626,11 @@ rf_plugin_host_set_frame(rf_plugin_host *h, const rf_header *frame)
 	h->camera.fov = c[9];
 	if (rf_camera_check(&h->camera, NULL, 0) < 0)
 		return;
-	h->width = rf_header_ncols(frame);
-	h->height = rf_header_nrows(frame);
+	/* a tile's rays are the full frame's: its size, not the tile's */
+	if (rf_header_region(frame, &full) < 0)
+		return;
+	h->width = full.width;
+	h->height = full.height;
 	h->has_camera = 1;
 }
 

@@ -40,6 +40,10 @@ struct rf_stage {
 	size_t nin_runs, nout_runs;
 	rf_header *out_h;
 	size_t ncols, nrows, in_ncomp, out_ncomp, row_cap;
+	/* A tile's place in its full frame (REGION): the modes see the full
+	 * frame's pixel positions and size, so a tile's pixels are the full
+	 * frame's, noise seeds and camera rays alike. */
+	struct rf_region region;
 	uint32_t frame;
 	size_t frames;
 	struct rf__pool *pool;
@@ -311,6 +315,11 @@ rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
 		           rf_header_get(in, "FRAME"));
 		return RF_EFORMAT;
 	}
+	if (rf_header_region(in, &s->region) < 0) {
+		rf__format(err, errlen, RF_KEY_REGION "='%s' is not X0 Y0 WIDTH HEIGHT of a "
+		           "full frame that holds this one", rf_header_get(in, RF_KEY_REGION));
+		return RF_EFORMAT;
+	}
 	s->frames++;
 	s->ncols = rf_header_ncols(in);
 	s->nrows = rf_header_nrows(in);
@@ -575,13 +584,14 @@ rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int thread)
 
 	memset(&span, 0, sizeof(span));
 	span.size = sizeof(span);
-	span.width = (uint32_t)s->ncols;
-	span.height = (uint32_t)s->nrows;
+	span.width = (uint32_t)s->region.width;
+	span.height = (uint32_t)s->region.height;
 	span.frame = s->frame;
 	span.npix = (uint32_t)s->ncols;
 	span.in = w->gather;
 	span.out = w->scatter;
-	span.y = (uint32_t)y;
+	span.x = (uint32_t)s->region.x0;
+	span.y = (uint32_t)(s->region.y0 + y);
 	rf__widen_pixels(out, s->out_ncomp, in, s->in_ncomp, s->ncols);
 	for (x = 0; x < s->ncols; x++) {
 		const float *pi = in + x * s->in_ncomp;

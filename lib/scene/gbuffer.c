@@ -50,6 +50,7 @@ struct bounds {
 struct rf_gbuffer {
 	const rf_scene *s;
 	size_t width, height;
+	size_t col0, ncols; /* the columns rendered (rf_gbuffer_set_columns) */
 	int nthreads;
 	size_t nch;
 	int map[CH_COUNT]; /* output channel -> value index */
@@ -160,6 +161,7 @@ rf_gbuffer_create(rf_gbuffer **gp, const rf_scene *s, size_t width, size_t heigh
 		return RF_ENOMEM;
 	g->s = s;
 	g->width = width;
+	g->ncols = width;
 	g->height = height;
 	g->nthreads = nthreads < 1 ? 1 : nthreads > RF__THREADS_MAX ? RF__THREADS_MAX : nthreads;
 	if ((rc = select_channels(g, channels, err, errlen)) < 0) {
@@ -362,7 +364,7 @@ render_row(void *arg, size_t task, int thread)
 	const struct block *bk = arg;
 	const rf_gbuffer *g = bk->g;
 	size_t y = bk->y + task;
-	float *out = bk->out + task * g->width * g->nch;
+	float *out = bk->out + task * g->ncols * g->nch;
 	double *rays = g->rays + (size_t)thread * g->width * 6;
 	const double *o = g->cam.position;
 	double sy = 1.0 - (2.0 * (double)y + 1.0) / (double)g->height;
@@ -375,7 +377,7 @@ render_row(void *arg, size_t task, int thread)
 			row_list[nrow++] = (uint32_t)i;
 	/* The row's rays first: a loop of independent square roots and
 	 * divisions runs at their throughput, not at their latency. */
-	for (x = 0; x < g->width; x++) {
+	for (x = g->col0; x < g->col0 + g->ncols; x++) {
 		double *ray = rays + 6 * x;
 
 		rf__camera_dir(&g->cb, (2.0 * (double)x + 1.0) / (double)g->width - 1.0, sy,
@@ -386,8 +388,9 @@ render_row(void *arg, size_t task, int thread)
 	}
 	/* Eight pixels at a time: neighbours' rays go through the BVH as one
 	 * packet (rf__trace8), with the same hits as one by one. */
-	for (x0 = 0; x0 < g->width; x0 += 8) {
-		const int n = g->width - x0 < 8 ? (int)(g->width - x0) : 8;
+	for (x0 = g->col0; x0 < g->col0 + g->ncols; x0 += 8) {
+		const size_t end = g->col0 + g->ncols;
+		const int n = end - x0 < 8 ? (int)(end - x0) : 8;
 		const double *d[8], *inv[8];
 		unsigned flags[8];
 		int j;
@@ -408,8 +411,18 @@ render_row(void *arg, size_t task, int thread)
 		}
 		rf__trace8(g->s, o, g->k, n, d, inv, flags, hit);
 		for (j = 0; j < n; j++)
-			write_pixel(g, &hit[j], d[j], out + (x0 + (size_t)j) * g->nch);
+			write_pixel(g, &hit[j], d[j], out + (x0 - g->col0 + (size_t)j) * g->nch);
 	}
+}
+
+int
+rf_gbuffer_set_columns(rf_gbuffer *g, size_t x0, size_t ncols)
+{
+	if (!ncols || x0 > g->width || ncols > g->width - x0)
+		return RF_EINVAL;
+	g->col0 = x0;
+	g->ncols = ncols;
+	return 0;
 }
 
 int

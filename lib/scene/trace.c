@@ -31,6 +31,7 @@ struct rf_tracer {
 	const rf_scene *s;
 	struct rf_trace_options o;
 	size_t width, height;
+	size_t col0, ncols; /* the columns rendered (rf_tracer_set_columns) */
 	struct camera_basis cb;
 	struct rf_camera cam;
 	double *kcam;       /* rf__trace_prepare for the camera */
@@ -101,6 +102,7 @@ rf_tracer_create(struct rf_tracer **tp, const rf_scene *s, size_t width, size_t 
 	if (t->o.nthreads > RF__THREADS_MAX)
 		t->o.nthreads = RF__THREADS_MAX;
 	t->width = width;
+	t->ncols = width;
 	t->height = height;
 	t->kcam = calloc(s->nobjects + 1, RF__ORIGIN_STRIDE * sizeof(double));
 	t->k = calloc((size_t)t->o.nthreads * (s->nobjects + 1), RF__ORIGIN_STRIDE *
@@ -407,12 +409,12 @@ trace_row(void *arg, size_t task, int thread)
 	const struct rf_tracer *t = bk->t;
 	const size_t y = bk->y + task, nch = rf_tracer_nchannels(t);
 	double *k = t->k + (size_t)thread * (t->s->nobjects + 1) * RF__ORIGIN_STRIDE;
-	float *out = bk->out + task * t->width * nch;
+	float *out = bk->out + task * t->ncols * nch;
 	const double sy = 1.0 - (2.0 * (double)y + 1.0) / (double)t->height;
 	size_t x;
 	int c;
 
-	for (x = 0; x < t->width; x++, out += nch) {
+	for (x = t->col0; x < t->col0 + t->ncols; x++, out += nch) {
 		double d[3], v[3], half[2][3] = { { 0 } };
 		struct rf_hit h;
 		float e[3];
@@ -447,6 +449,16 @@ trace_row(void *arg, size_t task, int thread)
 			}
 		}
 	}
+}
+
+int
+rf_tracer_set_columns(struct rf_tracer *t, size_t x0, size_t ncols)
+{
+	if (!ncols || x0 > t->width || ncols > t->width - x0)
+		return RF_EINVAL;
+	t->col0 = x0;
+	t->ncols = ncols;
+	return 0;
 }
 
 int

@@ -300,6 +300,53 @@ rf_header_samples(const rf_header *h, uint64_t *samples)
 }
 
 int
+rf_header_region(const rf_header *h, struct rf_region *r)
+{
+	const char *v = rf_header_get(h, RF_KEY_REGION);
+	unsigned long long n[4];
+	char *end;
+	int i;
+
+	r->x0 = r->y0 = 0;
+	r->width = h->ncols;
+	r->height = h->nrows;
+	if (!v)
+		return 0;
+	for (i = 0; i < 4; i++) {
+		/* digits only, one space between: strtoull takes signs too */
+		if (*v < '0' || *v > '9')
+			return RF_EFORMAT;
+		errno = 0;
+		n[i] = strtoull(v, &end, 10);
+		if (errno || n[i] > RF_FRAME_SIDE_MAX || (*end != (i < 3 ? ' ' : '\0')))
+			return RF_EFORMAT;
+		v = end + (i < 3);
+	}
+	if (n[2] < 1 || n[3] < 1 || n[0] + h->ncols > n[2] || n[1] + h->nrows > n[3])
+		return RF_EFORMAT;
+	r->x0 = (size_t)n[0];
+	r->y0 = (size_t)n[1];
+	r->width = (size_t)n[2];
+	r->height = (size_t)n[3];
+	return 0;
+}
+
+int
+rf_header_set_region(rf_header *h, const struct rf_region *r)
+{
+	char buf[96];
+
+	if (r->width > RF_FRAME_SIDE_MAX || r->height > RF_FRAME_SIDE_MAX ||
+	    r->x0 > r->width || r->y0 > r->height || h->ncols > r->width - r->x0 ||
+	    h->nrows > r->height - r->y0)
+		return RF_EINVAL;
+	if (!r->x0 && !r->y0 && r->width == h->ncols && r->height == h->nrows)
+		return rf_header_unset(h, RF_KEY_REGION);
+	snprintf(buf, sizeof(buf), "%zu %zu %zu %zu", r->x0, r->y0, r->width, r->height);
+	return rf_header_set(h, RF_KEY_REGION, buf);
+}
+
+int
 rf__header_push_line(rf_header *h, const char *line)
 {
 	char **lines;

@@ -31,6 +31,13 @@ struct rf_reader {
 	size_t map_len;
 	int status; /* the first error: every later call returns it again */
 	char err[1100];
+	/* rf_reader_crop: the tile's header (NULL: no crop), its first
+	 * column and row in the frame read, its size, the rows given out,
+	 * and a row of the frame read to cut it from */
+	rf_header *crop_h;
+	size_t crop_x, crop_y, crop_w, crop_rows, crop_done;
+	float *crop_row;
+	size_t crop_cap; /* floats crop_row holds */
 };
 
 /* A message is one line of text whatever the input held: control
@@ -118,6 +125,8 @@ rf_reader_close(rf_reader *r)
 	if (r->map)
 		munmap(r->map, r->map_len);
 	rf_header_destroy(r->h);
+	rf_header_destroy(r->crop_h);
+	free(r->crop_row);
 	free(r->name);
 	free(r->raw_channels);
 	free(r);
@@ -129,10 +138,19 @@ rf_reader_error(const rf_reader *r)
 	return r->err;
 }
 
+/* Rows of the frame as the input holds it, cropped or not. */
+static size_t
+input_rows_left(const rf_reader *r)
+{
+	return r->h ? rf_header_nrows(r->h) - r->row : 0;
+}
+
 size_t
 rf_reader_rows_left(const rf_reader *r)
 {
-	return r->h ? rf_header_nrows(r->h) - r->row : 0;
+	if (r->h && r->crop_h)
+		return r->crop_rows - r->crop_done;
+	return input_rows_left(r);
 }
 
 size_t
@@ -650,7 +668,7 @@ skip_rest(rf_reader *r)
 {
 	size_t left;
 
-	if (!r->h || !(left = rf_reader_rows_left(r)))
+	if (!r->h || !(left = input_rows_left(r)))
 		return 0;
 	return read_rows(r, NULL, left);
 }
@@ -708,6 +726,8 @@ rf_reader_next_frame(rf_reader *r, const rf_header **hp)
 		return rc;
 	r->last_nrows = r->h ? rf_header_nrows(r->h) : 0;
 	rf_header_destroy(r->h);
+	rf_header_destroy(r->crop_h);
+	r->crop_h = NULL;
 	r->row = 0;
 	if (rf_header_create(&r->h) < 0)
 		return fail(r, RF_ENOMEM, "out of memory");
@@ -757,6 +777,80 @@ bad:
 	return rc;
 }
 
+/* A tile's rows: the frame's rows above it skipped, each of its rows
+ * read whole and the tile's columns kept. */
+static int
+read_cropped(rf_reader *r, float *buf, size_t nrows)
+{
+	const size_t w = r->crop_w * r->ncomp;
+	size_t i;
+	int rc;
+
+	if (r->row < r->crop_y && (rc = read_rows(r, NULL, r->crop_y - r->row)) < 0)
+		return rc;
+	for (i = 0; i < nrows; i++, buf += w) {
+		if ((rc = read_rows(r, r->crop_row, 1)) < 0)
+			return rc;
+		memcpy(buf, r->crop_row + r->crop_x * r->ncomp, w * sizeof(float));
+	}
+	r->crop_done += nrows;
+	return 0;
+}
+
+int
+rf_reader_crop(rf_reader *r, size_t x0, size_t y0, size_t x1, size_t y1,
+               const rf_header **hp)
+{
+	struct rf_region g, t;
+	size_t ncols, nrows;
+	int rc;
+
+	*hp = r->crop_h ? r->crop_h : r->h;
+	if (r->status)
+		return r->status;
+	if (!r->h || r->row || r->crop_h)
+		return fail(r, RF_EINVAL, "a frame is cropped before its rows are read, once");
+	ncols = rf_header_ncols(r->h);
+	nrows = rf_header_nrows(r->h);
+	if (rf_header_region(r->h, &g) < 0)
+		return fail(r, RF_EFORMAT, "frame %zu: " RF_KEY_REGION " '%.200s' is not X0 Y0 "
+		            "WIDTH HEIGHT of a full frame that holds the frame's %zux%zu pixels",
+		            r->frame, rf_header_get(r->h, RF_KEY_REGION), ncols, nrows);
+	if (x1 <= x0 || y1 <= y0)
+		return fail(r, RF_EINVAL, "the region %zu,%zu,%zu,%zu holds no pixel "
+		            "(X0,Y0,X1,Y1 with X0 < X1 and Y0 < Y1)", x0, y0, x1, y1);
+	if (x0 < g.x0 || y0 < g.y0 || x1 > g.x0 + ncols || y1 > g.y0 + nrows)
+		return fail(r, RF_EINVAL, "frame %zu holds pixels %zu,%zu,%zu,%zu of a %zux%zu "
+		            "frame, not all of the region %zu,%zu,%zu,%zu", r->frame, g.x0, g.y0,
+		            g.x0 + ncols, g.y0 + nrows, g.width, g.height, x0, y0, x1, y1);
+	if (r->crop_cap < r->row_floats) {
+		float *row = realloc(r->crop_row, r->row_floats * sizeof(float));
+
+		if (!row)
+			return fail(r, RF_ENOMEM, "out of memory");
+		r->crop_row = row;
+		r->crop_cap = r->row_floats;
+	}
+	t.x0 = x0;
+	t.y0 = y0;
+	t.width = g.width;
+	t.height = g.height;
+	if ((rc = rf_header_dup(&r->crop_h, r->h)) < 0 ||
+	    (rc = rf_header_set_size(r->crop_h, x1 - x0, y1 - y0)) < 0 ||
+	    (rc = rf_header_set_region(r->crop_h, &t)) < 0) {
+		rf_header_destroy(r->crop_h);
+		r->crop_h = NULL;
+		return fail(r, rc, "out of memory");
+	}
+	r->crop_x = x0 - g.x0;
+	r->crop_y = y0 - g.y0;
+	r->crop_w = x1 - x0;
+	r->crop_rows = y1 - y0;
+	r->crop_done = 0;
+	*hp = r->crop_h;
+	return 0;
+}
+
 int
 rf_reader_read_rows(rf_reader *r, float *buf, size_t nrows)
 {
@@ -768,6 +862,8 @@ rf_reader_read_rows(rf_reader *r, float *buf, size_t nrows)
 		return 0;
 	if (!buf)
 		return fail(r, RF_EINVAL, "no buffer to read rows into");
+	if (r->crop_h)
+		return read_cropped(r, buf, nrows);
 	return read_rows(r, buf, nrows);
 }
 
@@ -795,6 +891,8 @@ rf_reader_map_rows(rf_reader *r, size_t nrows, const float **rows)
 		munmap(r->map, r->map_len);
 		r->map = NULL;
 	}
+	if (r->crop_h)
+		return 0;
 	if (r->mappable < 0)
 		r->mappable = fstat(fileno(r->fp), &st) == 0 && S_ISREG(st.st_mode) && page > 0;
 	if (!r->mappable || !nrows || r->swap || rf_header_format(r->h) != RF_FORMAT_FLOAT)

@@ -1,5 +1,6 @@
 /* Unit tests of the stream reader and writer. */
 #include <stdint.h>
+#include <string.h>
 #include <unistd.h>
 
 #include "reflect/reflect.h"
@@ -690,6 +691,147 @@ TEST(samples_key)
 	rf_header_destroy(h);
 }
 
+/* REGION: the whole frame without the key; a tile's place read back as
+ * written; a whole-frame region writes no key; a value that is not four
+ * whole numbers, or a tile that does not fit its full frame, refused. */
+TEST(region_key)
+{
+	static const char *const bad[] = { "1 2 3", "1 2 30 40 5", "-1 2 30 40", "1 2 30 4x",
+	                                   "1  2 30 40", " 1 2 30 40", "1 2 0 40", "26 2 30 40",
+	                                   "1 37 30 40", "1 2 30 65537", "1 2 30 40 " };
+	struct rf_region g, t = { 3, 4, 30, 40 };
+	rf_header *h = make_header(5, 6, "R G B");
+	size_t i;
+
+	ASSERT(h != NULL);
+	ASSERT_EQ(rf_header_region(h, &g), 0);
+	ASSERT(g.x0 == 0 && g.y0 == 0 && g.width == 5 && g.height == 6);
+	ASSERT_EQ(rf_header_set_region(h, &t), 0);
+	ASSERT_STR_EQ(rf_header_get(h, RF_KEY_REGION), "3 4 30 40");
+	ASSERT_EQ(rf_header_region(h, &g), 0);
+	ASSERT(g.x0 == 3 && g.y0 == 4 && g.width == 30 && g.height == 40);
+	/* the tile's last column and row are the full frame's: it fits */
+	t.x0 = 25;
+	t.y0 = 34;
+	ASSERT_EQ(rf_header_set_region(h, &t), 0);
+	ASSERT_EQ(rf_header_region(h, &g), 0);
+	ASSERT(g.x0 == 25 && g.y0 == 34);
+	t.x0 = 26;
+	ASSERT_EQ(rf_header_set_region(h, &t), RF_EINVAL);
+	t.x0 = 0;
+	t.y0 = 0;
+	t.width = 5;
+	t.height = 6;
+	ASSERT_EQ(rf_header_set_region(h, &t), 0);
+	ASSERT(rf_header_get(h, RF_KEY_REGION) == NULL);
+	for (i = 0; i < sizeof(bad) / sizeof(*bad); i++) {
+		ASSERT_EQ(rf_header_set(h, RF_KEY_REGION, bad[i]), 0);
+		g.x0 = 9;
+		ASSERT_EQ(rf_header_region(h, &g), RF_EFORMAT);
+		ASSERT(g.x0 == 0 && g.y0 == 0 && g.width == 5 && g.height == 6);
+	}
+	rf_header_destroy(h);
+}
+
+/* A crop: the rectangle's values and nothing else, in float and ascii,
+ * the header the tile's with REGION; the next frame whole again; a
+ * crop of a tile in the full frame's coordinates; refusals. */
+TEST(reader_crop)
+{
+	enum rf_format formats[2] = { RF_FORMAT_FLOAT, RF_FORMAT_ASCII };
+	const rf_header *h;
+	struct rf_region g;
+	rf_reader *r;
+	float buf[60];
+	size_t x, y, c, k;
+
+	for (k = 0; k < 2; k++) {
+		FILE *fp = write_frames(5, 4, "a b c", 2, formats[k]);
+
+		ASSERT_EQ(rf_reader_open(&r, fp, "tmp", NULL), 0);
+		ASSERT_EQ(rf_reader_next_frame(r, &h), 1);
+		ASSERT_EQ(rf_reader_crop(r, 1, 2, 4, 4, &h), 0);
+		ASSERT_EQ(rf_header_ncols(h), 3);
+		ASSERT_EQ(rf_header_nrows(h), 2);
+		ASSERT_STR_EQ(rf_header_get(h, RF_KEY_REGION), "1 2 5 4");
+		ASSERT_STR_EQ(rf_header_get(h, "PROBE_CENTER"), "0 1.5 0");
+		ASSERT_EQ(rf_reader_rows_left(r), 2);
+		ASSERT_EQ(rf_reader_read_rows(r, buf, 1), 0);
+		ASSERT_EQ(rf_reader_read_rows(r, buf + 9, 1), 0);
+		ASSERT_EQ(rf_reader_rows_left(r), 0);
+		for (y = 0; y < 2; y++)
+			for (x = 0; x < 3; x++)
+				for (c = 0; c < 3; c++)
+					ASSERT(buf[(y * 3 + x) * 3 + c] ==
+					       (float)(((y + 2) * 5 + x + 1) * 3 + c));
+		ASSERT(rf_reader_read_rows(r, buf, 1) < 0);
+		rf_reader_close(r);
+		fclose(fp);
+		fp = write_frames(5, 4, "a b c", 2, formats[k]);
+		ASSERT_EQ(rf_reader_open(&r, fp, "tmp", NULL), 0);
+		ASSERT_EQ(rf_reader_next_frame(r, &h), 1);
+		ASSERT_EQ(rf_reader_crop(r, 0, 0, 5, 1, &h), 0);
+		/* the rows left unread are skipped: frame 1 whole */
+		ASSERT_EQ(rf_reader_next_frame(r, &h), 1);
+		ASSERT_EQ(rf_header_nrows(h), 4);
+		ASSERT(rf_header_get(h, RF_KEY_REGION) == NULL);
+		ASSERT_EQ(rf_reader_read_rows(r, buf, 4), 0);
+		ASSERT(buf[59] == 59.25f);
+		rf_reader_close(r);
+		fclose(fp);
+	}
+	/* refusals: empty, past the frame, twice, after a row */
+	{
+		FILE *fp = write_frames(5, 4, "a b c", 1, RF_FORMAT_FLOAT);
+
+		ASSERT_EQ(rf_reader_open(&r, fp, "tmp", NULL), 0);
+		ASSERT_EQ(rf_reader_next_frame(r, &h), 1);
+		ASSERT_EQ(rf_reader_crop(r, 2, 0, 2, 4, &h), RF_EINVAL);
+		ASSERT(strstr(rf_reader_error(r), "holds no pixel") != NULL);
+		rf_reader_close(r);
+		fclose(fp);
+		fp = write_frames(5, 4, "a b c", 1, RF_FORMAT_FLOAT);
+		ASSERT_EQ(rf_reader_open(&r, fp, "tmp", NULL), 0);
+		ASSERT_EQ(rf_reader_next_frame(r, &h), 1);
+		ASSERT_EQ(rf_reader_crop(r, 0, 0, 6, 4, &h), RF_EINVAL);
+		ASSERT(strstr(rf_reader_error(r), "not all of the region 0,0,6,4") != NULL);
+		rf_reader_close(r);
+		fclose(fp);
+	}
+	/* a tile of a tile: coordinates of the full frame */
+	{
+		struct rf_writer_options opt = { RF_FORMAT_FLOAT, 0 };
+		struct rf_region t = { 10, 20, 100, 50 };
+		rf_header *hd = make_header(4, 3, "v");
+		rf_writer *wr;
+		FILE *fp = tmpfile();
+
+		for (x = 0; x < 12; x++)
+			buf[x] = (float)x;
+		ASSERT_EQ(rf_header_set_region(hd, &t), 0);
+		ASSERT_EQ(rf_writer_open(&wr, fp, "tmp", &opt), 0);
+		ASSERT_EQ(rf_writer_begin_frame(wr, hd), 0);
+		ASSERT_EQ(rf_writer_write_rows(wr, buf, 3), 0);
+		ASSERT_EQ(rf_writer_end_frame(wr), 0);
+		rf_writer_close(wr);
+		rf_header_destroy(hd);
+		rewind(fp);
+		ASSERT_EQ(rf_reader_open(&r, fp, "tmp", NULL), 0);
+		ASSERT_EQ(rf_reader_next_frame(r, &h), 1);
+		ASSERT_EQ(rf_reader_crop(r, 0, 0, 4, 3, &h), RF_EINVAL);
+		rf_reader_close(r);
+		rewind(fp);
+		ASSERT_EQ(rf_reader_open(&r, fp, "tmp", NULL), 0);
+		ASSERT_EQ(rf_reader_next_frame(r, &h), 1);
+		ASSERT_EQ(rf_reader_crop(r, 12, 21, 14, 23, &h), 0);
+		ASSERT_EQ(rf_header_region(h, &g), 0);
+		ASSERT(g.x0 == 12 && g.y0 == 21 && g.width == 100 && g.height == 50);
+		ASSERT_EQ(rf_reader_crop(r, 12, 21, 14, 23, &h), RF_EINVAL);
+		rf_reader_close(r);
+		fclose(fp);
+	}
+}
+
 int
 main(void)
 {
@@ -716,5 +858,7 @@ main(void)
 	RUN(command_line_too_long);
 	RUN(messages_are_one_printable_line);
 	RUN(samples_key);
+	RUN(region_key);
+	RUN(reader_crop);
 	TAP_DONE();
 }
