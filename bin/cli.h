@@ -86,6 +86,35 @@ FILE *cli_stdout(void);
  * plugin code runs, for a stream or a listing. */
 void cli_keep_stdout(void);
 
+/* The part of the full frame a run makes or keeps (cli_region.c):
+ * --region=X0,Y0,X1,Y1, --tile=I/N (band I of N bands of whole rows),
+ * --halo=P more pixels each way where the frame goes on. */
+struct cli_region {
+	int given;              /* CLI_OPT_REGION, CLI_OPT_TILE or 0 */
+	const char *arg;        /* as given, for messages */
+	size_t x0, y0, x1, y1;  /* --region */
+	size_t index, count;    /* --tile */
+	size_t halo;
+};
+#define CLI_REGION_OPTIONS \
+	{ "region", required_argument, NULL, CLI_OPT_REGION }, \
+	{ "tile", required_argument, NULL, CLI_OPT_TILE }, \
+	{ "halo", required_argument, NULL, CLI_OPT_HALO }
+#define CLI_REGION_USAGE "[--region=X0,Y0,X1,Y1|--tile=I/N] [--halo=P]"
+#define CLI_REGION_HELP \
+	"  --region=X0,Y0,X1,Y1  only pixels X0 <= x < X1, Y0 <= y < Y1 (a tile)\n" \
+	"  --tile=I/N  only band I of N bands of rows   --halo=P  P pixels more\n"
+/* Takes --region, --tile and --halo: 1 when opt was one of them. */
+int cli_region_option(struct cli_region *r, int opt, const char *arg);
+/* The pixels x0 <= x < x1, y0 <= y < y1 (rect) of a full frame of width
+ * x height the options ask for, each pixel of the options scale x scale
+ * of the frame's (--supersample), the halo added; the whole frame when
+ * none was given.  Dies when they do not fit the frame. */
+void cli_region_rect(const struct cli_region *r, size_t width, size_t height, size_t scale,
+                     size_t rect[4]);
+/* REGION in h, whose size is already the tile's. */
+void cli_region_key(rf_header *h, const size_t rect[4], size_t width, size_t height);
+
 /* Stream options every stream tool takes: -f a|f, -h, -H -x -y -c. */
 struct cli_io {
 	enum rf_format format;
@@ -103,6 +132,10 @@ struct cli_io {
 	/* A file the tool made of the last frame (NULL: none), removed
 	 * when a failed stream's trailer follows that frame. */
 	const char *made;
+	/* --region, --tile, --halo: cli_io_next crops each frame to it,
+	 * unless crop_output (a filter crops what it writes instead). */
+	struct cli_region region;
+	int crop_output;
 };
 
 /* An input's first bytes, read without taking them from it (cli_sniff.c). */
@@ -180,7 +213,10 @@ enum {
 	CLI_OPT_PATH,
 	CLI_OPT_FRAMES,
 	CLI_OPT_FRAME,
-	CLI_OPT_PROGRESS
+	CLI_OPT_PROGRESS,
+	CLI_OPT_REGION,
+	CLI_OPT_TILE,
+	CLI_OPT_HALO
 };
 #define CLI_FRAME_OPTIONS \
 	{ "orbit", required_argument, NULL, CLI_OPT_ORBIT }, \

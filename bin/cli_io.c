@@ -30,7 +30,7 @@ cli_io_option(struct cli_io *io, int opt, const char *arg)
 		io->channels = arg;
 		return 1;
 	}
-	return 0;
+	return cli_region_option(&io->region, opt, arg);
 }
 
 /* "-c 3" names the channels c0 c1 c2; otherwise -c lists the names. */
@@ -207,6 +207,18 @@ cli_io_next(struct cli_io *io, const rf_header **h)
 	if (rc < 0)
 		die_status(rc, rf_reader_error(io->reader));
 	io->frames += rc == 1;
+	if (rc == 1 && io->region.given && !io->crop_output) {
+		struct rf_region g;
+		size_t rect[4];
+
+		if (rf_header_region(*h, &g) < 0)
+			die("'%s': frame %zu: " RF_KEY_REGION "='%s' is not X0 Y0 WIDTH HEIGHT of "
+			    "a full frame that holds this one", io->input_name, io->frames,
+			    rf_header_get(*h, RF_KEY_REGION));
+		cli_region_rect(&io->region, g.width, g.height, 1, rect);
+		if (rf_reader_crop(io->reader, rect[0], rect[1], rect[2], rect[3], h) < 0)
+			die_status(RF_EINVAL, rf_reader_error(io->reader));
+	}
 	return rc;
 }
 

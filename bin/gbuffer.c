@@ -11,7 +11,8 @@ static void
 usage(void)
 {
 	fprintf(stderr, "usage: %s [-vV] [-x WIDTH] [-y HEIGHT] " CLI_FRAME_USAGE " "
-	        CLI_PROGRESS_USAGE " [-j THREADS] [-c CHANNELS] [--supersample=N] [-f a|f] [-h] "
+	        CLI_PROGRESS_USAGE " " CLI_REGION_USAGE " [-j THREADS] [-c CHANNELS] "
+	        "[--supersample=N] [-f a|f] [-h] "
 	        "[--print-default-scene] [scene]\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
@@ -21,6 +22,7 @@ enum { OPT_SUPERSAMPLE = 256, OPT_PRINT_DEFAULT, OPT_HELP };
 static const struct option long_options[] = {
 	CLI_FRAME_OPTIONS,
 	CLI_PROGRESS_OPTION,
+	CLI_REGION_OPTIONS,
 	{ "supersample", required_argument, NULL, OPT_SUPERSAMPLE },
 	{ "print-default-scene", no_argument, NULL, OPT_PRINT_DEFAULT },
 	{ "help", no_argument, NULL, OPT_HELP },
@@ -37,6 +39,7 @@ help(void)
 	       "See reflect-gbuffer(1).\n"
 	       "  -x W -y H          image size (default 640x360)\n"
 	       CLI_FRAME_HELP
+	       CLI_REGION_HELP
 	       CLI_PROGRESS_HELP
 	       "  --supersample=N    N x N samples a pixel: a frame N times larger,\n"
 	       "                     resolved by reflect-export\n"
@@ -50,15 +53,17 @@ help(void)
 
 static rf_header *
 frame_header(const rf_scene *s, const rf_gbuffer *g, const struct rf_camera *cam,
-             size_t frame, size_t width, size_t height, size_t supersample)
+             size_t frame, size_t width, size_t height, const size_t rect[4],
+             size_t supersample)
 {
-	rf_header *h = cli_frame_header(s, cam, frame, width, height);
+	rf_header *h = cli_frame_header(s, cam, frame, rect[2] - rect[0], rect[3] - rect[1]);
 	char buf[32];
 	size_t i;
 
 	for (i = 0; i < rf_gbuffer_nchannels(g); i++)
 		if (rf_header_add_channel(h, rf_gbuffer_channel(g, i)) < 0)
 			die_sys("out of memory");
+	cli_region_key(h, rect, width, height);
 	snprintf(buf, sizeof(buf), "%zu", supersample);
 	if (supersample > 1 && rf_header_set(h, RF_KEY_SUPERSAMPLE, buf) < 0)
 		die_sys("out of memory");
@@ -82,11 +87,17 @@ flag_camera(const rf_scene *s, const struct rf_camera *cam, const char *file,
 		     "miss it see nothing (objid 0)", frame, p[0], p[1], p[2]);
 }
 
-/* Rows y..y+n while the block before is being written. */
+struct tile {
+	rf_gbuffer *g;
+	size_t y0; /* the tile's first row in the full frame */
+};
+
+/* Rows y..y+n of the tile while the block before is being written. */
 static int
-render_block(void *g, const float *in, float *out, size_t y, size_t n)
+render_block(void *arg, const float *in, float *out, size_t y, size_t n)
 {
-	int rc = rf_gbuffer_render(g, out, y, n);
+	const struct tile *t = arg;
+	int rc = rf_gbuffer_render(t->g, out, t->y0 + y, n);
 
 	(void)in;
 	if (rc < 0)
@@ -102,8 +113,9 @@ main(int argc, char **argv)
 	struct rf_camera start, cam;
 	struct rf_writer_options wopt;
 	const char *channels = NULL, *threads = NULL, *file;
-	size_t width = 640, height = 360, frame, rows, supersample = 1;
+	size_t width = 640, height = 360, frame, rows, supersample = 1, rect[4];
 	char err[1024];
+	struct tile tile;
 	rf_gbuffer *g;
 	rf_scene *s;
 	int c, rc, verbose = 0;
@@ -118,7 +130,10 @@ main(int argc, char **argv)
 		case 'y': height = parse_count(optarg, 'y', 1, RF_FRAME_SIDE_MAX); break;
 		case 'j': threads = optarg; break;
 		case 'c': channels = optarg; break;
-		case 'f': case 'h': cli_io_option(&io, c, optarg); break;
+		case 'f': case 'h':
+		case CLI_OPT_REGION: case CLI_OPT_TILE: case CLI_OPT_HALO:
+			cli_io_option(&io, c, optarg);
+			break;
 		case OPT_SUPERSAMPLE:
 			supersample = (size_t)parse_whole("supersample", optarg, 1, 16);
 			break;
@@ -142,6 +157,9 @@ main(int argc, char **argv)
 	                width * supersample, height * supersample);
 	width *= supersample;
 	height *= supersample;
+	/* a tile's pixels are the full frame's: the same rays, rows and
+	 * columns of the full frame, and the full size in REGION */
+	cli_region_rect(&io.region, width, height, supersample, rect);
 	s = cli_load_scene(file);
 	if ((rc = rf_gbuffer_create(&g, s, width, height, channels, cli_threads(threads),
 	                            err, sizeof(err))) < 0)
@@ -151,9 +169,11 @@ main(int argc, char **argv)
 	cli_widen_pipe(STDOUT_FILENO);
 	if ((rc = rf_writer_open(&io.writer, stdout, "<stdout>", &wopt)) < 0)
 		die_status(rc, NULL);
-	rows = rf_block_rows(width, rf_gbuffer_nchannels(g), CLI_BLOCK_BYTES);
-	if (rows > height)
-		rows = height;
+	if ((rc = rf_gbuffer_set_columns(g, rect[0], rect[2] - rect[0])) < 0)
+		die_status(rc, NULL);
+	rows = rf_block_rows(rect[2] - rect[0], rf_gbuffer_nchannels(g), CLI_BLOCK_BYTES);
+	if (rows > rect[3] - rect[1])
+		rows = rect[3] - rect[1];
 	rf_scene_camera(s, &start);
 	cli_progress_frames(frames.last - frames.first + 1);
 	for (frame = frames.first; frame <= frames.last; frame++) {
@@ -164,10 +184,13 @@ main(int argc, char **argv)
 			die("frame %zu: %s", frame, err);
 		if (verbose)
 			flag_camera(s, &cam, file ? file : "<default>", frame);
-		h = frame_header(s, g, &cam, frame, width, height, supersample);
+		h = frame_header(s, g, &cam, frame, width, height, rect, supersample);
 		cli_io_begin(&io, h);
 		rf_header_destroy(h);
-		cli_blocks(&io, height, rows, 0, width * rf_gbuffer_nchannels(g), render_block, g);
+		tile.g = g;
+		tile.y0 = rect[1];
+		cli_blocks(&io, rect[3] - rect[1], rows, 0,
+		           (rect[2] - rect[0]) * rf_gbuffer_nchannels(g), render_block, &tile);
 		cli_io_end_frame(&io);
 	}
 	rf_gbuffer_destroy(g);

@@ -8,12 +8,13 @@ usage(void)
 {
 	fprintf(stderr, "usage: %s [-lvV] [-m MODE[:KEY=VALUE...]] [-j THREADS] "
 	        CLI_PROGRESS_USAGE " "
-	        CLI_INVALID_USAGE " " CLI_IO_USAGE " [file]\n", argv0);
+	        CLI_INVALID_USAGE " " CLI_REGION_USAGE " " CLI_IO_USAGE " [file]\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
 
 static const struct option long_options[] = {
 	CLI_PROGRESS_OPTION,
+	CLI_REGION_OPTIONS,
 	{ "invalid", required_argument, NULL, 'I' },
 	{ "help", no_argument, NULL, CLI_OPT_HELP },
 	{ NULL, 0, NULL, 0 },
@@ -47,7 +48,8 @@ static const struct cli_stage_tool tool = {
 	.about = "Darkens the reflection (spec.R G B, and R G B) of a shaded stream\n"
 	         "by a specular occlusion term, written as the channel occlusion.\n"
 	         "See reflect-occlude(1).\n",
-	.help = "  --invalid=error|clamp|zero  NaN and Inf in what the mode reads\n",
+	.help = "  --invalid=error|clamp|zero  NaN and Inf in what the mode reads\n"
+	        CLI_REGION_HELP,
 	.usage = usage,
 	.option = option,
 	.frame = frame,

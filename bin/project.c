@@ -11,13 +11,15 @@ usage(void)
 	fprintf(stderr, "usage: %s [-lvV] [-m MODE[:KEY=VALUE...]] [-j THREADS] "
 	        CLI_PROGRESS_USAGE " "
 	        "[--box=XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX] [--center=X,Y,Z] "
-	        "[--box-projection=on|off] " CLI_INVALID_USAGE " " CLI_IO_USAGE " [file]\n",
+	        "[--box-projection=on|off] " CLI_INVALID_USAGE " " CLI_REGION_USAGE " "
+	        CLI_IO_USAGE " [file]\n",
 	        argv0);
 	exit(EXIT_BAD_INPUT);
 }
 
 static const struct option long_options[] = {
 	CLI_PROGRESS_OPTION,
+	CLI_REGION_OPTIONS,
 	{ "box", required_argument, NULL, 'B' },
 	{ "center", required_argument, NULL, 'C' },
 	{ "box-projection", required_argument, NULL, 'P' },
@@ -65,7 +67,8 @@ static const struct cli_stage_tool tool = {
 	.about = "Adds R (reflection vector), D (lookup direction), hit.dist and\n"
 	         "probe.dist to a G-buffer stream (P, N, V). See reflect-project(1).\n",
 	.help = "  --box=...  --center=X,Y,Z  --box-projection=on|off  the probe\n"
-	        "  --invalid=error|clamp|zero  NaN, Inf, zero vectors in P N V\n",
+	        "  --invalid=error|clamp|zero  NaN, Inf, zero vectors in P N V\n"
+	        CLI_REGION_HELP,
 	.usage = usage,
 	.option = option,
 	.frame = frame,

@@ -20,7 +20,7 @@ usage(void)
 	        "[--box-projection=on|off] [--lod=L] [--seed=N] [--blend=on|off] "
 	        "[--max-probes=N] [--normal-fade] [--fallback=infinite|none|sky:FILE] "
 	        "[--no-cache] "
-	        CLI_INVALID_USAGE " "
+	        CLI_INVALID_USAGE " " CLI_REGION_USAGE " "
 	        CLI_IO_USAGE
 	        " [file]\n", argv0);
 	exit(EXIT_BAD_INPUT);
@@ -35,6 +35,7 @@ enum {
 
 static const struct option long_options[] = {
 	CLI_PROGRESS_OPTION,
+	CLI_REGION_OPTIONS,
 	{ "env", required_argument, NULL, OPT_ENVMAP },
 	{ "layout", required_argument, NULL, OPT_ENVMAP },
 	{ "prefiltered", no_argument, NULL, OPT_ENVMAP },
@@ -322,6 +323,7 @@ main(int argc, char **argv)
 		        "  --blend=on|off  blend the frame's probes (on), --max-probes=N (2)\n"
 		        "      a pixel, --normal-fade, --fallback=infinite|none|sky:FILE\n"
 		        "  --invalid=error|clamp|zero  NaN, Inf, roughness out of [0, 1]\n"
+		        CLI_REGION_HELP
 		        "  -j N  threads   -v  say which plugin and environment   -V  versions\n"
 		        CLI_PROGRESS_HELP
 		        "  -f a|f  output format   -h  no output header\n"

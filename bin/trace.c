@@ -11,7 +11,7 @@ static void
 usage(void)
 {
 	fprintf(stderr, "usage: %s [-V] [-x WIDTH] [-y HEIGHT] " CLI_FRAME_USAGE " "
-	        CLI_PROGRESS_USAGE " [-j THREADS] [--samples=N] [--masking=separable|correlated] "
+	        CLI_PROGRESS_USAGE " " CLI_REGION_USAGE " [-j THREADS] [--samples=N] [--masking=separable|correlated] "
 	        "[--objects=hidden|visible] [--seed=N] [--first=N --total=N] [--halves] "
 	        "[-f a|f] [-h] "
 	        "[scene]\n", argv0);
@@ -24,6 +24,7 @@ enum { OPT_SAMPLES = 256, OPT_MASKING, OPT_OBJECTS, OPT_SEED, OPT_HALVES, OPT_FI
 static const struct option long_options[] = {
 	CLI_FRAME_OPTIONS,
 	CLI_PROGRESS_OPTION,
+	CLI_REGION_OPTIONS,
 	{ "samples", required_argument, NULL, OPT_SAMPLES },
 	{ "masking", required_argument, NULL, OPT_MASKING },
 	{ "objects", required_argument, NULL, OPT_OBJECTS },
@@ -45,6 +46,7 @@ help(void)
 	       "See reflect-trace(1).\n"
 	       "  -x W -y H          image size (default 640x360)\n"
 	       CLI_FRAME_HELP
+	       CLI_REGION_HELP
 	       CLI_PROGRESS_HELP
 	       "  --samples=N        samples a pixel (1024)\n"
 	       "  --masking=separable|correlated  Smith G (separable, as Cycles 3.4)\n"
@@ -59,15 +61,17 @@ help(void)
 
 static rf_header *
 frame_header(const rf_scene *s, const rf_tracer *t, const struct rf_camera *cam,
-             size_t frame, size_t width, size_t height, unsigned samples)
+             size_t frame, size_t width, size_t height, const size_t rect[4],
+             unsigned samples)
 {
-	rf_header *h = cli_frame_header(s, cam, frame, width, height);
+	rf_header *h = cli_frame_header(s, cam, frame, rect[2] - rect[0], rect[3] - rect[1]);
 	char buf[32];
 	size_t k;
 
 	for (k = 0; k < rf_tracer_nchannels(t); k++)
 		if (rf_header_add_channel(h, rf_tracer_channel(t, k)) < 0)
 			die_sys("out of memory");
+	cli_region_key(h, rect, width, height);
 	snprintf(buf, sizeof(buf), "%u", samples);
 	if (rf_header_set(h, "TRACE_SAMPLES", buf) < 0 ||
 	    rf_header_set(h, RF_KEY_SAMPLES, buf) < 0)
@@ -75,10 +79,16 @@ frame_header(const rf_scene *s, const rf_tracer *t, const struct rf_camera *cam,
 	return h;
 }
 
+struct tile {
+	rf_tracer *t;
+	size_t y0; /* the tile's first row in the full frame */
+};
+
 static int
-trace_block(void *t, const float *in, float *out, size_t y, size_t n)
+trace_block(void *arg, const float *in, float *out, size_t y, size_t n)
 {
-	int rc = rf_tracer_render(t, out, y, n);
+	const struct tile *tl = arg;
+	int rc = rf_tracer_render(tl->t, out, tl->y0 + y, n);
 
 	(void)in;
 	if (rc < 0)
@@ -95,7 +105,8 @@ main(int argc, char **argv)
 	struct cli_frames frames;
 	struct rf_camera start, cam;
 	const char *threads = NULL, *file;
-	size_t width = 640, height = 360, rows, frame;
+	size_t width = 640, height = 360, rows, frame, rect[4];
+	struct tile tile;
 	char err[1024];
 	rf_tracer *t;
 	rf_scene *s;
@@ -110,7 +121,10 @@ main(int argc, char **argv)
 		case 'x': width = parse_count(optarg, 'x', 1, RF_FRAME_SIDE_MAX); break;
 		case 'y': height = parse_count(optarg, 'y', 1, RF_FRAME_SIDE_MAX); break;
 		case 'j': threads = optarg; break;
-		case 'f': case 'h': cli_io_option(&io, c, optarg); break;
+		case 'f': case 'h':
+		case CLI_OPT_REGION: case CLI_OPT_TILE: case CLI_OPT_HALO:
+			cli_io_option(&io, c, optarg);
+			break;
 		case OPT_SAMPLES: o.samples = (unsigned)parse_whole("samples", optarg, 1, 16777216); break;
 		case OPT_MASKING:
 			if (strcmp(optarg, "separable") && strcmp(optarg, "correlated"))
@@ -144,6 +158,8 @@ main(int argc, char **argv)
 		    "first .. first + samples - 1 of the total", o.first, o.samples,
 		    o.total ? o.total : o.samples);
 	cli_check_frame("-x -y", width, height);
+	/* a tile's pixels are the full frame's: the same rays and seeds */
+	cli_region_rect(&io.region, width, height, 1, rect);
 	s = cli_load_scene(file);
 	o.nthreads = cli_threads(threads);
 	if ((rc = rf_tracer_create(&t, s, width, height, &o, err, sizeof(err))) < 0) {
@@ -155,10 +171,12 @@ main(int argc, char **argv)
 	cli_widen_pipe(STDOUT_FILENO);
 	if ((rc = rf_writer_open(&io.writer, stdout, "<stdout>", &wopt)) < 0)
 		die_status(rc, NULL);
-	rows = rf_block_rows(width, rf_tracer_nchannels(t), CLI_BLOCK_BYTES);
-	if (rows > height)
-		rows = height;
-	rows = cli_progress_block(rows, height);
+	if ((rc = rf_tracer_set_columns(t, rect[0], rect[2] - rect[0])) < 0)
+		die_status(rc, NULL);
+	rows = rf_block_rows(rect[2] - rect[0], rf_tracer_nchannels(t), CLI_BLOCK_BYTES);
+	if (rows > rect[3] - rect[1])
+		rows = rect[3] - rect[1];
+	rows = cli_progress_block(rows, rect[3] - rect[1]);
 	rf_scene_camera(s, &start);
 	cli_progress_frames(frames.last - frames.first + 1);
 	for (frame = frames.first; frame <= frames.last; frame++) {
@@ -168,10 +186,13 @@ main(int argc, char **argv)
 		if (rf_camera_check(&cam, err, sizeof(err)) < 0 ||
 		    (rc = rf_tracer_set_camera(t, &cam)) < 0)
 			die("frame %zu: %s", frame, err);
-		h = frame_header(s, t, &cam, frame, width, height, o.samples);
+		h = frame_header(s, t, &cam, frame, width, height, rect, o.samples);
 		cli_io_begin(&io, h);
 		rf_header_destroy(h);
-		cli_blocks(&io, height, rows, 0, width * rf_tracer_nchannels(t), trace_block, t);
+		tile.t = t;
+		tile.y0 = rect[1];
+		cli_blocks(&io, rect[3] - rect[1], rows, 0,
+		           (rect[2] - rect[0]) * rf_tracer_nchannels(t), trace_block, &tile);
 		cli_io_end_frame(&io);
 	}
 	rf_tracer_destroy(t);
