@@ -16,7 +16,7 @@ else
 	test_skip 'the pages render without warnings' 'no groff'
 fi
 
-for tool in reflect-info reflect-project reflect-export reflect-accumulate reflect-filter reflect-capture reflect-trace reflect-montage \
+for tool in reflect-info reflect-project reflect-export reflect-accumulate reflect-filter reflect-capture reflect-trace reflect-montage reflect-join \
 	reflect-occlude reflect-compare reflect-report
 do
 	test_expect_success "$tool(1) documents every option of its usage line" '
