@@ -98,11 +98,30 @@ test_expect_success 'Slurm array: a task past the last, or none, is refused' '
 	test_grep "part-0-1.rfl.: missing" err
 '
 
+test_expect_success 'Slurm array: tiles joined are the one run, byte for byte' '
+	reflect-trace -q -x 32 -y 23 --samples=4 -n 2 --orbit=40 -h room-floor.scene >still.raw &&
+	for t in 2 0 1
+	do
+		SLURM_ARRAY_TASK_ID=$t sh "$farm/tiles-array.sh" tiles 3 room-floor.scene \
+			-x 32 -y 23 --samples=4 -n 2 --orbit=40 || return 1
+	done &&
+	test $(ls tiles | wc -l) -eq 3 &&
+	reflect-join -h tiles/tile-*.rfl >joined.raw &&
+	cmp still.raw joined.raw &&
+	SLURM_ARRAY_TASK_ID=3 test_expect_code 1 sh "$farm/tiles-array.sh" tiles 3 \
+		room-floor.scene -x 32 -y 23 2>err &&
+	test_grep "no band 3 of 3" err &&
+	rm tiles/tile-1.rfl &&
+	test_expect_code 1 reflect-join tiles/tile-*.rfl >/dev/null 2>err &&
+	test_grep "no tile holds pixel 0,7 of the 32x23 frame" err
+'
+
 if ! parallel --version 2>/dev/null | grep -q "GNU parallel"
 then
 	for t in 'parallel -S :: sample ranges merge into the one run' \
 		'parallel -S :: a frame split is the full run'"'"'s pixels, byte for byte' \
-		'parallel -S :: the sweep scores as the jobs run one by one'
+		'parallel -S :: the sweep scores as the jobs run one by one' \
+		'parallel -S :: tiles joined are the one run, byte for byte'
 	do
 		test_skip "$t" 'no GNU parallel'
 	done
@@ -129,6 +148,16 @@ test_expect_success 'parallel -S :: a frame split is the full run'"'"'s pixels, 
 	SSHLOGIN=: sh "$farm/trace-parallel.sh" par-frames.rfl 4 4 1 room-floor.scene \
 		-x 24 -y 16 --orbit=60 -h &&
 	cmp frames.rfl par-frames.rfl
+'
+
+test_expect_success 'parallel -S :: tiles joined are the one run, byte for byte' '
+	SSHLOGIN=: sh "$farm/tiles-parallel.sh" par-tiles.rfl 4 room-floor.scene \
+		-x 32 -y 23 --samples=4 -n 2 --orbit=40 &&
+	test ! -d par-tiles.rfl.tiles &&
+	test $(grep -a -c "^FRAME=" par-tiles.rfl) -eq 2 &&
+	! grep -a -q "^REGION=" par-tiles.rfl &&
+	reflect-join -h par-tiles.rfl >par-tiles.raw &&
+	cmp still.raw par-tiles.raw
 '
 
 # The sweep at a toy size (the table of doc/fidelity.md is 320x180, with
