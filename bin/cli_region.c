@@ -4,8 +4,9 @@
  * I of N bands of whole rows, rows floor(I H / N) to floor((I + 1) H / N)
  * - 1: bands of rows are what the threads already split a frame into,
  * and a tile of whole rows reads its input front to back), and --halo=P,
- * that many more pixels each way where the frame goes on, for a filter
- * that reads neighbours (reflect-filter crops them off again).  The
+ * that many more pixels each way where the frame goes on (from an even
+ * column and row), for a filter that reads neighbours (reflect-filter
+ * crops them off again).  The
  * coordinates are always the full frame's, so that a tile's pixels are
  * the full render's and reflect-join puts them back in place.
  */
@@ -116,6 +117,12 @@ cli_region_rect(const struct cli_region *r, size_t width, size_t height, size_t 
 		return;
 	rect[0] = rect[0] > h ? rect[0] - h : 0;
 	rect[1] = rect[1] > h ? rect[1] - h : 0;
+	/* A halo starts on an even column and row: a filter of 2 x 2 quads
+	 * (quad) pairs a tile's pixels as the full frame pairs them. */
+	if (h) {
+		rect[0] &= ~(size_t)1;
+		rect[1] &= ~(size_t)1;
+	}
 	rect[2] = width - rect[2] > h ? rect[2] + h : width;
 	rect[3] = height - rect[3] > h ? rect[3] + h : height;
 }

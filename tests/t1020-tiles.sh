@@ -92,7 +92,7 @@ test_expect_success 'project: tiles through it, and its own --tile of the full s
 	cmp p.raw jpc
 '
 
-for m in approx raytraced:samples=4:pattern=white raytraced:samples=4:pattern=blue
+for m in approx footprint raytraced:samples=4:pattern=white raytraced:samples=4:pattern=blue
 do
 	test_expect_success "shade -m $m: tiles joined are the full frame" '
 		reflect-shade -q -m $m --final --env=room.rfl -h p.rfl >s.raw &&
@@ -162,6 +162,21 @@ test_expect_success 'atrous: narrow columns with a halo, and passes=2 with a hal
 	cmp f2.raw jf2 &&
 	reflect-filter -q -m atrous:passes=2 -h mid.rfl >whole.raw &&
 	! cmp -s f2.raw whole.raw
+'
+
+# quad pairs rows 2k and 2k + 1: a halo starts on an even row, so that
+# band 1 (from row 20, its halo of 1 from row 18) pairs as the frame.
+test_expect_success 'quad: tiles with a halo of 1 are the filtered frame' '
+	reflect-filter -q -m quad -h n.rfl >q.raw &&
+	for i in 0 1 2
+	do
+		reflect-shade -q -m raytraced:samples=4:pattern=white --final --env=room.rfl \
+			--tile=$i/3 --halo=1 p.rfl >qh-$i.rfl &&
+		reflect-filter -q -m quad --tile=$i/3 qh-$i.rfl >q-$i.rfl || return 1
+	done &&
+	grep -a -q "^REGION=0 18 90 61$" qh-1.rfl &&
+	joined jq q-2.rfl q-0.rfl q-1.rfl &&
+	cmp q.raw jq
 '
 
 test_expect_success 'atrous: a halo too short is refused with the one it needs' '
