@@ -266,7 +266,8 @@ TEST(environment_geometry)
 
 /* pixel_footprint: a camera at the origin looking down -z, 90 degrees,
  * 100 x 100 pixels, and the plane z = -1: neighbouring pixel centres are
- * 2 / 100 apart on it, right along +x, down along -y. */
+ * 2 / 100 apart on it, right along +x, down along -y; in a tile of the
+ * frame too. */
 TEST(pixel_footprint_by_hand)
 {
 	rf_plugin_host *h;
@@ -306,6 +307,18 @@ TEST(pixel_footprint_by_hand)
 		ASSERT_NEAR(sqrt(dx[0] * dx[0] + dx[2] * dx[2]), 0.040705, 2e-6);
 		/* the pixel's own ray, (-0.01, 0.01, -1), along the plane */
 		ASSERT(t->pixel_footprint(t->ctx, 49, 49, p, along, dx, dy) == -1);
+	}
+	/* a tile of that frame, 50 x 25 from (25, 40): the full frame's rays
+	 * (its pixel 49, 49 as above), not a 50 x 25 frame's */
+	{
+		const struct rf_region tile = { 25, 40, 100, 100 };
+
+		ASSERT_EQ(rf_header_set_size(frame, 50, 25), 0);
+		ASSERT_EQ(rf_header_set_region(frame, &tile), 0);
+		rf_plugin_host_set_frame(h, frame);
+		ASSERT(t->pixel_footprint(t->ctx, 49, 49, p, n, dx, dy) == 0);
+		ASSERT_NEAR(dx[0], 0.02, 1e-6);
+		ASSERT_NEAR(dy[1], -0.02, 1e-6);
 	}
 	rf_header_destroy(frame);
 	rf_plugin_host_destroy(h);
