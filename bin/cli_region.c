@@ -91,40 +91,41 @@ void
 cli_region_rect(const struct cli_region *r, size_t width, size_t height, size_t scale,
                 size_t rect[4])
 {
-	size_t h = r->halo * scale;
+	/* in the options' pixels, scale x scale of the frame's each, so
+	 * that a supersampled tile holds whole pixels */
+	const size_t w = width / scale, ht = height / scale, h = r->halo;
+	int i;
 
 	rect[0] = rect[1] = 0;
-	rect[2] = width;
-	rect[3] = height;
+	rect[2] = w;
+	rect[3] = ht;
 	if (r->given == CLI_OPT_REGION) {
-		if (r->x1 * scale > width || r->y1 * scale > height)
+		if (r->x1 > w || r->y1 > ht)
 			die("--region=%s: past the frame's %zux%zu pixels (X1 <= %zu, Y1 <= %zu)",
-			    r->arg, width / scale, height / scale, width / scale, height / scale);
-		rect[0] = r->x0 * scale;
-		rect[1] = r->y0 * scale;
-		rect[2] = r->x1 * scale;
-		rect[3] = r->y1 * scale;
+			    r->arg, w, ht, w, ht);
+		rect[0] = r->x0;
+		rect[1] = r->y0;
+		rect[2] = r->x1;
+		rect[3] = r->y1;
 	} else if (r->given == CLI_OPT_TILE) {
-		size_t rows = height / scale;
-
-		if (r->count > rows)
+		if (r->count > ht)
 			die("--tile=%s: %zu bands of a frame of %zu rows leave some empty "
-			    "(N at most %zu)", r->arg, r->count, rows, rows);
-		rect[1] = r->index * rows / r->count * scale;
-		rect[3] = (r->index + 1) * rows / r->count * scale;
+			    "(N at most %zu)", r->arg, r->count, ht, ht);
+		rect[1] = r->index * ht / r->count;
+		rect[3] = (r->index + 1) * ht / r->count;
 	}
-	if (!r->given)
-		return;
-	rect[0] = rect[0] > h ? rect[0] - h : 0;
-	rect[1] = rect[1] > h ? rect[1] - h : 0;
-	/* A halo starts on an even column and row: a filter of 2 x 2 quads
-	 * (quad) pairs a tile's pixels as the full frame pairs them. */
-	if (h) {
+	if (r->given && h) {
+		rect[0] = rect[0] > h ? rect[0] - h : 0;
+		rect[1] = rect[1] > h ? rect[1] - h : 0;
+		/* A halo starts on an even column and row: a filter of 2 x 2
+		 * quads (quad) pairs a tile's pixels as the full frame does. */
 		rect[0] &= ~(size_t)1;
 		rect[1] &= ~(size_t)1;
+		rect[2] = w - rect[2] > h ? rect[2] + h : w;
+		rect[3] = ht - rect[3] > h ? rect[3] + h : ht;
 	}
-	rect[2] = width - rect[2] > h ? rect[2] + h : width;
-	rect[3] = height - rect[3] > h ? rect[3] + h : height;
+	for (i = 0; i < 4; i++)
+		rect[i] *= scale;
 }
 
 void

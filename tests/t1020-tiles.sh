@@ -58,7 +58,13 @@ test_expect_success 'gbuffer: a grid of regions, and --supersample' '
 	reflect-gbuffer -x 30 -y 20 --supersample=2 --region=0,7,30,20 s.scene >ss2.rfl &&
 	grep -a -q "^REGION=0 14 60 40$" ss2.rfl &&
 	joined jss ss1.rfl ss2.rfl &&
-	cmp ss.raw jss
+	cmp ss.raw jss &&
+	# rows 6 to 12 of 20, 3 more each way from an even row: 2 to 15,
+	# times 3 in the stream
+	reflect-gbuffer -x 30 -y 20 --supersample=3 --tile=1/3 --halo=3 -c mask -fa s.scene \
+		>ss3.txt &&
+	grep -q "^REGION=0 6 90 60$" ss3.txt &&
+	grep -q "^NROWS=42$" ss3.txt
 '
 
 test_expect_success 'trace: bands and a region, seeds and rays of the full frame' '
