@@ -71,8 +71,8 @@ test_expect_success 'a turned second probe weighs inside its turned box only' '
 '
 
 test_expect_success 'bad shapes: refused at their place' '
-	bad_scene "1:38: the first probe.s box is the scene.s room, which cannot turn or be a sphere yet" <<-\EOF &&
-	probe center 0 1 0 box -3 0 -2 3 3 2 rotate 0 10 0
+	bad_scene "1:22: the first probe.s box is the scene.s room, whose walls cannot be a sphere: give the first probe a box" <<-\EOF &&
+	probe center 0 1.5 0 sphere 1.5
 	EOF
 	bad_scene "2:25: expected a rotation, and this matrix is not orthonormal$" <<-\EOF &&
 	probe box -3 0 -2 3 3 2

@@ -309,9 +309,19 @@ scene_size(const rf_scene *s)
 	for (i = 0; i < s->nmeshes; i++)
 		for (j = 0; j < 6; j++)
 			L = fmax(L, fabs((double)s->meshes[i].bounds[j]));
-	for (i = 0; i < s->nprobes; i++)
+	for (i = 0; i < s->nprobes; i++) {
+		const struct rf_scene_probe *p = &s->probes[i];
+		double half = 0.0;
+
+		/* a turned box reaches no further from its centre than its
+		 * half diagonal */
 		for (j = 0; j < 3; j++)
-			L = fmax(L, fmax(fabs(s->probes[i].box_min[j]), fabs(s->probes[i].box_max[j])));
+			half += 0.25 * (p->box_max[j] - p->box_min[j]) * (p->box_max[j] - p->box_min[j]);
+		half = sqrt(half);
+		for (j = 0; j < 3; j++)
+			L = fmax(L, p->rotated ? fabs(0.5 * (p->box_min[j] + p->box_max[j])) + half
+			                       : fmax(fabs(p->box_min[j]), fabs(p->box_max[j])));
+	}
 	return L;
 }
 

@@ -222,7 +222,8 @@ wall_samples(const struct capture *c, int f, size_t i, size_t j, int wall, size_
 	const struct face_frame *fr = &c->frames[f];
 	const struct rf_scene_probe *room = &c->s->probes[0];
 	const int k = wall / 2;
-	const double plane = (wall & 1 ? room->box_min[k] : room->box_max[k]) - c->origin[k];
+	double major[3], axis_a[3], axis_b[3], origin[3];
+	double plane;
 	const double step = 2.0 / ((double)c->n * (double)ns);
 	const double a0 = 2.0 * (double)i / (double)c->n - 1.0 + 0.5 * step;
 	const double b0 = 2.0 * (double)j / (double)c->n - 1.0 + 0.5 * step;
@@ -234,6 +235,21 @@ wall_samples(const struct capture *c, int f, size_t i, size_t j, int wall, size_
 	size_t sa, sb, q = 0;
 	int x;
 
+	/* the face's grid in the room's frame, where the wall is a plane of
+	 * one axis */
+	for (x = 0; x < 3; x++) {
+		major[x] = fr->major[x];
+		axis_a[x] = fr->axis_a[x];
+		axis_b[x] = fr->axis_b[x];
+		origin[x] = c->origin[x];
+	}
+	if (c->s->room_turned) {
+		rf__room_dir_in(c->s, major, major);
+		rf__room_dir_in(c->s, axis_a, axis_a);
+		rf__room_dir_in(c->s, axis_b, axis_b);
+		rf__room_point_in(c->s, origin, origin);
+	}
+	plane = (wall & 1 ? room->box_min[k] : room->box_max[k]) - origin[k];
 	/* the grid's points row after row, read by the walls' vector code a
 	 * chunk at a time (and the last, part full) */
 	for (sb = 0; sb < ns; sb++) {
@@ -244,10 +260,10 @@ wall_samples(const struct capture *c, int f, size_t i, size_t j, int wall, size_
 			double d[3], t;
 
 			for (x = 0; x < 3; x++)
-				d[x] = fr->major[x] + a * fr->axis_a[x] + b * fr->axis_b[x];
+				d[x] = major[x] + a * axis_a[x] + b * axis_b[x];
 			t = plane / d[k];
-			us[q] = (float)(c->origin[ku] + t * d[ku]);
-			vs[q] = (float)(c->origin[kv] + t * d[kv]);
+			us[q] = (float)(origin[ku] + t * d[ku]);
+			vs[q] = (float)(origin[kv] + t * d[kv]);
 			if (++q == RF__EMIT_CHUNK || (sb == ns - 1 && sa == ns - 1)) {
 				wall_chunk(c->s, wall, us, vs, q, rgb, acc);
 				q = 0;

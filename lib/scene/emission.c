@@ -42,11 +42,17 @@ int
 rf__room_exit(const rf_scene *s, const double o[3], const double d[3], double uv[2])
 {
 	const struct rf_scene_probe *room = s->nprobes ? &s->probes[0] : NULL;
-	double t = INFINITY, p[3];
+	double t = INFINITY, p[3], ol[3], dl[3];
 	int face = -1, i;
 
 	if (!s->room || !room)
 		return -1;
+	if (s->room_turned) {
+		rf__room_point_in(s, o, ol);
+		rf__room_dir_in(s, d, dl);
+		o = ol;
+		d = dl;
+	}
 	for (i = 0; i < 3; i++) {
 		double ti;
 
@@ -327,6 +333,8 @@ room_emission_chunk(const rf_scene *s, const double o[3], const float *dx,
 	const struct rf_scene_probe *room = s->nprobes ? &s->probes[0] : NULL;
 	int face[RF__EMIT_CHUNK];
 	float us[RF__EMIT_CHUNK], vs[RF__EMIT_CHUNK];
+	float lx[RF__EMIT_CHUNK], ly[RF__EMIT_CHUNK], lz[RF__EMIT_CHUNK];
+	double ol[3];
 	float lo0, lo1, lo2, hi0, hi1, hi2, o0, o1, o2;
 	size_t j;
 
@@ -334,6 +342,23 @@ room_emission_chunk(const rf_scene *s, const double o[3], const float *dx,
 		for (j = 0; j < n; j++)
 			rgb[j][0] = rgb[j][1] = rgb[j][2] = 0.0f;
 		return;
+	}
+	if (s->room_turned) {
+		/* the rays in the room's frame, where its walls are slabs */
+		const double *r = s->room_rotation;
+
+		rf__room_point_in(s, o, ol);
+		o = ol;
+		for (j = 0; j < RF__EMIT_CHUNK; j++) {
+			const float x = dx[j], y = dy[j], z = dz[j];
+
+			lx[j] = (float)r[0] * x + (float)r[3] * y + (float)r[6] * z;
+			ly[j] = (float)r[1] * x + (float)r[4] * y + (float)r[7] * z;
+			lz[j] = (float)r[2] * x + (float)r[5] * y + (float)r[8] * z;
+		}
+		dx = lx;
+		dy = ly;
+		dz = lz;
 	}
 	lo0 = room->box_min[0], lo1 = room->box_min[1], lo2 = room->box_min[2];
 	hi0 = room->box_max[0], hi1 = room->box_max[1], hi2 = room->box_max[2];
@@ -393,9 +418,13 @@ rf__emission(const rf_scene *s, const struct rf_hit *hit, float rgb[3])
 	int face = rf__wall_face(hit->objid);
 
 	if (face >= 0) {
-		double uv[2];
+		double uv[2], pl[3];
 
-		rf__wall_uv(face, hit->P, uv);
+		if (s->room_turned) {
+			rf__room_point_in(s, hit->P, pl);
+			rf__wall_uv(face, pl, uv);
+		} else
+			rf__wall_uv(face, hit->P, uv);
 		rf__wall_emission(s, face, uv, rgb);
 	} else if (hit->objid >= 1 && (size_t)hit->objid <= s->nobjects &&
 	           s->objects[hit->objid - 1].mat.em.kind == EMIT_COLOUR) {

@@ -1255,6 +1255,7 @@ rf_scene_parse(rf_scene **sp, const char *text, size_t len, const char *name,
 		rf_scene_destroy(p.s);
 		return rc;
 	}
+	rf__room_frame(p.s);
 	rf__wall_classes(p.s);
 	*sp = p.s;
 	return 0;

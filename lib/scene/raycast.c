@@ -40,15 +40,42 @@ prepare(const struct object *ob, const double o[3], double *k)
 	}
 }
 
+/* The room's slabs from o, in the room's own frame when it is turned. */
 static void
-prepare_room(const struct rf_scene_probe *room, const double o[3], double *k)
+prepare_room(const rf_scene *s, const double o[3], double *k)
+{
+	const struct rf_scene_probe *room = &s->probes[0];
+	double local[3];
+	const double *ol = o;
+	int i;
+
+	if (s->room_turned) {
+		rf__room_point_in(s, o, local);
+		ol = local;
+	}
+	for (i = 0; i < 3; i++) {
+		k[i] = room->box_min[i] - ol[i];
+		k[i + 3] = room->box_max[i] - ol[i];
+	}
+}
+
+/* A ray's direction and its reciprocals as the room's slabs take them. */
+static void
+room_direction(const rf_scene *s, const double d[3], const double inv[3], double dl[3],
+               double invl[3], const double **dr, const double **invr)
 {
 	int i;
 
-	for (i = 0; i < 3; i++) {
-		k[i] = room->box_min[i] - o[i];
-		k[i + 3] = room->box_max[i] - o[i];
+	if (!s->room_turned) {
+		*dr = d;
+		*invr = inv;
+		return;
 	}
+	rf__room_dir_in(s, d, dl);
+	for (i = 0; i < 3; i++)
+		invl[i] = 1.0 / dl[i];
+	*dr = dl;
+	*invr = invl;
 }
 
 void
@@ -59,7 +86,7 @@ rf__trace_prepare(const rf_scene *s, const double o[3], double *k)
 	for (i = 0; i < s->nobjects; i++)
 		prepare(&s->objects[i], o, k + i * RF__ORIGIN_STRIDE);
 	if (s->nprobes)
-		prepare_room(&s->probes[0], o, k + s->nobjects * RF__ORIGIN_STRIDE);
+		prepare_room(s, o, k + s->nobjects * RF__ORIGIN_STRIDE);
 }
 
 /* Robust quadratic (Haines et al., Ray Tracing Gems ch. 7): the
@@ -381,10 +408,38 @@ rf__occluded(const rf_scene *s, const double o[3], const double d[3], double tma
 			return 1;
 	}
 	if (s->nprobes && s->room) {
-		prepare_room(&s->probes[0], o, k);
-		return hit_slabs(k, d, inv, tmax, 1, &c);
+		double dl[3], invl[3];
+		const double *dr, *invr;
+
+		prepare_room(s, o, k);
+		room_direction(s, d, inv, dl, invl, &dr, &invr);
+		return hit_slabs(k, dr, invr, tmax, 1, &c);
 	}
 	return 0;
+}
+
+/* The point t along a ray from o, in the turned room's frame: where
+ * its wall is shaded, so that the wall's (u, v) and tangents are the
+ * room's own. */
+static void
+room_point(const rf_scene *s, const double o[3], const double dl[3], double t,
+           double p[3])
+{
+	int i;
+
+	rf__room_point_in(s, o, p);
+	for (i = 0; i < 3; i++)
+		p[i] += t * dl[i];
+}
+
+/* A wall's hit shaded in the turned room's frame, taken out to the world. */
+static void
+turn_out(const rf_scene *s, struct rf_hit *hit)
+{
+	rf__room_point_out(s, hit->P, hit->P);
+	rf__room_dir_out(s, hit->Ng, hit->Ng);
+	rf__room_dir_out(s, hit->N, hit->N);
+	rf__room_dir_out(s, hit->T, hit->T);
 }
 
 /* A ray's hit once the objects and the triangles are searched: the room
@@ -394,7 +449,8 @@ finish(const rf_scene *s, const double o[3], const double *k, const double d[3],
        const double inv[3], struct candidate best, struct rf__mesh_hit mh,
        struct rf_hit *hit)
 {
-	double tmp[RF__ORIGIN_STRIDE];
+	double tmp[RF__ORIGIN_STRIDE], dl[3], invl[3];
+	const double *dr = d, *invr = inv;
 	struct candidate c;
 	const struct rf_scene_probe *room = s->nprobes && s->room ? &s->probes[0] : NULL;
 	int j;
@@ -405,8 +461,9 @@ finish(const rf_scene *s, const double o[3], const double *k, const double d[3],
 		const double *ko = k ? k + s->nobjects * RF__ORIGIN_STRIDE : tmp;
 
 		if (!k)
-			prepare_room(room, o, tmp);
-		if (hit_slabs(ko, d, inv, best.t, 1, &c)) {
+			prepare_room(s, o, tmp);
+		room_direction(s, d, inv, dl, invl, &dr, &invr);
+		if (hit_slabs(ko, dr, invr, best.t, 1, &c)) {
 			best = c;
 			best.index = -1;
 			mh.mesh = -1;
@@ -438,8 +495,12 @@ finish(const rf_scene *s, const double o[3], const double *k, const double d[3],
 	if (best.index < 0) {
 		int a = best.axis;
 
-		shade_face(&s->room_mat, d, a, best.upper ? room->box_max[a] : room->box_min[a],
+		if (s->room_turned)
+			room_point(s, o, dr, best.t, hit->P);
+		shade_face(&s->room_mat, dr, a, best.upper ? room->box_max[a] : room->box_min[a],
 		           hit);
+		if (s->room_turned)
+			turn_out(s, hit);
 		hit->objid = -(2 * a + (best.upper ? 1 : 2));
 		return hit->objid;
 	}

@@ -94,6 +94,11 @@ struct rf_scene {
 	size_t nprobes;
 	int room; /* draw probe 0's box */
 	struct material room_mat;
+	/* Probe 0's box turned about its centre (room_turned): the walls'
+	 * tests and their (u, v) work in the box's own frame, a point p
+	 * there being room_center + room_rotation^T (p - room_center). */
+	int room_turned;
+	double room_rotation[9], room_center[3];
 	/* Each wall's emission when set by a wall line, else the room's. */
 	struct emission wall_em[RF__FACES];
 	struct pattern pattern;
@@ -132,8 +137,61 @@ struct rf_scene {
 	size_t nblocks;
 };
 
+/* The room's frame (rf_scene's room_turned), in and out. */
+static inline void
+rf__room_dir_in(const rf_scene *s, const double d[3], double out[3])
+{
+	const double *r = s->room_rotation;
+	double x = r[0] * d[0] + r[3] * d[1] + r[6] * d[2];
+	double y = r[1] * d[0] + r[4] * d[1] + r[7] * d[2];
+	double z = r[2] * d[0] + r[5] * d[1] + r[8] * d[2];
+
+	out[0] = x;
+	out[1] = y;
+	out[2] = z;
+}
+
+static inline void
+rf__room_dir_out(const rf_scene *s, const double d[3], double out[3])
+{
+	const double *r = s->room_rotation;
+	double x = r[0] * d[0] + r[1] * d[1] + r[2] * d[2];
+	double y = r[3] * d[0] + r[4] * d[1] + r[5] * d[2];
+	double z = r[6] * d[0] + r[7] * d[1] + r[8] * d[2];
+
+	out[0] = x;
+	out[1] = y;
+	out[2] = z;
+}
+
+static inline void
+rf__room_point_in(const rf_scene *s, const double p[3], double out[3])
+{
+	const double *c = s->room_center;
+	double rel[3] = { p[0] - c[0], p[1] - c[1], p[2] - c[2] };
+
+	rf__room_dir_in(s, rel, out);
+	out[0] += c[0];
+	out[1] += c[1];
+	out[2] += c[2];
+}
+
+static inline void
+rf__room_point_out(const rf_scene *s, const double p[3], double out[3])
+{
+	const double *c = s->room_center;
+	double rel[3] = { p[0] - c[0], p[1] - c[1], p[2] - c[2] };
+
+	rf__room_dir_out(s, rel, out);
+	out[0] += c[0];
+	out[1] += c[1];
+	out[2] += c[2];
+}
+
 /* scene.c */
 rf_scene *rf__scene_create(void);
+/* Sets the room's frame from probe 0, once the scene is read. */
+void rf__room_frame(rf_scene *s);
 /* The scene's probe as the plugins see it, its shapes included. */
 void rf__scene_probe_shape(const struct rf_scene_probe *sp, struct rf_probe *out);
 /* A material with the defaults of an object (or of the room). */

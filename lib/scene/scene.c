@@ -383,16 +383,35 @@ rf_scene_inside(const rf_scene *s, const double p[3])
 	return 0;
 }
 
-int
-rf_scene_in_room(const rf_scene *s, const double p[3])
+void
+rf__room_frame(rf_scene *s)
 {
 	const struct rf_scene_probe *r = s->nprobes ? &s->probes[0] : NULL;
 	int k;
 
+	s->room_turned = r && r->rotated;
+	for (k = 0; k < 9; k++)
+		s->room_rotation[k] = s->room_turned ? r->rotation[k] : k % 4 == 0;
+	for (k = 0; k < 3; k++)
+		s->room_center[k] = r ? 0.5 * (r->box_min[k] + r->box_max[k]) : 0.0;
+}
+
+int
+rf_scene_in_room(const rf_scene *s, const double p[3])
+{
+	const struct rf_scene_probe *r = s->nprobes ? &s->probes[0] : NULL;
+	double q[3];
+	int k;
+
 	if (!r)
 		return 0;
+	if (s->room_turned)
+		rf__room_point_in(s, p, q);
+	else
+		for (k = 0; k < 3; k++)
+			q[k] = p[k];
 	for (k = 0; k < 3; k++)
-		if (!(p[k] >= r->box_min[k] && p[k] <= r->box_max[k]))
+		if (!(q[k] >= r->box_min[k] && q[k] <= r->box_max[k]))
 			return 0;
 	return 1;
 }
