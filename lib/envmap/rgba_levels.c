@@ -44,6 +44,14 @@ rf__rgba_levels_from_cube(struct rf__rgba_levels *p, const rf_cubemap *c)
 }
 
 void
+rf__rgba_levels_turn(struct rf__rgba_levels *p, const float rotation[9])
+{
+	p->turned = rotation != NULL;
+	if (rotation)
+		memcpy(p->turn, rotation, sizeof(p->turn));
+}
+
+void
 rf__rgba_levels_destroy(struct rf__rgba_levels *p)
 {
 	free(p->data);

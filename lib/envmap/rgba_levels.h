@@ -23,6 +23,11 @@ struct rf__rgba_levels {
 	 * width, and in texels from data: face 0, face to face, row to row. */
 	float lvl_scale[32];
 	int32_t lvl_base[32], lvl_face[32], lvl_row[32];
+	/* The cube's frame when it is not the world's (a turned probe's
+	 * capture): rf__rgba_levels_fetch_many reads direction d at
+	 * turn^T d, turn being row-major, world = turn local. */
+	int turned;
+	float turn[9];
 };
 
 typedef int rf__v4i __attribute__((vector_size(16)));
@@ -40,6 +45,17 @@ struct rf__lod {
 
 int rf__rgba_levels_from_cube(struct rf__rgba_levels *p, const rf_cubemap *c);
 void rf__rgba_levels_destroy(struct rf__rgba_levels *p);
+/* Sets the cube's frame (NULL: the world's); from_cube resets it. */
+void rf__rgba_levels_turn(struct rf__rgba_levels *p, const float rotation[9]);
+/* d turned into the frame of rotation (row-major, world = rotation
+ * local): rotation^T d. */
+static inline void
+rf__turn_in(const float m[9], float x, float y, float z, float out[3])
+{
+	out[0] = m[0] * x + m[3] * y + m[6] * z;
+	out[1] = m[1] * x + m[4] * y + m[7] * z;
+	out[2] = m[2] * x + m[5] * y + m[8] * z;
+}
 
 /* Where a read at this lod goes (clamped to the levels); inline, as the
  * shading pass asks once a pixel. */

@@ -377,9 +377,9 @@ rf__lobe_sum8(const struct rf__lobe_table *t, size_t count, const struct rf__rgb
 
 /* Eight at a time where the kernel exists and was chosen; the rest, or
  * all of them, the plain way. */
-void
-rf__rgba_levels_fetch_many(const struct rf__rgba_levels *p, int vector, size_t count, const float *x,
-                       const float *y, const float *z, const float *lod, rf__v4 *rgb)
+static void
+fetch_many(const struct rf__rgba_levels *p, int vector, size_t count, const float *x,
+           const float *y, const float *z, const float *lod, rf__v4 *rgb)
 {
 	size_t i = 0;
 
@@ -418,5 +418,30 @@ rf__rgba_levels_fetch_many(const struct rf__rgba_levels *p, int vector, size_t c
 		struct rf__lod l = rf__rgba_levels_lod(p, lod[i]);
 
 		rgb[i] = rf__rgba_levels_fetch(d, &l);
+	}
+}
+
+/* A turned cube's directions taken into its frame a chunk at a time, on
+ * the stack: the world's cube pays one test. */
+void
+rf__rgba_levels_fetch_many(const struct rf__rgba_levels *p, int vector, size_t count, const float *x,
+                       const float *y, const float *z, const float *lod, rf__v4 *rgb)
+{
+	float tx[64], ty[64], tz[64], d[3];
+	size_t i0, k, m;
+
+	if (!p->turned) {
+		fetch_many(p, vector, count, x, y, z, lod, rgb);
+		return;
+	}
+	for (i0 = 0; i0 < count; i0 += m) {
+		m = count - i0 < 64 ? count - i0 : 64;
+		for (k = 0; k < m; k++) {
+			rf__turn_in(p->turn, x[i0 + k], y[i0 + k], z[i0 + k], d);
+			tx[k] = d[0];
+			ty[k] = d[1];
+			tz[k] = d[2];
+		}
+		fetch_many(p, vector, m, tx, ty, tz, lod + i0, rgb + i0);
 	}
 }

@@ -397,7 +397,13 @@ texel_solid_angle(void *ctx, const float dir[3], float lod)
 	if (!isfinite(dir[0]) || !isfinite(dir[1]) || !isfinite(dir[2]) ||
 	    !(dir[0] != 0.0f || dir[1] != 0.0f || dir[2] != 0.0f))
 		return 0.0f;
-	rf_cube_face(dir, &u, &v);
+	if (h->env_levels.turned) {
+		float local[3];
+
+		rf__turn_in(h->env_levels.turn, dir[0], dir[1], dir[2], local);
+		rf_cube_face(local, &u, &v);
+	} else
+		rf_cube_face(dir, &u, &v);
 	x = 2.0 * u - 1.0;
 	y = 2.0 * v - 1.0;
 	return (float)(4.0 / (size * size) / pow(1.0 + x * x + y * y, 1.5) * exp2(2.0 * lod));
@@ -634,6 +640,17 @@ rf_plugin_host_set_frame(rf_plugin_host *h, const rf_header *frame)
 	h->has_camera = 1;
 }
 
+/* A turned probe's environment is in its box's frame: its reads, the
+ * raw radiance's too, take their directions there. */
+static void
+env_frame(rf_plugin_host *h)
+{
+	const float *turn = h->table.probe && h->probe.rotated ? h->probe.rotation : NULL;
+
+	rf__rgba_levels_turn(&h->env_levels, turn);
+	rf__rgba_levels_turn(&h->levels, turn);
+}
+
 void
 rf_plugin_host_set_probe(rf_plugin_host *h, const struct rf_probe *probe)
 {
@@ -660,6 +677,7 @@ rf_plugin_host_set_probe(rf_plugin_host *h, const struct rf_probe *probe)
 		rf_blend_order(&h->blend);
 	}
 	h->table.project_rays = probe ? project_rays : NULL;
+	env_frame(h);
 	sync_legacy(h);
 }
 
@@ -673,6 +691,7 @@ rf_plugin_host_set_environment(rf_plugin_host *h, const rf_cubemap *env,
 	memset(&h->env_levels, 0, sizeof(h->env_levels));
 	if (env && (rc = rf__rgba_levels_from_cube(&h->env_levels, env)) < 0)
 		env = NULL;
+	env_frame(h);
 	h->env_vector = env ? rf__rgba_levels_simd_usable(&h->env_levels) : 0;
 	h->env = env;
 	h->mapping = mapping;
@@ -710,6 +729,7 @@ rf_plugin_host_set_radiance(rf_plugin_host *h, const rf_cubemap *env)
 		return rc;
 	}
 	h->vector = rf__rgba_levels_simd_usable(&h->levels);
+	env_frame(h);
 	h->table.sample_radiance = sample_radiance;
 	h->table.env_size = (uint32_t)size;
 	h->table.env_levels = (uint32_t)levels;

@@ -75,6 +75,8 @@ struct capture {
 	enum rf_mapping mapping;
 	float steps;
 	float shq[3][9];
+	/* a turned probe's rotation: its cube's reads of the bounce before */
+	float turn[9];
 	struct rf__proxy proxy; /* the probe's, its lookups in the bounces */
 	size_t rows_done, rows_total; /* for the progress callback */
 	size_t row_base; /* the face's first row, for capture_face_row */
@@ -96,8 +98,24 @@ rf_capture_options_init(struct rf_capture_options *o)
 	o->nthreads = 1;
 }
 
+/* A direction of a turned probe's own frame in the world's. */
 static void
-make_frames(struct face_frame *fr)
+probe_out(const struct rf_scene_probe *p, double d[3])
+{
+	const double *r = p->rotation;
+	double x = r[0] * d[0] + r[1] * d[1] + r[2] * d[2];
+	double y = r[3] * d[0] + r[4] * d[1] + r[5] * d[2];
+	double z = r[6] * d[0] + r[7] * d[1] + r[8] * d[2];
+
+	d[0] = x;
+	d[1] = y;
+	d[2] = z;
+}
+
+/* The faces of a turned probe look along its box's axes: its cube is in
+ * the box's frame, as the shading reads it. */
+static void
+make_frames(struct face_frame *fr, const struct rf_scene_probe *p)
 {
 	int f, k;
 
@@ -111,6 +129,11 @@ make_frames(struct face_frame *fr)
 			fr[f].major[k] = c[k];
 			fr[f].axis_a[k] = ua[k] - c[k];
 			fr[f].axis_b[k] = vb[k] - c[k];
+		}
+		if (p->rotated) {
+			probe_out(p, fr[f].major);
+			probe_out(p, fr[f].axis_a);
+			probe_out(p, fr[f].axis_b);
 		}
 	}
 }
@@ -183,7 +206,7 @@ wall_hit(const struct capture *c, const double d[3], double uv[2])
 }
 
 static void
-texel_dir(enum rf_face f, size_t n, double i, double j, double d[3])
+texel_dir(const struct capture *c, enum rf_face f, size_t n, double i, double j, double d[3])
 {
 	float df[3];
 	double len;
@@ -193,6 +216,8 @@ texel_dir(enum rf_face f, size_t n, double i, double j, double d[3])
 	d[0] = df[0] / len;
 	d[1] = df[1] / len;
 	d[2] = df[2] / len;
+	if (c->probe->rotated)
+		probe_out(c->probe, d);
 }
 
 /* The mean of ns x ns samples of texel (i, j) of face f, all on wall
@@ -349,7 +374,11 @@ shade_object(const struct capture *c, const struct rf_hit *h, const double d[3],
 		/* the shading pass's own read of the levels (reflect-shade -m
 		 * none): twice as fast as rf_cubemap_sample */
 		const struct rf__lod l = rf__rgba_levels_lod(&c->env_levels, lod);
-		const rf__v4 q = rf__rgba_levels_fetch(dir, &l);
+		rf__v4 q;
+
+		if (c->probe->rotated)
+			rf__turn_in(c->turn, dir[0], dir[1], dir[2], dir);
+		q = rf__rgba_levels_fetch(dir, &l);
 
 		spec[0] = q[0];
 		spec[1] = q[1];
@@ -357,6 +386,8 @@ shade_object(const struct capture *c, const struct rf_hit *h, const double d[3],
 	}
 	rf__surface_f0(h->albedo, metal, f0);
 	rf__surface_split_sum(f0, nv, h->roughness, 0, w);
+	if (c->probe->rotated)
+		rf__turn_in(c->turn, n[0], n[1], n[2], n);
 	rf__surface_diffuse(c->shq, n, h->albedo, metal, e);
 	for (k = 0; k < 3; k++)
 		rgb[k] = spec[k] * w[k] + e[k];
@@ -401,7 +432,7 @@ object_texel(const struct capture *c, enum rf_face f, size_t i, size_t j, size_t
 		for (m = 0; m < n; m++) {
 			sa = (s0 + (size_t)m) % no;
 			sb = (s0 + (size_t)m) / no;
-			texel_dir(f, c->n, (double)i + ((double)sa + 0.5) / (double)no,
+			texel_dir(c, f, c->n, (double)i + ((double)sa + 0.5) / (double)no,
 			          (double)j + ((double)sb + 0.5) / (double)no, dirs[m]);
 			for (k = 0; k < 3; k++)
 				invs[m][k] = 1.0 / dirs[m][k];
@@ -450,7 +481,7 @@ capture_row(void *arg, size_t task, int thread)
 		for (i = 0; i <= n; i++) {
 			struct corner *cn = (r ? bottom : top) + i;
 
-			texel_dir(f, n, (double)i, (double)(j + r), d);
+			texel_dir(c, f, n, (double)i, (double)(j + r), d);
 			cn->face = wall_hit(c, d, cn->uv);
 		}
 	for (i = 0; i < n; i++) {
@@ -478,7 +509,7 @@ capture_row(void *arg, size_t task, int thread)
 			}
 			if (!wall_varies(c->s, face, lo, hi)) {
 				/* one value over the whole footprint */
-				texel_dir(f, n, (double)i + 0.5, (double)j + 0.5, d);
+				texel_dir(c, f, n, (double)i + 0.5, (double)j + 0.5, d);
 				if (wall_hit(c, d, uv) == face) {
 					rf__wall_emission(c->s, face, uv, out);
 					continue;
@@ -495,7 +526,7 @@ capture_row(void *arg, size_t task, int thread)
 			for (sa = 0; sa < ne; sa++) {
 				int g;
 
-				texel_dir(f, n, (double)i + ((double)sa + 0.5) / (double)ne,
+				texel_dir(c, f, n, (double)i + ((double)sa + 0.5) / (double)ne,
 				          (double)j + ((double)sb + 0.5) / (double)ne, d);
 				if ((g = wall_hit(c, d, uv)) < 0)
 					continue;
@@ -605,12 +636,14 @@ rf_scene_capture(const rf_scene *s, size_t probe, const struct rf_capture_option
 	memset(&c, 0, sizeof(c));
 	c.s = s;
 	c.probe = &s->probes[probe];
+	for (i = 0; i < 9; i++)
+		c.turn[i] = (float)c.probe->rotation[i];
 	c.o = o;
 	for (i = 0; i < 3; i++)
 		c.origin[i] = c.probe->center[i];
 	rf__scene_probe_shape(c.probe, &pr);
 	c.proxy = rf__proxy_of_probe(&pr);
-	make_frames(c.frames);
+	make_frames(c.frames, c.probe);
 	c.k = calloc(s->nobjects + 1, RF__ORIGIN_STRIDE * sizeof(double));
 	c.visible = calloc(s->nobjects + s->nmeshes + 1, sizeof(*c.visible));
 	c.bounds = calloc(6 * (s->nobjects + s->nmeshes + 1), sizeof(*c.bounds));

@@ -118,6 +118,8 @@ rf__blend_pass_create(struct rf__blend_pass **out, const struct rf_blend *b,
 			return rc;
 		}
 		bp->vector[i] = rf__rgba_levels_simd_usable(&bp->levels[i]);
+		if (i < b->nprobes && b->probes[i].rotated)
+			rf__rgba_levels_turn(&bp->levels[i], b->probes[i].rotation);
 	}
 	bp->batches = calloc((size_t)nthreads * (RF_PROBES_MAX + 1), sizeof(*bp->batches));
 	bp->weights = malloc((size_t)nthreads * (RF_PROBES_MAX + 1) * ncols * sizeof(float));

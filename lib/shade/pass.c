@@ -94,6 +94,10 @@ struct rf_shade {
 	/* The same levels as RGBA vectors: one aligned load a texel, the
 	 * prefilter's fast sampler; the pass spends most of its time here. */
 	struct rf__rgba_levels levels;
+	/* A turned probe's environment is in its box's frame (env_turned):
+	 * every read, the irradiance's too, takes its direction there. */
+	int env_turned;
+	float env_turn[9];
 	enum rf_mapping mapping;
 	float steps;
 	struct rf__pool *pool;
@@ -317,6 +321,15 @@ rf_shade_set_probe(rf_shade *s, const struct rf_probe *probe)
 }
 
 void
+rf__shade_set_env_frame(rf_shade *s, const float rotation[9])
+{
+	s->env_turned = rotation != NULL;
+	if (rotation)
+		memcpy(s->env_turn, rotation, sizeof(s->env_turn));
+	rf__rgba_levels_turn(&s->levels, rotation);
+}
+
+void
 rf__shade_set_unprojected(rf_shade *s, int unprojected)
 {
 	s->unprojected = unprojected;
@@ -357,6 +370,7 @@ rf_shade_set_environment(rf_shade *s, const rf_cubemap *env, enum rf_mapping map
 	s->env = NULL;
 	if ((rc = rf__rgba_levels_from_cube(&s->levels, env)) < 0)
 		return rc;
+	rf__rgba_levels_turn(&s->levels, s->env_turned ? s->env_turn : NULL);
 	s->env = env;
 	s->vector = rf__rgba_levels_simd_usable(&s->levels);
 	/* Projected when the first block needs them, unless the chain's own
@@ -725,6 +739,13 @@ diffuse_light(const rf_shade *s, const float *p, const float albedo[3], float me
 			for (k = 0; k < 3; k++)
 				dir[k] /= l;
 		}
+	}
+	if (s->env_turned) {
+		float local[3];
+
+		rf__turn_in(s->env_turn, dir[0], dir[1], dir[2], local);
+		rf__surface_diffuse(s->shq, local, albedo, metal, e);
+		return;
 	}
 	rf__surface_diffuse(s->shq, dir, albedo, metal, e);
 }

@@ -32,6 +32,9 @@ int rf__shade_set_blend_stages(rf_shade *s, rf_stage *const *stages);
  * (box projection off: the classic lookup), not along D; 0 (the
  * default) along D. */
 void rf__shade_set_unprojected(rf_shade *s, int unprojected);
+/* The environment's frame: a turned probe's rotation (row-major, world =
+ * rotation local), or NULL for the world's. */
+void rf__shade_set_env_frame(rf_shade *s, const float rotation[9]);
 /* The shade mode's stage and the pass in one: rows y..y+nrows of the
  * stage's input to out, each row through the stage and then shaded in
  * place while it is in cache.  The stage's output header must be the

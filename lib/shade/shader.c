@@ -498,6 +498,7 @@ rf_shader_begin_frame(rf_shader *s, const rf_header *in, rf_header **out, char *
 	/* Box projection off: the classic lookup along R for every mode, the
 	 * distances infinite as for a probe without box projection. */
 	rf__shade_set_unprojected(s->pass, prc == 0 && !probe.box_projection);
+	rf__shade_set_env_frame(s->pass, prc == 0 && probe.rotated ? probe.rotation : NULL);
 	rf_shade_set_probe(s->pass, prc == 0 && probe.box_projection ? &probe : NULL);
 	if ((rc = check_frame(s, in, center, err, errlen)) < 0)
 		return rc;
