@@ -41,13 +41,14 @@
 #include "raytraced-mis.h"
 
 enum { SAMPLES, PATTERN, ANIMATE, SAMPLER, ESTIMATOR, MASKING, MIPOFFSET, SEED, FRAMES,
-       FIRST, TOTAL, NPARAMS };
+       FIRST, TOTAL, BASIS, NPARAMS };
 /* the pattern= choices, in sequences.h's order */
 enum { PATTERN_WHITE = SEQUENCE_WHITE, PATTERN_BLUE = SEQUENCE_BLUE,
        PATTERN_DETERMINISTIC = SEQUENCE_LOW_DISCREPANCY };
 enum { ESTIMATOR_EXACT, ESTIMATOR_ORIGINAL };
 enum { MASKING_CORRELATED, MASKING_SEPARABLE };
 enum { SAMPLER_VNDF, SAMPLER_MIS };
+enum { BASIS_HDRP, BASIS_VIEW };
 
 static const struct rf_param params[NPARAMS] = {
 	{ "samples", "rays per pixel", 1, 65536, 64, RF_PARAM_INTEGER, NULL },
@@ -78,6 +79,10 @@ static const struct rf_param params[NPARAMS] = {
 	{ "total", "rays in the whole set the runs share (0: samples=); footprints "
 	  "and the patterns are those of one run of total rays", 0, 16777216, 0,
 	  RF_PARAM_INTEGER, NULL },
+	{ "basis", "the lobe's frame about N, where the pattern's rays are laid: HDRP's, "
+	  "fixed to the world's axes (the write-up's rays), or one whose x axis leans "
+	  "toward V (a scene turned as a whole draws the same rays, turned)", 0, 1, 0,
+	  RF_PARAM_CHOICE, "hdrp|view" },
 };
 
 static const char *const inputs[] = {
@@ -96,7 +101,7 @@ struct raytraced {
 	uint32_t first, total; /* the rays are first .. first + samples - 1 of total */
 	float rays; /* total x frames: how many rays share the lobe */
 	float *ham0, *ham1; /* points first .. of the Hammersley set of total */
-	int pattern, animate, estimator, masking, mipoffset;
+	int pattern, animate, estimator, masking, mipoffset, basis;
 	uint32_t frames; /* frames=: how many the output will be averaged over */
 	int split;       /* frames' rays are blocks of one set (create) */
 	uint32_t r2_step; /* R2 steps the frame's set moves by: the frame, or
@@ -165,6 +170,26 @@ local_frame(const float n[3], float x[3], float y[3])
 	y[0] = b;
 	y[1] = n[1] * n[1] * a - s;
 	y[2] = n[1];
+}
+
+/* A frame about n whose x axis is V's part along the surface: it turns
+ * with the scene.  Where V is along n, any: HDRP's. */
+static inline void
+view_frame(const float n[3], const float v[3], float nv, float x[3], float y[3])
+{
+	float t[3] = { v[0] - nv * n[0], v[1] - nv * n[1], v[2] - nv * n[2] };
+	float len = sqrtf(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+
+	if (!(len > 1e-4f)) {
+		local_frame(n, x, y);
+		return;
+	}
+	x[0] = t[0] / len;
+	x[1] = t[1] / len;
+	x[2] = t[2] / len;
+	y[0] = n[1] * x[2] - n[2] * x[1];
+	y[1] = n[2] * x[0] - n[0] * x[2];
+	y[2] = n[0] * x[1] - n[1] * x[0];
 }
 
 /* What Heitz's sampler (spec 7.3) works out once for a view: the
@@ -337,9 +362,9 @@ footprint_lod(const struct rf_host *host, const float d[3], float omega)
  * the same operations (the same bits; the largest of three magnitudes is
  * the same by max as by comparisons). */
 static void
-footprint_lods(int wide, const struct rf_host *host, uint32_t n, const float *restrict lookup,
-               const float *restrict jac, const float *restrict pdf, float share,
-               float *restrict lod)
+world_lods(int wide, const struct rf_host *host, uint32_t n, const float *restrict lookup,
+           const float *restrict jac, const float *restrict pdf, float share,
+           float *restrict lod)
 {
 	uint32_t i = 0;
 
@@ -352,6 +377,36 @@ footprint_lods(int wide, const struct rf_host *host, uint32_t n, const float *re
 #endif
 	for (; i < n; i++)
 		lod[i] = footprint_lod(host, lookup + 3 * i, jac[i] / (share * pdf[i]));
+}
+
+/* A turned probe's environment is in its box's frame (reflect-stream(5)
+ * PROBE_ROTATION): a texel's size depends on where in its face a
+ * direction falls, so the lookups are taken into that frame first, a
+ * chunk at a time. */
+static void
+footprint_lods(int wide, const struct rf_host *host, uint32_t n, const float *restrict lookup,
+               const float *restrict jac, const float *restrict pdf, float share,
+               float *restrict lod)
+{
+	const float *m = host->probe && host->probe->rotated ? host->probe->rotation : NULL;
+	float local[3 * 64];
+	uint32_t i0, k, c;
+
+	if (!m) {
+		world_lods(wide, host, n, lookup, jac, pdf, share, lod);
+		return;
+	}
+	for (i0 = 0; i0 < n; i0 += c) {
+		c = n - i0 < 64 ? n - i0 : 64;
+		for (k = 0; k < c; k++) {
+			const float *d = lookup + 3 * (i0 + k);
+
+			local[3 * k] = m[0] * d[0] + m[3] * d[1] + m[6] * d[2];
+			local[3 * k + 1] = m[1] * d[0] + m[4] * d[1] + m[7] * d[2];
+			local[3 * k + 2] = m[2] * d[0] + m[5] * d[1] + m[8] * d[2];
+		}
+		world_lods(wide, host, c, local, jac + i0, pdf + i0, share, lod + i0);
+	}
 }
 
 /* The write-up's mipoffset level: pr * clamp(d, 0, 6) for the mirror
@@ -525,7 +580,10 @@ shade_pixel(struct raytraced *rt, const float *in, uint32_t px, uint32_t py, flo
 	lb.fixed_lod = rt->mipoffset ? mipoffset_lod(rt, lb.p, r, pr) : 0.0f;
 	alpha = pr * pr;
 	lb.alpha2 = alpha * alpha;
-	local_frame(lb.n, lb.x, lb.y);
+	if (rt->basis == BASIS_VIEW)
+		view_frame(lb.n, vw, lb.nv, lb.x, lb.y);
+	else
+		local_frame(lb.n, lb.x, lb.y);
 	lb.v[0] = dot3(lb.x, vw);
 	lb.v[1] = dot3(lb.y, vw);
 	lb.v[2] = lb.nv;
@@ -649,6 +707,7 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	rt->estimator = (int)values[ESTIMATOR];
 	rt->masking = (int)values[MASKING];
 	rt->mipoffset = values[MIPOFFSET] != 0.0;
+	rt->basis = (int)values[BASIS];
 	rt->seed = (uint32_t)values[SEED] + host->seed;
 	rt->first = (uint32_t)values[FIRST];
 	rt->total = values[TOTAL] > 0.0 ? (uint32_t)values[TOTAL] : rt->samples;
