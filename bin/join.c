@@ -7,7 +7,7 @@
 static void
 usage(void)
 {
-	fprintf(stderr, "usage: %s [-V] [-f a|f] [-h] [file...]\n", argv0);
+	fprintf(stderr, "usage: %s [-V] " CLI_PROGRESS_USAGE " [-f a|f] [-h] [file...]\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
 
@@ -15,6 +15,7 @@ enum { OPT_HELP = 256 };
 
 static const struct option long_options[] = {
 	{ "help", no_argument, NULL, OPT_HELP },
+	CLI_PROGRESS_OPTION,
 	{ NULL, 0, NULL, 0 },
 };
 
@@ -25,7 +26,8 @@ help(void)
 	       "Puts tiles (frames with REGION, as --region and --tile make them) back\n"
 	       "into their full frames, in any order, from files or standard input\n"
 	       "(-); a frame is written once its tiles cover it.  See reflect-join(1).\n"
-	       "  -f a|f  output format   -h  no output header   -V  versions\n", argv0);
+	       "  -f a|f  output format   -h  no output header   -V  versions\n"
+	       CLI_PROGRESS_HELP, argv0);
 	fshut(stdout, "<stdout>");
 	exit(0);
 }
@@ -222,12 +224,14 @@ main(int argc, char **argv)
 	int c, rc, k;
 
 	cli_init(argc, argv);
-	while ((c = getopt_long(argc, argv, "Vf:h", long_options, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "Vf:hq", long_options, NULL)) != -1) {
 		switch (c) {
 		case 'V': print_version(); break;
 		case 'f': case 'h': cli_io_option(&io, c, optarg); break;
 		case OPT_HELP: help(); break;
-		default: usage();
+		default:
+			if (!cli_progress_option(c))
+				usage();
 		}
 	}
 	wopt.format = io.format;
@@ -235,10 +239,17 @@ main(int argc, char **argv)
 	if ((rc = rf_writer_open(&io.writer, stdout, "<stdout>", &wopt)) < 0)
 		die_status(rc, NULL);
 	cli_guard_stream(io.writer);
+	/* The tiles' files are read whole, one after the other: progress
+	 * counts them. */
+	cli_progress_unit("file");
+	cli_progress_frames(1);
+	cli_progress_frame(optind == argc ? 1 : (size_t)(argc - optind));
 	if (optind == argc)
 		join_input(&io, "-");
-	for (k = optind; k < argc; k++)
+	for (k = optind; k < argc; k++) {
 		join_input(&io, argv[k]);
+		cli_progress_rows((size_t)(k - optind + 1));
+	}
 	for (i = 0; i < ncanvases; i++) {
 		if (!canvases[i].px)
 			continue;

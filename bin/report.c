@@ -10,7 +10,8 @@
 static void
 usage(void)
 {
-	fprintf(stderr, "usage: %s [-V] [-o FILE] [-j N] [--title=TEXT] [--stops=LO,HI] "
+	fprintf(stderr, "usage: %s [-V] " CLI_PROGRESS_USAGE " [-o FILE] [-j N] [--title=TEXT] "
+	        "[--stops=LO,HI] "
 	        "[--caption=NAME=TEXT]... [--time=NAME=NS]... TRUTH NAME=FILE...\n", argv0);
 	exit(EXIT_BAD_INPUT);
 }
@@ -23,6 +24,7 @@ static const struct option long_options[] = {
 	{ "time", required_argument, NULL, OPT_TIME },
 	{ "stops", required_argument, NULL, OPT_STOPS },
 	{ "help", no_argument, NULL, OPT_HELP },
+	CLI_PROGRESS_OPTION,
 	{ NULL, 0, NULL, 0 },
 };
 
@@ -107,7 +109,7 @@ main(int argc, char **argv)
 	times = emalloc((size_t)argc * sizeof(*times));
 	captext = emalloc((size_t)argc * sizeof(*captext));
 	ns = emalloc((size_t)argc * sizeof(*ns));
-	while ((c = getopt_long(argc, argv, "Vo:j:", long_options, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "Vo:j:q", long_options, NULL)) != -1) {
 		switch (c) {
 		case 'V': print_version(); break;
 		case 'o': out = optarg; break;
@@ -125,11 +127,13 @@ main(int argc, char **argv)
 			       "  --title=TEXT  its title   -j N  threads   -V  versions\n"
 			       "  --stops=LO,HI  linear pictures' exposures (default -4,3)\n"
 			       "  --caption=NAME=TEXT  a mode's caption\n"
-			       "  --time=NAME=NS  a mode's time in nanoseconds a pixel\n",
-			       argv0);
+			       "  --time=NAME=NS  a mode's time in nanoseconds a pixel\n"
+			       CLI_PROGRESS_HELP, argv0);
 			fshut(stdout, "<stdout>");
 			return 0;
-		default: usage();
+		default:
+			if (!cli_progress_option(c))
+				usage();
 		}
 	}
 	if (argc - optind < 2)
@@ -144,8 +148,14 @@ main(int argc, char **argv)
 		captext[i] = split("--caption", captions[i]);
 	for (i = 0; i < ntimes; i++)
 		ns[i] = parse_number("time", split("--time", times[i]), 0, INFINITY);
+	/* Each picture is read and scored (FLIP) in one call, seconds for a
+	 * large one: progress counts the truth, the modes and the page. */
+	cli_progress_unit("picture");
+	cli_progress_frames(1);
+	cli_progress_frame((size_t)(argc - optind) + 1);
 	if ((rc = rf_report_create(&r, argv[optind], err, sizeof(err))) < 0)
 		refuse(NULL, rc, err);
+	cli_progress_rows(1);
 	if (stops && (rc = rf_report_stops(r, lo, hi)) < 0)
 		refuse(r, rc, rc == RF_ENOMEM ? "out of memory" : "--stops: refused");
 	for (i = (size_t)optind + 1; i < (size_t)argc; i++) {
@@ -154,6 +164,7 @@ main(int argc, char **argv)
 		*eq = '\0';
 		if ((rc = rf_report_add(r, argv[i], eq + 1, NAN, nthreads, err, sizeof(err))) < 0)
 			refuse(r, rc, err);
+		cli_progress_rows(i - (size_t)optind + 1);
 	}
 	for (i = 0; i < ncaptions; i++) {
 		name_mode(r, "--caption", captions[i]);
@@ -178,6 +189,8 @@ main(int argc, char **argv)
 		die_status(rc, err);
 	if (!o)
 		fshut(stdout, "<stdout>");
+	cli_progress_rows((size_t)(argc - optind) + 1);
+	cli_progress_end();
 	free(captions);
 	free(times);
 	free(captext);

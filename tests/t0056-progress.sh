@@ -5,7 +5,7 @@ test_description='progress on standard error: plain lines with --progress, a lin
 # A line of --progress: percent, where, elapsed and (before the end) ETA.
 # Rows, or the files (import, montage) or steps (compare) of a tool
 # whose run is no rows.
-LINE='^reflect-[a-z]*: +[0-9]+%, (frame [0-9]+(/[0-9]+)?, )?(row|file|step) [0-9]+/[0-9]+, [0-9]+:[0-9][0-9] elapsed(, ETA [0-9]+:[0-9][0-9])?$'
+LINE='^reflect-[a-z]*: +[0-9]+%, (frame [0-9]+(/[0-9]+)?, )?(row|file|step|picture) [0-9]+/[0-9]+, [0-9]+:[0-9][0-9] elapsed(, ETA [0-9]+:[0-9][0-9])?$'
 
 test_expect_success 'setup' '
 	cat >s.scene <<-\EOF &&
@@ -76,6 +76,32 @@ test_expect_success 'import, compare and montage --progress: files and steps, th
 	reflect-compare --progress -q -fa -c N.X,N.Y,N.Z g1.rfl i.rfl >out 2>err &&
 	test ! -s err &&
 	reflect-montage --progress -q -o out.png n=g1.rfl:N.X 2>err &&
+	test ! -s err
+'
+
+# reflect-join reads its tiles' files whole, reflect-report reads and
+# scores each picture in one call: they count files, and pictures and
+# the page.
+test_expect_success 'join and report --progress: files and pictures, the same output' '
+	reflect-gbuffer -x 48 -y 30 --tile=0/2 s.scene >t0.rfl &&
+	reflect-gbuffer -x 48 -y 30 --tile=1/2 s.scene >t1.rfl &&
+	reflect-join -h t1.rfl t0.rfl >plain &&
+	reflect-join -h --progress t1.rfl t0.rfl >out 2>err &&
+	cmp plain out &&
+	! grep -v -E "$LINE" err &&
+	tail -n 1 err >last &&
+	grep -E "^reflect-join: 100%, file 2/2, [0-9]+:[0-9][0-9] elapsed$" last &&
+	reflect-export -c N -o n.png g1.rfl &&
+	reflect-export -c P -o p.png g1.rfl &&
+	reflect-report -o plain.html n.png p=p.png n=n.png &&
+	reflect-report --progress -o out.html n.png p=p.png n=n.png 2>err &&
+	cmp plain.html out.html &&
+	! grep -v -E "$LINE" err &&
+	tail -n 1 err >last &&
+	grep -E "^reflect-report: 100%, picture 4/4, [0-9]+:[0-9][0-9] elapsed$" last &&
+	reflect-join --progress -q t0.rfl t1.rfl >out 2>err &&
+	test ! -s err &&
+	reflect-report --progress -q -o out.html n.png p=p.png 2>err &&
 	test ! -s err
 '
 
