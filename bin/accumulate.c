@@ -9,7 +9,8 @@ usage(void)
 {
 	fprintf(stderr, "usage: %s [-alvV] [-m MODE[:KEY=VALUE...]] [-j THREADS] "
 	        CLI_PROGRESS_USAGE " "
-	        "[--channels=LIST] [--stats] [--reset=KEYS] " CLI_IO_USAGE " [file]\n",
+	        "[--channels=LIST] [--stats] [--reset=KEYS] " CLI_REGION_USAGE " " CLI_IO_USAGE
+	        " [file]\n",
 	        argv0);
 	exit(EXIT_BAD_INPUT);
 }
@@ -19,6 +20,7 @@ static const struct option long_options[] = {
 	{ "channels", required_argument, NULL, 'C' },
 	{ "stats", no_argument, NULL, 'S' },
 	{ "reset", required_argument, NULL, 'R' },
+	CLI_REGION_OPTIONS,
 	{ "help", no_argument, NULL, CLI_OPT_HELP },
 	{ NULL, 0, NULL, 0 },
 };
@@ -128,7 +130,8 @@ static const struct cli_stage_tool tool = {
 	.help = "  -a  the running result after every frame (else one at the end)\n"
 	        "  --channels=LIST  what is combined (default spec.* and R G B)\n"
 	        "  --stats  standard errors as NAME.se channels\n"
-	        "  --reset=KEYS  start afresh when one of these header keys changes\n",
+	        "  --reset=KEYS  start afresh when one of these header keys changes\n"
+	        CLI_REGION_HELP,
 	.usage = usage,
 	.option = option,
 	.start = start,

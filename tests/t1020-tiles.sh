@@ -246,6 +246,34 @@ test_expect_success 'join: frames of an animation, each put together' '
 	! grep -a -q "^REGION=" anim.rfl
 '
 
+# accumulate: frames of raytraced white noise (another draw each
+# frame), accumulated in tiles two ways, given tiles and cutting them
+# itself, and the mean with its standard errors and the ema of the
+# full frames
+test_expect_success 'accumulate: tiles of the frames joined are the accumulated frame' '
+	reflect-gbuffer -x 30 -y 20 -n 3 s.scene | reflect-project |
+		reflect-shade -q --env=room.rfl -m raytraced:samples=2:animate=1:pattern=white \
+		>fr.rfl &&
+	for m in mean ema
+	do
+		reflect-accumulate -h -m $m --stats fr.rfl >acc.raw &&
+		reflect-accumulate -m $m --stats --tile=0/3 fr.rfl >t0.rfl &&
+		reflect-accumulate -m $m --stats --tile=2/3 fr.rfl >t2.rfl &&
+		reflect-accumulate -m $m --stats --region=0,6,30,13 fr.rfl >t1.rfl &&
+		joined jacc t2.rfl t1.rfl t0.rfl &&
+		cmp acc.raw jacc || return 1
+	done &&
+	for t in 0 1
+	do
+		reflect-gbuffer -x 30 -y 20 -n 3 --tile=$t/2 s.scene | reflect-project |
+		reflect-shade -q --env=room.rfl -m raytraced:samples=2:animate=1:pattern=white |
+		reflect-accumulate -m mean >b$t.rfl || return 1
+	done &&
+	reflect-accumulate -h -m mean fr.rfl >acc.raw &&
+	joined jb b1.rfl b0.rfl &&
+	cmp acc.raw jb
+'
+
 test_expect_success 'a stream without REGION reads and writes as before' '
 	reflect-project -fa g.rfl >plain.txt &&
 	! grep -q "^REGION=" plain.txt &&
