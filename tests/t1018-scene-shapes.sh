@@ -70,9 +70,33 @@ test_expect_success 'a turned second probe weighs inside its turned box only' '
 	test_cmp_numbers expect got 0
 '
 
+# Without a room drawn, the first probe's shape is a probe's like any
+# other: a sphere too, wherever 'room off' stands.
+test_expect_success 'a sphere first probe where no room is drawn' '
+	for order in before after
+	do
+		{
+			test $order = after || echo "room off" &&
+			echo "probe center 0 1.5 0 sphere 1.5 proxy infinite" &&
+			echo "camera position 0 1.5 1 target 0 1 0 fov 60" &&
+			echo "sphere center 0 1 0 radius 0.3 roughness 0.2" &&
+			{ test $order = before || echo "room off"; }
+		} >r.scene &&
+		reflect-gbuffer -x 8 -y 6 r.scene >g.rfl &&
+		reflect-info g.rfl >info &&
+		test_grep "PROBE_SHAPE=sphere$" info &&
+		test_grep "PROBE_BOX=-1.5 0 -1.5 1.5 3 1.5$" info &&
+		test_grep "PROBE_PROXY=infinite$" info || return 1
+	done
+'
+
 test_expect_success 'bad shapes: refused at their place' '
 	bad_scene "1:22: the first probe.s box is the scene.s room, whose walls cannot be a sphere: give the first probe a box" <<-\EOF &&
 	probe center 0 1.5 0 sphere 1.5
+	EOF
+	bad_scene "1:22: the first probe.s box is the scene.s room, whose walls cannot be a sphere: .* or draw no room (.room off.)$" <<-\EOF &&
+	probe center 0 1.5 0 sphere 1.5
+	room on
 	EOF
 	bad_scene "2:25: expected a rotation, and this matrix is not orthonormal$" <<-\EOF &&
 	probe box -3 0 -2 3 3 2

@@ -1219,6 +1219,12 @@ rf_scene_parse(rf_scene **sp, const char *text, size_t len, const char *name,
 			break;
 	if (rc == 0)
 		rc = envless_probes(&p);
+	if (rc == 0 && p.room_sphere_line && p.s->room)
+		rc = fail_at(&p, p.room_sphere_line, p.room_sphere_col,
+		             "the first probe's box is the scene's room, whose walls cannot be "
+		             "a sphere: give the first probe a box (turned if need be) and a "
+		             "sphere proxy ('proxy sphere R'), make the sphere a second probe, "
+		             "or draw no room ('room off')");
 	free(p.envless);
 	rf__lexer_destroy(&p.lx);
 	free(p.dir);

@@ -159,11 +159,11 @@ rf__probe_shape_finish(struct parser *p, const struct rf__token *kw, struct rf_s
 				                pr->center[0], pr->center[1], pr->center[2], "XYZ"[i]);
 		}
 	}
-	if (index == 0 && pr->shape == RF_SHAPE_SPHERE)
-		return FAIL_TOK(p, attribute_token(p, "sphere", kw),
-		                "the first probe's box is the scene's room, whose walls cannot "
-		                "be a sphere: give the first probe a box (turned if need be) "
-		                "and a sphere proxy ('proxy sphere R'), or make the sphere a "
-		                "second probe");
+	if (index == 0 && pr->shape == RF_SHAPE_SPHERE) {
+		const struct rf__token *t = attribute_token(p, "sphere", kw);
+
+		p->room_sphere_line = t->line;
+		p->room_sphere_col = t->col;
+	}
 	return 0;
 }

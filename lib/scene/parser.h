@@ -18,6 +18,9 @@ struct parser {
 	const struct rf__token *attrs[ATTRS_MAX];
 	size_t nattrs;
 	size_t camera_line, name_line, room_line, pattern_line;
+	/* where the first probe says 'sphere': refused once the file says
+	 * the room is drawn */
+	size_t room_sphere_line, room_sphere_col;
 	size_t wall_line[RF__FACES];
 	/* the probes that name no env: see envless_probes() */
 	struct envless {
