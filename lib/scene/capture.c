@@ -98,20 +98,6 @@ rf_capture_options_init(struct rf_capture_options *o)
 	o->nthreads = 1;
 }
 
-/* A direction of a turned probe's own frame in the world's. */
-static void
-probe_out(const struct rf_scene_probe *p, double d[3])
-{
-	const double *r = p->rotation;
-	double x = r[0] * d[0] + r[1] * d[1] + r[2] * d[2];
-	double y = r[3] * d[0] + r[4] * d[1] + r[5] * d[2];
-	double z = r[6] * d[0] + r[7] * d[1] + r[8] * d[2];
-
-	d[0] = x;
-	d[1] = y;
-	d[2] = z;
-}
-
 /* The faces of a turned probe look along its box's axes: its cube is in
  * the box's frame, as the shading reads it. */
 static void
@@ -131,9 +117,9 @@ make_frames(struct face_frame *fr, const struct rf_scene_probe *p)
 			fr[f].axis_b[k] = vb[k] - c[k];
 		}
 		if (p->rotated) {
-			probe_out(p, fr[f].major);
-			probe_out(p, fr[f].axis_a);
-			probe_out(p, fr[f].axis_b);
+			rf__mat3_mul(p->rotation, fr[f].major, fr[f].major);
+			rf__mat3_mul(p->rotation, fr[f].axis_a, fr[f].axis_a);
+			rf__mat3_mul(p->rotation, fr[f].axis_b, fr[f].axis_b);
 		}
 	}
 }
@@ -217,7 +203,7 @@ texel_dir(const struct capture *c, enum rf_face f, size_t n, double i, double j,
 	d[1] = df[1] / len;
 	d[2] = df[2] / len;
 	if (c->probe->rotated)
-		probe_out(c->probe, d);
+		rf__mat3_mul(c->probe->rotation, d, d);
 }
 
 /* The mean of ns x ns samples of texel (i, j) of face f, all on wall

@@ -149,9 +149,9 @@ rf__probe_shape_finish(struct parser *p, const struct rf__token *kw, struct rf_s
 			c[i] = 0.5 * (pr->box_min[i] + pr->box_max[i]);
 			d[i] = pr->center[i] - c[i];
 		}
+		rf__mat3_tmul(pr->rotation, d, q);
 		for (i = 0; i < 3; i++) {
-			q[i] = c[i] + pr->rotation[i] * d[0] + pr->rotation[3 + i] * d[1] +
-			       pr->rotation[6 + i] * d[2];
+			q[i] += c[i];
 			if (!(q[i] >= pr->box_min[i] - 1e-9 && q[i] <= pr->box_max[i] + 1e-9))
 				return FAIL_TOK(p, attribute_token(p, "center", kw), "expected the "
 				                "probe's centre inside its turned box, and (%g %g %g) "

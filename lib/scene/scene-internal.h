@@ -141,27 +141,13 @@ struct rf_scene {
 static inline void
 rf__room_dir_in(const rf_scene *s, const double d[3], double out[3])
 {
-	const double *r = s->room_rotation;
-	double x = r[0] * d[0] + r[3] * d[1] + r[6] * d[2];
-	double y = r[1] * d[0] + r[4] * d[1] + r[7] * d[2];
-	double z = r[2] * d[0] + r[5] * d[1] + r[8] * d[2];
-
-	out[0] = x;
-	out[1] = y;
-	out[2] = z;
+	rf__mat3_tmul(s->room_rotation, d, out);
 }
 
 static inline void
 rf__room_dir_out(const rf_scene *s, const double d[3], double out[3])
 {
-	const double *r = s->room_rotation;
-	double x = r[0] * d[0] + r[1] * d[1] + r[2] * d[2];
-	double y = r[3] * d[0] + r[4] * d[1] + r[5] * d[2];
-	double z = r[6] * d[0] + r[7] * d[1] + r[8] * d[2];
-
-	out[0] = x;
-	out[1] = y;
-	out[2] = z;
+	rf__mat3_mul(s->room_rotation, d, out);
 }
 
 static inline void

@@ -39,6 +39,32 @@ rf__mat4_mul(const double a[16], const double b[16], double out[16])
 		out[i] = r[i];
 }
 
+/* out = m d and out = m^T d for a row-major 3 x 3 rotation (out may be
+ * d): a turned box's frame out to the world and into it. */
+static inline void
+rf__mat3_mul(const double m[9], const double d[3], double out[3])
+{
+	double x = m[0] * d[0] + m[1] * d[1] + m[2] * d[2];
+	double y = m[3] * d[0] + m[4] * d[1] + m[5] * d[2];
+	double z = m[6] * d[0] + m[7] * d[1] + m[8] * d[2];
+
+	out[0] = x;
+	out[1] = y;
+	out[2] = z;
+}
+
+static inline void
+rf__mat3_tmul(const double m[9], const double d[3], double out[3])
+{
+	double x = m[0] * d[0] + m[3] * d[1] + m[6] * d[2];
+	double y = m[1] * d[0] + m[4] * d[1] + m[7] * d[2];
+	double z = m[2] * d[0] + m[5] * d[1] + m[8] * d[2];
+
+	out[0] = x;
+	out[1] = y;
+	out[2] = z;
+}
+
 /* Normalises v in place; returns its former length (0 leaves v alone). */
 static inline double
 rf__normalize(double v[3])
