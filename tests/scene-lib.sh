@@ -59,3 +59,22 @@ bad_scene () {
 	test_grep "^reflect-gbuffer: bad.scene:$1" err &&
 	test ! -s out
 }
+
+# write_wall_image FILE: a 2x2 float image, texels (1 2 3) (4 5 6) on the
+# top row and (7 8 9) (10 11 12) below, for a wall to show.
+write_wall_image () {
+	cat >wall-image.txt <<-\EOF_IMG &&
+	#?REFLECT1
+	NCOLS=2
+	NROWS=2
+	NCOMP=3
+	CHANNELS=R G B
+	FORMAT=ascii
+
+	1 2 3
+	4 5 6
+	7 8 9
+	10 11 12
+	EOF_IMG
+	reflect-export -o "$1" wall-image.txt
+}

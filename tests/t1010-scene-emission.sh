@@ -91,20 +91,7 @@ test_expect_success 'a colour for the room, a colour for an object' '
 # texel centres at u = -0.5, 0.5 and v = 1.5 (top row), 0.5; at a centre
 # the bilinear lookup is that texel, times the gain.
 test_expect_success 'an image on a wall, in metres, with its gain' '
-	cat >img.txt <<-\EOF &&
-	#?REFLECT1
-	NCOLS=2
-	NROWS=2
-	NCOMP=3
-	CHANNELS=R G B
-	FORMAT=ascii
-
-	1 2 3
-	4 5 6
-	7 8 9
-	10 11 12
-	EOF
-	reflect-export -o wall.exr img.txt &&
+	write_wall_image wall.exr &&
 	cat >image.scene <<-\EOF &&
 	probe box -5 0 -5 5 4 5 center 0 2 0
 	wall -z image wall.exr size 2 2 origin -1 0 gain 2

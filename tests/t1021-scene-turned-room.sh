@@ -1,6 +1,7 @@
 #!/bin/sh
 test_description='a turned room: the G-buffer, the trace and the capture turn with it'
 . "$srcdir/tests/lib.sh"
+. "$srcdir/tests/scene-lib.sh"
 
 imgdump="$builddir/tests/imgdump"
 
@@ -91,20 +92,7 @@ gbuffer_turned () {
 }
 
 test_expect_success 'setup: a room and the room turned by 30 degrees about an oblique axis' '
-	cat >img.txt <<-\EOF &&
-	#?REFLECT1
-	NCOLS=2
-	NROWS=2
-	NCOMP=3
-	CHANNELS=R G B
-	FORMAT=ascii
-
-	1 2 3
-	4 5 6
-	7 8 9
-	10 11 12
-	EOF
-	reflect-export -o wall.exr img.txt &&
+	write_wall_image wall.exr &&
 	cat >a.scene <<-\EOF &&
 	probe center 0.4123 1.3871 -0.2937 box -3 0 -2 3 3 2 blend 0.5
 	pattern cell 0.5 line-width 0.05 base 0.42 checker 0.18 line 3 line-white 1
