@@ -209,12 +209,13 @@ log_map(const double c[3], const double t1[3], const double t2[3], const float u
 }
 
 /* The direction at in-plane angle a from d (toward par) and across
- * angle b (toward across), as the table measures them. */
+ * angle b (toward across), as the table measures them, given cos a,
+ * sin a and tan b. */
 static void
-lobe_direction(const double d[3], const double par[3], const double across[3], double a,
-               double b, float out[3])
+lobe_direction_trig(const double d[3], const double par[3], const double across[3],
+                    double ca, double sa, double tb, float out[3])
 {
-	double ca = cos(a), sa = sin(a), tb = tan(b), r[3];
+	double r[3];
 	unsigned k;
 
 	for (k = 0; k < 3; k++)
@@ -222,6 +223,13 @@ lobe_direction(const double d[3], const double par[3], const double across[3], d
 	unit(r);
 	for (k = 0; k < 3; k++)
 		out[k] = (float)r[k];
+}
+
+static void
+lobe_direction(const double d[3], const double par[3], const double across[3], double a,
+               double b, float out[3])
+{
+	lobe_direction_trig(d, par, across, cos(a), sin(a), tan(b), out);
 }
 
 /* Just above the surface: a tap no lower than this (a cosine) reads. */
@@ -296,15 +304,29 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 	}
 	/* The footprint's centre and width points, at the widths and at
 	 * half of them, taken through the box. */
-	lobe_direction(d, par, y, 0.0, 0.0, dirs);
-	lobe_direction(d, par, y, e[2], 0.0, dirs + 3);
-	lobe_direction(d, par, y, -e[1], 0.0, dirs + 6);
-	lobe_direction(d, par, y, 0.0, e[3], dirs + 9);
-	lobe_direction(d, par, y, 0.0, -e[3], dirs + 12);
-	lobe_direction(d, par, y, 0.5 * e[2], 0.0, dirs + 15);
-	lobe_direction(d, par, y, -0.5 * e[1], 0.0, dirs + 18);
-	lobe_direction(d, par, y, 0.0, 0.5 * e[3], dirs + 21);
-	lobe_direction(d, par, y, 0.0, -0.5 * e[3], dirs + 24);
+	{
+		/* Each ray turns one way only: of its cos, sin and tan, two are
+		 * those of 0 (1, 0, 0 exactly), and only four angles each way
+		 * are left to take; the bytes are those of lobe_direction. */
+		const double in_plane[4] = { e[2], -e[1], 0.5 * e[2], -0.5 * e[1] };
+		const double across[4] = { e[3], -e[3], 0.5 * e[3], -0.5 * e[3] };
+		double cos_in[4], sin_in[4], tan_across[4];
+
+		for (i = 0; i < 4; i++) {
+			cos_in[i] = cos(in_plane[i]);
+			sin_in[i] = sin(in_plane[i]);
+			tan_across[i] = tan(across[i]);
+		}
+		lobe_direction_trig(d, par, y, 1.0, 0.0, 0.0, dirs);
+		lobe_direction_trig(d, par, y, cos_in[0], sin_in[0], 0.0, dirs + 3);
+		lobe_direction_trig(d, par, y, cos_in[1], sin_in[1], 0.0, dirs + 6);
+		lobe_direction_trig(d, par, y, 1.0, 0.0, tan_across[0], dirs + 9);
+		lobe_direction_trig(d, par, y, 1.0, 0.0, tan_across[1], dirs + 12);
+		lobe_direction_trig(d, par, y, cos_in[2], sin_in[2], 0.0, dirs + 15);
+		lobe_direction_trig(d, par, y, cos_in[3], sin_in[3], 0.0, dirs + 18);
+		lobe_direction_trig(d, par, y, 1.0, 0.0, tan_across[2], dirs + 21);
+		lobe_direction_trig(d, par, y, 1.0, 0.0, tan_across[3], dirs + 24);
+	}
 	if (host->project_rays) {
 		host->project_rays(host->ctx, RAYS, pf, dirs, look, dist, jac);
 	} else {
