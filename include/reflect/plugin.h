@@ -154,7 +154,11 @@ enum rf_plugin_kind {
  * frame), each row whole and planar, for vector code: the row of guide
  * g is band[k] + g width, then the rows of the span.nvalues values;
  * span.in is band[radius].  It writes span.out planar too: value v of
- * pixel span.x + i at out[v npix + i].  Its outputs list is empty. */
+ * pixel span.x + i at out[v npix + i].  Its outputs name no channel
+ * but rows of its own a pixel, state a pass hands the next: NaN into
+ * the first pass, written by every pass after the values (output k at
+ * out[(nvalues + k) npix + i], in the band after the values' rows),
+ * never written to the stream. */
 #define RF_FILTER_PASSES_MAX 16
 #define RF_FILTER_RADIUS_MAX 1024
 

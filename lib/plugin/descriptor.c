@@ -305,11 +305,10 @@ check_outputs(const struct rf_plugin *p, const char *path, char *err, size_t err
 		return 0;
 	}
 	if (p->kind == RF_KIND_FILTER) {
-		if (p->abi_minor < 1 || p->outputs[0]) {
-			rf__format(err, errlen, "plugin '%s': a filter mode (plugin ABI 1.1) "
-			           "writes the values it filters, not channels by name: its "
-			           "outputs list must be empty (reflect-plugin(7)); fix it and "
-			           "rebuild the plugin", path);
+		/* its outputs name state carried from pass to pass, not channels */
+		if (p->abi_minor < 1) {
+			rf__format(err, errlen, "plugin '%s': a filter mode needs plugin ABI "
+			           "1.1 (reflect-plugin(7)); rebuild the plugin", path);
 			return RF_EPLUGIN;
 		}
 		return 0;

@@ -52,6 +52,10 @@ struct rf_filter {
 	struct rf__pool *pool;
 	char *channels;
 	size_t ninputs, ng, nv; /* required inputs; guides with the optional */
+	/* The mode's own rows a pixel (its outputs), after the values in
+	 * every level: state a pass hands the next (a variance the filter
+	 * carries), NaN into the first pass, never written out. */
+	size_t ns;
 	int guide_col[RF_CHANNELS_MAX];
 	/* The guides' rules: their directions (N, Ng, V) are made unit as
 	 * they are read, so that a mode's dot products hold whatever their
@@ -133,6 +137,7 @@ rf_filter_create(rf_filter **fp, const struct rf_plugin *p, const double *values
 	f->nthreads = nthreads;
 	f->ninputs = list_length(p->inputs);
 	f->ng = f->ninputs + list_length(rf_plugin_optional_inputs(p));
+	f->ns = list_length(p->outputs);
 	if ((o && o->channels && !(f->channels = strdup(o->channels))) ||
 	    !(f->workers = calloc((size_t)nthreads, sizeof(*f->workers))) ||
 	    rf__pool_create(&f->pool, nthreads) < 0) {
@@ -205,7 +210,7 @@ rf_filter_begin_frame(rf_filter *f, const rf_header *in, rf_header **out, char *
 	f->ncols = rf_header_ncols(in);
 	f->nrows = rf_header_nrows(in);
 	f->ncomp = rf_header_nchannels(in);
-	stride = f->ncols * (f->ng + f->nv);
+	stride = f->ncols * (f->ng + f->nv + f->ns);
 	for (p = 0; p < f->npasses; p++)
 		rsum += f->radius[p];
 	/* Rows a step reads and writes: enough for the threads to share and
@@ -249,7 +254,7 @@ level_row(const rf_filter *f, uint32_t p, size_t y)
 {
 	const struct level *l = &f->level[p];
 
-	return l->rows + (y % l->cap) * f->ncols * (f->ng + f->nv);
+	return l->rows + (y % l->cap) * f->ncols * (f->ng + f->nv + f->ns);
 }
 
 static float *
@@ -338,7 +343,7 @@ pass_row(void *arg, size_t task, int thread)
 	span.height = (uint32_t)f->nrows;
 	span.frame = (uint32_t)(f->frames - 1);
 	span.in = src;
-	span.out = dst + f->ng * f->ncols; /* planar values, as the level's */
+	span.out = dst + f->ng * f->ncols; /* planar values, then the mode's state */
 	span.nvalues = (uint32_t)f->nv;
 	span.band = w->band;
 	span.radius = r;
@@ -431,6 +436,8 @@ take_rows(rf_filter *f, size_t y, size_t n)
 				g[(f->ng + i) * w + x] = v;
 			}
 		}
+		for (x = 0; x < f->ns * w; x++)
+			g[(f->ng + f->nv) * w + x] = NAN;
 		unit_guides(f, g);
 	}
 	return 0;
