@@ -69,7 +69,8 @@ NAME(lanes)(const float *row, size_t w, size_t f, long x)
  * target. */
 LANES_ATTR static void
 NAME(taps)(const struct atrous *a, const struct rf_span *span, long x, const float *lp,
-           uint32_t v0, uint32_t v1, float *wsum_out, float *vsum_out)
+           const float *den, const float *vin, uint32_t v0, uint32_t v1, float *wsum_out,
+           float *vsum_out, float *varsum_out)
 {
 	static const float h[5] = { 1.0f / 16, 1.0f / 4, 3.0f / 8, 1.0f / 4, 1.0f / 16 };
 	const VI magnitude = (VI)NAME(v_splat)(0.0f) | 0x7FFFFFFF;
@@ -78,7 +79,7 @@ NAME(taps)(const struct atrous *a, const struct rf_span *span, long x, const flo
 	const float *c = span->band[span->radius];
 	const VF pr = NAME(lanes)(c, w, ROUGH, x), po = NAME(lanes)(c, w, OBJID, x);
 	const VF inv_r = a->inv_rough / NAME(v_select)(pr > 0.05f, pr, NAME(v_splat)(0.05f));
-	VF pn[3], pp[3], plp, wsum = NAME(v_splat)(0.0f), wts[25];
+	VF pn[3], pp[3], plp, wsum = NAME(v_splat)(0.0f), wts[25], lqs[25], vqs[25];
 	const float *tap_row[25];
 	long tap_x[25];
 	int tap_inside[25], ntaps = 0, centre = -1, t;
@@ -117,12 +118,21 @@ NAME(taps)(const struct atrous *a, const struct rf_span *span, long x, const flo
 			e = NAME(v_select)(dist2 > 0.0f, plane / NAME(v_sqrt)(dist2) * a->inv_plane,
 			              NAME(v_splat)(0.0f));
 			e += (VF)((VI)(LD(ROUGH) - pr) & magnitude) * inv_r;
-			if (a->inv_color > 0.0f) {
-				VF lq = NAME(v_splat)(0.0f), mean, diff;
+			if (a->inv_color > 0.0f || a->variance) {
+				VF lq = NAME(v_splat)(0.0f);
 
 				for (v = 0; v < nv; v++)
 					lq += LD(NGUIDES + v);
 				lq /= (float)nv;
+				lqs[ntaps] = lq;
+				if (a->variance)
+					vqs[ntaps] = span->pass ? LD(NGUIDES + nv)
+					                        : (LD(SER) * LD(SER) + LD(SEG) * LD(SEG) +
+					                           LD(SEB) * LD(SEB)) / 3.0f;
+			}
+			if (a->inv_color > 0.0f) {
+				VF lq = lqs[ntaps], mean, diff;
+
 				mean = 0.5f * ((VF)((VI)plp & magnitude) + (VF)((VI)lq & magnitude));
 				diff = (VF)((VI)(plp - lq) & magnitude);
 				e += NAME(v_select)(mean > 0.0f, diff * a->inv_color / mean, NAME(v_splat)(0.0f));
@@ -139,6 +149,41 @@ NAME(taps)(const struct atrous *a, const struct rf_span *span, long x, const flo
 			tap_inside[ntaps++] = inside;
 #undef LD
 		}
+	}
+	if (a->variance) {
+		/* SVGF's luminance stop, |l_p - l_q| / (luminance sqrt(var_p) + eps),
+		 * var_p through a 3x3 blur (den, from run()); where no variance
+		 * came (one frame, or none accumulated), the spread of the
+		 * luminance over these taps under the G-buffer's weights, as
+		 * SVGF does before it has frames. */
+		const VF inf = NAME(v_splat)(INFINITY);
+		VF pden, pvar, m = NAME(v_splat)(0.0f), s2 = NAME(v_splat)(0.0f), spread, vs;
+
+		memcpy(&pden, den, sizeof(pden));
+		memcpy(&pvar, vin, sizeof(pvar));
+		for (t = 0; t < ntaps; t++)
+			m += wts[t] * lqs[t];
+		m /= wsum;
+		for (t = 0; t < ntaps; t++) {
+			VF d = lqs[t] - m;
+
+			s2 += wts[t] * (d * d);
+		}
+		spread = s2 / wsum;
+		pden = NAME(v_select)(pden == pden, pden,
+		                      a->sigma_l * NAME(v_sqrt)(spread) + 1e-10f);
+		vs = NAME(v_select)(pvar < inf, pvar, spread);
+		wsum = NAME(v_splat)(0.0f);
+		spread = NAME(v_splat)(0.0f);
+		for (t = 0; t < ntaps; t++) {
+			VF diff = (VF)((VI)(plp - lqs[t]) & magnitude);
+			VF vq = NAME(v_select)(vqs[t] < inf, vqs[t], vs);
+
+			wts[t] *= NAME(v_exp_neg)(diff / pden);
+			wsum += wts[t];
+			spread += (wts[t] * wts[t]) * vq;
+		}
+		memcpy(varsum_out, &spread, sizeof(spread));
 	}
 	memcpy(wsum_out, &wsum, sizeof(wsum));
 	for (v = v0; v < v1; v++) {

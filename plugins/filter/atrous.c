@@ -15,8 +15,17 @@
  *   - roughness: exp(-|r_p - r_q| / (roughness max(r_p, 0.05)));
  *   - colour, when color > 0: exp(-|l_p - l_q| / (color (l_p + l_q) / 2)),
  *     l the values' mean: box corners and probe seams are edges that no
- *     G-buffer channel shows.
- * The weights multiply into one exponential a tap.
+ *     G-buffer channel shows;
+ *   - luminance, with variance=auto (SVGF's): exp(-|l_p - l_q| /
+ *     (luminance sqrt(g3x3(var_p)) + 1e-10)), var_p the variance of l_p:
+ *     in the first pass from the standard errors reflect-accumulate
+ *     --stats writes, else the spread of l over the pass's taps under
+ *     the weights above; each pass filters it along (sum w^2 var_q /
+ *     (sum w)^2) and hands it to the next in the host's carried row, so
+ *     the stop tightens as the noise goes.  A step the noise cannot
+ *     make is an edge, whatever the G-buffer says.
+ * The weights multiply into one exponential a tap (the luminance stop
+ * after the others: the spread it needs is taken under them).
  *
  * The radius follows the lobe: the reflection is itself blurred, on the
  * surface, over about 2 alpha hit.dist d / (d + hit.dist) (the lobe's
@@ -39,7 +48,7 @@
 
 #include "reflect/plugin.h"
 
-enum { PASSES, NORMAL, PLANE, ROUGHNESS, COLOR, LOBE, NPARAMS };
+enum { PASSES, NORMAL, PLANE, ROUGHNESS, COLOR, LOBE, VARIANCE, LUMINANCE, NPARAMS };
 
 static const struct rf_param params[NPARAMS] = {
 	{ "passes", "passes, the tap spacing doubling each (radius 2^(passes+1) - 2)",
@@ -54,21 +63,30 @@ static const struct rf_param params[NPARAMS] = {
 	  0, 0, NULL },
 	{ "lobe", "the reach allowed, in widths of the reflection's own blur; 0: no limit", 0, 100, 0.5,
 	  0, NULL },
+	{ "variance", "stop at luminance steps larger than the noise's spread (off: the "
+	  "G-buffer's stops alone)", 0, 1, 1, RF_PARAM_CHOICE, "off|auto" },
+	{ "luminance", "the luminance step, in standard deviations of the noise, that weighs "
+	  "1/e", 0.01, 1000, 8, 0, NULL },
 };
 
 /* Guides: the inputs, then the optional inputs. */
 static const char *const inputs[] = { "N.X", "N.Y", "N.Z", "P.X", "P.Y", "P.Z",
                                       "roughness", "objid", NULL };
-static const char *const optional_inputs[] = { "mask", "hit.dist", "depth", NULL };
-static const char *const none[] = { NULL };
-enum { NX, NY, NZ, PX, PY, PZ, ROUGH, OBJID, MASK, HIT, DEPTH, NGUIDES };
+static const char *const optional_inputs[] = { "mask", "hit.dist", "depth", "spec.R.se",
+                                               "spec.G.se", "spec.B.se", NULL };
+enum { NX, NY, NZ, PX, PY, PZ, ROUGH, OBJID, MASK, HIT, DEPTH, SER, SEG, SEB, NGUIDES };
+/* State carried from pass to pass, after the values: the variance of
+ * the luminance (the values' mean) as the pass left it. */
+static const char *const carried[] = { "variance", NULL };
 
 struct atrous {
 	uint32_t passes, normal;
-	float inv_plane, inv_rough, inv_color, lobe;
+	float inv_plane, inv_rough, inv_color, lobe, sigma_l;
+	int variance;
 	float *scratch; /* run()'s scratch, ncap floats (grown, not per span) */
 	size_t ncap;
 	int wide; /* eight lanes (AVX2) */
+	const struct rf_host *host; /* for fail() */
 };
 
 /* Guide f of pixel x of a planar band row. */
@@ -233,8 +251,104 @@ reserve(struct atrous *a, size_t floats)
 	return 0;
 }
 
+/* The variance of pixel x's luminance as the pass gets it: from the
+ * first pass's standard errors (spec.R.se G B, from reflect-accumulate
+ * --stats; NaN without them, +inf when not known yet), else the state
+ * the pass before left. */
+static inline float
+in_var(const struct rf_span *span, const float *row, size_t x)
+{
+	const size_t w = span->width;
+	float r, g, b;
+
+	if (span->pass)
+		return AT(row, NGUIDES + span->nvalues, x);
+	r = AT(row, SER, x);
+	g = AT(row, SEG, x);
+	b = AT(row, SEB, x);
+	/* the reflection's channels move together: the mean of their
+	 * variances, not a third of it */
+	return (r * r + g * g + b * b) / 3.0f;
+}
+
+/* The variance at x through a 3x3 binomial blur over the same object
+ * (SVGF's prefilter, so that one noisy estimate does not stop the
+ * blur); NaN where the pixel's own is not finite. */
+static float
+var_3x3(const struct rf_span *span, const float *vin, size_t x)
+{
+	static const float k[3] = { 0.25f, 0.5f, 0.25f };
+	const size_t w = span->width;
+	const float *c = span->band[span->radius];
+	float sum = 0.0f, wsum = 0.0f;
+	int dx, dy;
+
+	if (!(vin[x] < INFINITY))
+		return NAN;
+	for (dy = -1; dy <= 1; dy++) {
+		const float *row = span->band[(long)span->radius + dy];
+
+		if (!row)
+			continue;
+		for (dx = -1; dx <= 1; dx++) {
+			long qx = (long)x + dx;
+			float v;
+
+			if (qx < 0 || qx >= (long)w || AT(row, OBJID, qx) != AT(c, OBJID, x) ||
+			    AT(row, MASK, qx) < 0.5f)
+				continue;
+			v = dy ? in_var(span, row, (size_t)qx) : vin[qx];
+			if (!(v < INFINITY))
+				continue;
+			sum += k[dx + 1] * k[dy + 1] * v;
+			wsum += k[dx + 1] * k[dy + 1];
+		}
+	}
+	return sum / wsum;
+}
+
+/* A standard error that is NaN (in a stream that has the channel: a
+ * neighbour in the row is not NaN) or negative: the variance it gives
+ * would be silently wrong, so the run stops. */
+static int
+check_se(const struct atrous *a, const struct rf_span *span, const float *row)
+{
+	static const char *const names[3] = { "spec.R.se", "spec.G.se", "spec.B.se" };
+	const size_t w = span->width;
+	char msg[200];
+	size_t x;
+	int c;
+
+	for (c = 0; c < 3; c++) {
+		const float *se = row + (size_t)(SER + c) * w;
+		size_t nan = w, present = 0;
+
+		for (x = 0; x < w; x++) {
+			if (se[x] != se[x]) {
+				nan = nan < w ? nan : x;
+				continue;
+			}
+			present = 1;
+			if (se[x] < 0.0f) {
+				nan = x;
+				break;
+			}
+		}
+		if (!present || nan == w)
+			continue;
+		snprintf(msg, sizeof(msg), "row %u, pixel %zu: channel '%s' is %g, not a "
+		         "standard error (0 or more, inf when not known); give it as "
+		         "reflect-accumulate --stats writes it, or drop it", span->y + 1,
+		         nan + 1, names[c], (double)se[nan]);
+		if (a->host->fail)
+			a->host->fail(a->host->ctx, msg);
+		return -1;
+	}
+	return 0;
+}
+
 static void group(const struct atrous *a, const struct rf_span *span, uint32_t i,
-                  const float *act, const float *lp);
+                  const float *act, const float *lp, const float *den, const float *vin);
 
 static void
 run(void *state, const struct rf_span *span)
@@ -243,29 +357,46 @@ run(void *state, const struct rf_span *span)
 	const uint32_t nv = span->nvalues, n = span->npix;
 	const size_t w = span->width;
 	const float *row = span->band[span->radius];
+	float *vout = span->out + (size_t)nv * n;
 	unsigned char *ok;
-	float *act, *lp;
+	float *act, *lp, *den, *vin;
 	uint32_t i, v;
 
 	/* the values as they are, for the pixels the pass leaves alone */
 	for (v = 0; v < nv; v++)
 		memcpy(span->out + (size_t)v * n, row + (NGUIDES + v) * w + span->x,
 		       n * sizeof(float));
-	if (reserve(a, 2 * ((size_t)w + 8) + (w + 3) / sizeof(float) + 1) < 0)
+	for (i = 0; i < n; i++)
+		vout[i] = NAN;
+	if (reserve(a, 4 * ((size_t)w + 8) + (w + 3) / sizeof(float) + 1) < 0)
 		return; /* no room to filter: the values as they are */
 	act = a->scratch;
 	lp = act + w + 8;
-	ok = (unsigned char *)(lp + w + 8);
+	den = lp + w + 8;
+	vin = den + w + 8;
+	ok = (unsigned char *)(vin + w + 8);
 	usable_row(row, w, ok);
 	/* Which pixels this pass touches: reflective, with geometry, and (the
 	 * lobe) whose reach stays within the reflection's own blur. */
 	for (i = 0; i < w + 8; i++)
-		act[i] = lp[i] = 0.0f;
+		act[i] = lp[i] = den[i] = vin[i] = 0.0f;
 	for (i = span->x; i < span->x + n; i++)
 		act[i] = ok[i];
 	if (a->lobe > 0.0f)
 		lobe_limit(a, span, act);
-	if (a->inv_color > 0.0f) /* the colour weight's only */
+	if (a->variance) {
+		if (!span->pass && check_se(a, span, row) < 0)
+			return;
+		/* the whole row: the 3x3 blur reads the neighbours' */
+		for (i = 0; i < w; i++)
+			vin[i] = in_var(span, row, i);
+		for (i = span->x; i < span->x + n; i++) {
+			vout[i - span->x] = vin[i];
+			if (act[i] != 0.0f)
+				den[i] = a->sigma_l * sqrtf(var_3x3(span, vin, i)) + 1e-10f;
+		}
+	}
+	if (a->inv_color > 0.0f || a->variance) /* the luminance weights' only */
 		for (i = span->x; i < span->x + n; i++) {
 			if (act[i] == 0.0f)
 				continue;
@@ -274,18 +405,18 @@ run(void *state, const struct rf_span *span)
 			lp[i] /= (float)nv;
 		}
 	for (i = span->x & ~7u; i < span->x + n; i += 8)
-		group(a, span, i, act, lp);
+		group(a, span, i, act, lp, den, vin);
 }
 
 /* Pixels i .. i + 7 (two groups of four, or one of eight). */
 static void
 group(const struct atrous *a, const struct rf_span *span, uint32_t i, const float *act,
-      const float *lp)
+      const float *lp, const float *den, const float *vin)
 {
 	const uint32_t nv = span->nvalues, n = span->npix;
 	const size_t w = span->width;
 	const float *row = span->band[span->radius];
-	float wsum[8], vsum[64][8];
+	float wsum[8], vsum[64][8], varsum[8];
 	uint32_t v0, v, k, half;
 	int any = 0;
 
@@ -299,15 +430,16 @@ group(const struct atrous *a, const struct rf_span *span, uint32_t i, const floa
 
 #if defined(RF__LANES_WIDE)
 		if (a->wide) {
-			taps_8(a, span, (long)i, lp + i, v0, v1, wsum, vsum[0]);
+			taps_8(a, span, (long)i, lp + i, den + i, vin + i, v0, v1, wsum, vsum[0],
+			       varsum);
 		} else
 #endif
 		{
 			float s4[64][4];
 
 			for (half = 0; half < 8; half += 4) {
-				taps_4(a, span, (long)(i + half), lp + i + half, v0, v1, wsum + half,
-				       s4[0]);
+				taps_4(a, span, (long)(i + half), lp + i + half, den + i + half,
+				       vin + i + half, v0, v1, wsum + half, s4[0], varsum + half);
 				for (v = v0; v < v1; v++)
 					memcpy(vsum[v - v0] + half, s4[v - v0], sizeof(s4[0]));
 			}
@@ -320,6 +452,10 @@ group(const struct atrous *a, const struct rf_span *span, uint32_t i, const floa
 			for (v = v0; v < v1; v++)
 				span->out[(size_t)v * n + (x - span->x)] =
 					AT(row, NGUIDES + v, x) + vsum[v - v0][k] / wsum[k];
+			/* SVGF's: the weights squared carry the variance */
+			if (a->variance)
+				span->out[(size_t)nv * n + (x - span->x)] =
+					varsum[k] / (wsum[k] * wsum[k]);
 		}
 	}
 }
@@ -347,6 +483,9 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	a->inv_rough = (float)(1.0 / values[ROUGHNESS]);
 	a->inv_color = values[COLOR] > 0.0 ? (float)(1.0 / values[COLOR]) : 0.0f;
 	a->lobe = (float)values[LOBE];
+	a->variance = values[VARIANCE] > 0.5;
+	a->sigma_l = (float)values[LUMINANCE];
+	a->host = host;
 	a->wide = rf__lanes_wide();
 	for (i = 0; i < a->passes; i++)
 		radius[i] = 2u << i;
@@ -383,7 +522,7 @@ static const struct rf_plugin descriptor = {
 	.nparams = NPARAMS,
 	.params = params,
 	.inputs = inputs,
-	.outputs = none,
+	.outputs = carried,
 	.optional_inputs = optional_inputs,
 	.create = create,
 	.run = run,
