@@ -46,7 +46,7 @@ do
 		test_line_count 3 out &&
 		test_grep "^'$tool' (reflect) [0-9][0-9.]*$" out &&
 		test_grep "^libreflect [0-9][0-9.]*$" out &&
-		test_grep "^plugin ABI 1\.2$" out
+		test_grep "^plugin ABI 1\.3$" out
 	'
 done
 

@@ -24,7 +24,7 @@ test_expect_success 'setup: versions and a G-buffer' '
 	sed -n "s/^reflect-project (reflect) //p" version >release &&
 	sed -n "s/^plugin ABI //p" version >abi &&
 	test_line_count 1 release &&
-	test "$(cat abi)" = 1.2 &&
+	test "$(cat abi)" = 1.3 &&
 	cat >gbuf <<-\EOF
 	#?REFLECT1
 	NCOLS=1
@@ -54,17 +54,17 @@ test_expect_success 'a good plugin loads both ways (the harness works)' '
 
 test_expect_success 'major version 2.0: names both versions, rebuild or remove' '
 	rel=$(cat release) &&
-	refused bad_major "built for plugin ABI 2\.0, but this reflect ($rel) supports ABI 1\.2; rebuild it against this reflect.s <reflect/plugin\.h>, or remove it"
+	refused bad_major "built for plugin ABI 2\.0, but this reflect ($rel) supports ABI 1\.3; rebuild it against this reflect.s <reflect/plugin\.h>, or remove it"
 '
 
 test_expect_success 'newer minor 1.99: names both versions, upgrade or rebuild' '
 	rel=$(cat release) &&
-	refused bad_minor "built for plugin ABI 1\.99, newer than the ABI 1\.2 of this reflect ($rel); upgrade reflect, or rebuild the plugin against this reflect.s <reflect/plugin\.h>"
+	refused bad_minor "built for plugin ABI 1\.99, newer than the ABI 1\.3 of this reflect ($rel); upgrade reflect, or rebuild the plugin against this reflect.s <reflect/plugin\.h>"
 '
 
 test_expect_success 'descriptor smaller than its ABI says: sizes and versions' '
 	rel=$(cat release) &&
-	refused bad_size "built for plugin ABI 1\.0, its descriptor is 20 bytes, less than the 120 bytes of that ABI (this reflect ($rel) supports ABI 1\.2); it was built with a wrong header: set size to sizeof(struct rf_plugin) from this reflect.s <reflect/plugin\.h> and rebuild it, or remove it"
+	refused bad_size "built for plugin ABI 1\.0, its descriptor is 20 bytes, less than the 120 bytes of that ABI (this reflect ($rel) supports ABI 1\.3); it was built with a wrong header: set size to sizeof(struct rf_plugin) from this reflect.s <reflect/plugin\.h> and rebuild it, or remove it"
 '
 
 test_expect_success 'no rf_plugin_entry: not a reflect plugin, how to define it' '
@@ -77,12 +77,12 @@ test_expect_success 'name differs from the file: both names, rename the file or 
 
 test_expect_success 'unknown parameter flag bits: the bits, versions, allowed flags' '
 	rel=$(cat release) &&
-	refused bad_param_flags "built for plugin ABI 1\.2, its parameter .gain. sets flag bits 0x10 that this ABI does not define (this reflect ($rel) supports ABI 1\.2); use only RF_PARAM_INTEGER, RF_PARAM_BOOL, RF_PARAM_CHOICE and RF_PARAM_STRING and rebuild it"
+	refused bad_param_flags "built for plugin ABI 1\.3, its parameter .gain. sets flag bits 0x10 that this ABI does not define (this reflect ($rel) supports ABI 1\.3); use only RF_PARAM_INTEGER, RF_PARAM_BOOL, RF_PARAM_CHOICE and RF_PARAM_STRING and rebuild it"
 '
 
 test_expect_success 'unknown descriptor flags: the bits, versions, set them to 0' '
 	rel=$(cat release) &&
-	refused bad_flags "built for plugin ABI 1\.2, its descriptor sets flags 0x4 that ABI 1\.2 does not define (this reflect ($rel) supports ABI 1\.2); clear them and rebuild it"
+	refused bad_flags "built for plugin ABI 1\.3, its descriptor sets flags 0x4 that ABI 1\.3 does not define (this reflect ($rel) supports ABI 1\.3); clear them and rebuild it"
 '
 
 test_expect_success 'an optional input that is also an input: which list, fix it' '

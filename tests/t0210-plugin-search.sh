@@ -33,7 +33,7 @@ test_expect_success '-l lists bevel, box and infinite: summary, file, channels' 
 	grep -v "^# " out >listed &&
 	cat >expect <<-EOF &&
 	bevel${tab}box projection onto the probe box with its edges and corners rounded
-	  file: $B/projection-bevel.so (version 1.0, plugin ABI 1.2, reflect developers, MIT)
+	  file: $B/projection-bevel.so (version 1.0, plugin ABI 1.3, reflect developers, MIT)
 	  found in: REFLECT_PLUGIN_PATH
 	  reads: P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z
 	  reads when present: roughness
@@ -44,13 +44,13 @@ test_expect_success '-l lists bevel, box and infinite: summary, file, channels' 
 	    roughen=0${tab}radius added per width of the lobe at the hit (0: a fixed radius) ([0, inf))
 	  man page: none beside the file (reflect-plugin(7) says where one goes)
 	box${tab}box projection: look up where the reflected ray leaves the probe box
-	  file: $B/projection-box.so (version 1.0, plugin ABI 1.2, reflect developers, MIT)
+	  file: $B/projection-box.so (version 1.0, plugin ABI 1.3, reflect developers, MIT)
 	  found in: REFLECT_PLUGIN_PATH
 	  reads: P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z
 	  writes: R.X R.Y R.Z D.X D.Y D.Z hit.dist probe.dist
 	  man page: none beside the file (reflect-plugin(7) says where one goes)
 	infinite${tab}no parallax: look up the reflection vector itself (distant environment)
-	  file: $B/projection-infinite.so (version 1.0, plugin ABI 1.2, reflect developers, MIT)
+	  file: $B/projection-infinite.so (version 1.0, plugin ABI 1.3, reflect developers, MIT)
 	  found in: REFLECT_PLUGIN_PATH
 	  reads: N.X N.Y N.Z V.X V.Y V.Z
 	  writes: R.X R.Y R.Z D.X D.Y D.Z hit.dist probe.dist
@@ -65,7 +65,7 @@ test_expect_success '-l lists parameters with default, help and range' '
 		on && /^[^ ]/ { on = 0 } on" out >echo &&
 	cat >expect <<-EOF &&
 	echo_params${tab}test: echoes its parameters into its output channels
-	  file: $P/echo_params.so (version 1.0, plugin ABI 1.2, reflect tests, MIT)
+	  file: $P/echo_params.so (version 1.0, plugin ABI 1.3, reflect tests, MIT)
 	  found in: REFLECT_PLUGIN_PATH
 	  reads: N.X
 	  writes: echo.scale echo.offset echo.count echo.invert echo.shape echo.nx echo.y echo.frame
@@ -85,7 +85,7 @@ test_expect_success '-l warns about every broken plugin and lists the rest' '
 	for p in bad_major bad_minor bad_size bad_name \
 		bad_param_flags bad_flags no_summary radiance_projection flags_abi_1_0 \
 		radiance_no_spec shade_no_roughness bad_optional accumulate_channels \
-		bad_param_range bad_param_name shade_both
+		bad_param_range bad_param_name shade_both filter_outputs_abi_1_2
 	do
 		test_grep "^reflect-project: ignoring plugin .$P/$p\.so.: " err ||
 		return 1
@@ -94,7 +94,7 @@ test_expect_success '-l warns about every broken plugin and lists the rest' '
 	# into the listing
 	test_grep "^print_stdout: loaded$" err &&
 	! grep "print_stdout: loaded" out &&
-	test_line_count 18 err &&
+	test_line_count 19 err &&
 	! grep "no_entry\|not_plugin" err &&
 	test_grep "^box$tab" out &&
 	test_grep "^infinite$tab" out &&

@@ -133,7 +133,7 @@ test_expect_success 'the installed reflect-project lists it with its parameter' 
 	test_line_count 0 err &&
 	tab=$(printf "\\t") &&
 	test_grep "^sphere${tab}sphere proxy: look up where the reflected ray leaves a sphere around the capture point$" out &&
-	test_grep "^  file: $oot/sphere\.so (version 1\.0, plugin ABI 1\.2, reflect developers, public domain)$" out &&
+	test_grep "^  file: $oot/sphere\.so (version 1\.0, plugin ABI 1\.3, reflect developers, public domain)$" out &&
 	test_grep "^  reads: P.X P.Y P.Z N.X N.Y N.Z V.X V.Y V.Z$" out &&
 	test_grep "^    radius=5${tab}radius of the proxy sphere around the capture point (\[0\.001, 1e+06\])$" out &&
 	test_grep "^box${tab}" out &&
@@ -322,7 +322,7 @@ test_expect_success 'make install-user: the installed tools find the examples, n
 	test -f "$u/sphere.so" && test -f "$u/ratio.so" && test -f "$u/taps.so" &&
 	user reflect-project -m sphere --help >out 2>err &&
 	test_line_count 0 err &&
-	test_grep "^  file: $u/sphere\.so (version 1\.0, plugin ABI 1\.2, reflect developers, public domain)$" out &&
+	test_grep "^  file: $u/sphere\.so (version 1\.0, plugin ABI 1\.3, reflect developers, public domain)$" out &&
 	test_grep "^  found in: the user plugin directory$" out &&
 	# its man page, installed beside it, as reflect-plugin(7) asks
 	test -f "$u/reflect-mode-sphere.7" &&

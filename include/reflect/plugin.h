@@ -32,6 +32,8 @@
  *        1.1 plugin its probes array at the 1.1 stride, and refuses it
  *        a frame whose probes are not axis-aligned boxes projected onto
  *        themselves, which it could not see.
+ *   1.3  a filter mode's outputs name rows it carries from pass to pass
+ *        (a variance beside the values); before 1.3 they must be empty.
  * A minor bump only appends fields at the end of a struct, or defines new
  * flag bits or kinds; a major bump is anything else.  The host accepts a
  * plugin when its major equals the host's and its minor is not newer, and
@@ -50,7 +52,7 @@ extern "C" {
 #endif
 
 #define RF_PLUGIN_ABI_MAJOR 1
-#define RF_PLUGIN_ABI_MINOR 2
+#define RF_PLUGIN_ABI_MINOR 3
 
 #if defined(__GNUC__)
 #define RF_PLUGIN_EXPORT __attribute__((visibility("default")))

@@ -311,6 +311,14 @@ check_outputs(const struct rf_plugin *p, const char *path, char *err, size_t err
 			           "1.1 (reflect-plugin(7)); rebuild the plugin", path);
 			return RF_EPLUGIN;
 		}
+		if (p->abi_minor < 3 && p->outputs[0]) {
+			rf__format(err, errlen, "plugin '%s': built for plugin ABI 1.%u, whose "
+			           "filter modes name no outputs; rows carried from pass to "
+			           "pass need ABI 1.3: empty its outputs list, or rebuild it "
+			           "against this reflect's <reflect/plugin.h>", path,
+			           (unsigned)p->abi_minor);
+			return RF_EPLUGIN;
+		}
 		return 0;
 	}
 	if (p->kind == RF_KIND_OCCLUSION) {

@@ -148,7 +148,7 @@ TEST(struct_layout)
 TEST(constants)
 {
 	ASSERT_EQ(RF_PLUGIN_ABI_MAJOR, 1);
-	ASSERT_EQ(RF_PLUGIN_ABI_MINOR, 2);
+	ASSERT_EQ(RF_PLUGIN_ABI_MINOR, 3);
 	ASSERT_EQ(RF_SHAPE_SAME, 0);
 	ASSERT_EQ(RF_SHAPE_BOX, 1);
 	ASSERT_EQ(RF_SHAPE_SPHERE, 2);
@@ -520,6 +520,9 @@ TEST(loader_refusals)
 	                   "state's first slots are 'value' and 'variance'") != NULL);
 	ASSERT_EQ(load("flags_abi_1_0", RF_KIND_SHADE, &m), RF_EPLUGIN);
 	ASSERT(strstr(msg, "sets flags 0x1 that ABI 1.0 does not define") != NULL);
+	ASSERT_EQ(load("filter_outputs_abi_1_2", RF_KIND_FILTER, &m), RF_EPLUGIN);
+	ASSERT(strstr(msg, "built for plugin ABI 1.2, whose filter modes name no outputs; "
+	                   "rows carried from pass to pass need ABI 1.3") != NULL);
 	ASSERT_EQ(load("shade_radiance", RF_KIND_SHADE, &m), 0);
 	ASSERT_EQ(rf_plugin_writes_radiance(rf_module_plugin(m)), 1);
 	ASSERT_EQ(rf_plugin_traces_raw(rf_module_plugin(m)), 1);
