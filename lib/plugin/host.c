@@ -103,17 +103,37 @@ guarded_fetch(const struct rf__rgba_levels *levels, int vector, uint32_t n, cons
 	uint32_t i0, k;
 
 	for (i0 = 0; i0 < n; i0 += 64) {
-		uint32_t m = n - i0 < 64 ? n - i0 : 64;
+		uint32_t m = n - i0 < 64 ? n - i0 : 64, any = 0;
 		float cx[64], cy[64], cz[64];
 		unsigned char bad[64];
-		int any = 0;
 
-		for (k = 0; k < m; k++) {
-			float a = x[i0 + k], b = y[i0 + k], c = z[i0 + k];
+		/* Whether any is inf or NaN (all exponent bits set), four at a
+		 * time without a branch: one by one, the test cost a third as
+		 * much as the reads. */
+		typedef uint32_t u4 __attribute__((vector_size(16)));
+		const u4 e = { 0x7F800000u, 0x7F800000u, 0x7F800000u, 0x7F800000u };
+		u4 v4 = { 0, 0, 0, 0 };
 
-			bad[k] = !isfinite(a) || !isfinite(b) || !isfinite(c);
-			any |= bad[k];
+		for (k = 0; k + 4 <= m; k += 4) {
+			u4 a, b, c;
+
+			memcpy(&a, x + i0 + k, sizeof(a));
+			memcpy(&b, y + i0 + k, sizeof(b));
+			memcpy(&c, z + i0 + k, sizeof(c));
+			v4 |= (u4)((a & e) == e) | (u4)((b & e) == e) | (u4)((c & e) == e);
 		}
+		any = v4[0] | v4[1] | v4[2] | v4[3];
+		for (; k < m; k++) {
+			uint32_t a, b, c;
+
+			memcpy(&a, x + i0 + k, sizeof(a));
+			memcpy(&b, y + i0 + k, sizeof(b));
+			memcpy(&c, z + i0 + k, sizeof(c));
+			any |= ((a & 0x7F800000u) == 0x7F800000u) | ((b & 0x7F800000u) == 0x7F800000u) |
+			       ((c & 0x7F800000u) == 0x7F800000u);
+		}
+		for (k = 0; any && k < m; k++)
+			bad[k] = !isfinite(x[i0 + k]) || !isfinite(y[i0 + k]) || !isfinite(z[i0 + k]);
 		if (!any) {
 			rf__rgba_levels_fetch_many(levels, vector, m, x + i0, y + i0, z + i0, lod + i0,
 			                           (rf__v4 *)(void *)(rgba + 4 * (size_t)i0));
