@@ -112,6 +112,7 @@ struct raytraced {
 	float *table; /* its nodes and marginals (raytraced-mis.h) */
 	float *dens; /* each ray's density in the square */
 	int wide;    /* the eight-lane code (AVX2) */
+	uint32_t pack[256]; /* of each 8-bit mask, its set bits' lanes, 4 bits each */
 };
 
 /* ---- random numbers ------------------------------------------------------ */
@@ -444,9 +445,16 @@ static void
 read_rays(struct raytraced *rt, uint32_t n)
 {
 	const struct rf_host *host = rt->host;
-	uint32_t i;
+	uint32_t i = 0;
 
-	for (i = 0; i < n; i++) {
+#if defined(RF__LANES_WIDE)
+	if (rt->wide)
+		i = split_lanes_8(i, n, rt->lookup, rt->x, rt->y, rt->z);
+#endif
+#if defined(__SSE2__)
+	i = split_lanes_4(i, n, rt->lookup, rt->x, rt->y, rt->z);
+#endif
+	for (; i < n; i++) {
 		rt->x[i] = rt->lookup[3 * i];
 		rt->y[i] = rt->lookup[3 * i + 1];
 		rt->z[i] = rt->lookup[3 * i + 2];
@@ -701,6 +709,13 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	}
 	rt->host = host;
 	rt->wide = rf__lanes_wide();
+	for (i = 0; i < 256; i++) {
+		uint32_t bit, at = 0;
+
+		for (bit = 0; bit < 8; bit++)
+			if (i >> bit & 1)
+				rt->pack[i] |= bit << (4 * at++);
+	}
 	rt->samples = (uint32_t)values[SAMPLES];
 	rt->pattern = (int)values[PATTERN];
 	rt->animate = values[ANIMATE] != 0.0;
