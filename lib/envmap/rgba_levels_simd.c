@@ -271,6 +271,58 @@ rf__lobe_sum8(const struct rf__lobe_table *t, size_t count, const struct rf__rgb
 	return lobe_sum_avx2(t, count, p, n, tg, bt);
 }
 
+/* Rows of four weights of eight samples to each sample's four, sample k
+ * at out[k % 4] + 4 (k / 4). */
+AVX2 static inline void
+transpose4(float a[4][8], float out[4][8])
+{
+	__m256 r0 = _mm256_load_ps(a[0]), r1 = _mm256_load_ps(a[1]);
+	__m256 r2 = _mm256_load_ps(a[2]), r3 = _mm256_load_ps(a[3]);
+	__m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpackhi_ps(r0, r1);
+	__m256 t2 = _mm256_unpacklo_ps(r2, r3), t3 = _mm256_unpackhi_ps(r2, r3);
+
+	_mm256_store_ps(out[0], _mm256_shuffle_ps(t0, t2, 0x44));
+	_mm256_store_ps(out[1], _mm256_shuffle_ps(t0, t2, 0xEE));
+	_mm256_store_ps(out[2], _mm256_shuffle_ps(t1, t3, 0x44));
+	_mm256_store_ps(out[3], _mm256_shuffle_ps(t1, t3, 0xEE));
+}
+
+/* Eight reads whose lods are all whole (filtering=stochastic, or clamped
+ * to level 0): the first level's texels only.  The two-level kernel
+ * would add the second's at weight +0, which changes no sum: the same
+ * bits at half the loads. */
+AVX2 static inline void
+fetch_one_level8(const struct rf__rgba_levels *p, __m256 u, __m256 v, __m256i face, __m256i l0,
+                 rf__v4 *rgb)
+{
+	const __m256i pick[2] = {
+		_mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1), _mm256_setr_epi32(2, 2, 2, 2, 3, 3, 3, 3),
+	};
+	const float *data = (const float *)p->data;
+	__attribute__((aligned(32))) int32_t at0[8], r0[8];
+	__attribute__((aligned(32))) float w0[4][8], wt[4][8];
+	__m256i row0 = _mm256_i32gather_epi32(p->lvl_row, l0, 4);
+	size_t k;
+
+	_mm256_store_si256((__m256i *)at0,
+	                   corners(u, v, face, _mm256_i32gather_ps(p->lvl_scale, l0, 4),
+	                           _mm256_set1_ps(1.0f), _mm256_i32gather_epi32(p->lvl_base, l0, 4),
+	                           _mm256_i32gather_epi32(p->lvl_face, l0, 4), row0, w0));
+	_mm256_store_si256((__m256i *)r0, _mm256_slli_epi32(row0, 2));
+	transpose4(w0, wt);
+	for (k = 0; k < 8; k++) {
+		const float *q0 = data + 4 * (size_t)at0[k];
+		__m256 w = _mm256_broadcast_ps((const __m128 *)(const void *)(wt[k & 3] + 4 * (k >> 2)));
+		__m256 a = _mm256_mul_ps(_mm256_permutevar8x32_ps(w, pick[0]), _mm256_loadu_ps(q0));
+		__m256 b = _mm256_mul_ps(_mm256_permutevar8x32_ps(w, pick[1]),
+		                         _mm256_loadu_ps(q0 + r0[k]));
+
+		a = _mm256_add_ps(a, b);
+		_mm_storeu_ps((float *)&rgb[k], _mm_add_ps(_mm256_castps256_ps128(a),
+		                                           _mm256_extractf128_ps(a, 1)));
+	}
+}
+
 /* count reads, eight at a time; what is left over goes the scalar way. */
 AVX2 static size_t
 fetch_many_avx2(const struct rf__rgba_levels *p, size_t count, const float *x, const float *y,
@@ -300,8 +352,14 @@ fetch_many_avx2(const struct rf__rgba_levels *p, size_t count, const float *x, c
 		__m256i l1 = _mm256_min_epi32(_mm256_add_epi32(l0, next), top_level);
 		__m256 f1 = _mm256_andnot_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(l1, l0)),
 		                             _mm256_sub_ps(l, _mm256_cvtepi32_ps(l0)));
-		__m256i row0 = _mm256_i32gather_epi32(p->lvl_row, l0, 4);
-		__m256i row1 = _mm256_i32gather_epi32(p->lvl_row, l1, 4);
+		__m256i row0, row1;
+
+		if (!_mm256_movemask_ps(_mm256_cmp_ps(f1, zero, _CMP_NEQ_UQ))) {
+			fetch_one_level8(p, u, v, face, l0, rgb + s);
+			continue;
+		}
+		row0 = _mm256_i32gather_epi32(p->lvl_row, l0, 4);
+		row1 = _mm256_i32gather_epi32(p->lvl_row, l1, 4);
 
 		_mm256_store_si256((__m256i *)at0,
 		                   corners(u, v, face, _mm256_i32gather_ps(p->lvl_scale, l0, 4),
