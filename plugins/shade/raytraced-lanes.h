@@ -191,6 +191,31 @@ NAME(lod_lanes)(const struct rf_host *host, uint32_t i, uint32_t n,
 	return i;
 }
 
+/* stochastic_lods, LANES rays at a time: the same integer hash and float
+ * compare lane by lane, so the same levels. */
+typedef unsigned NAME(vu) __attribute__((vector_size(4 * LANES)));
+
+LANES_ATTR static uint32_t
+NAME(round_lanes)(uint32_t key, uint32_t first, uint32_t i, uint32_t n,
+                  const uint32_t *restrict index, float *restrict lod)
+{
+	const VF one = NAME(v_splat)(1.0f);
+
+	for (; i + LANES <= n; i += LANES) {
+		NAME(vu) k, h;
+		VF l = NAME(v_load)(lod + i), f, u;
+		VI up;
+
+		memcpy(&k, index + i, sizeof(k));
+		h = key + (first + k) * 0x9E3779B9u;
+		f = __builtin_convertvector(__builtin_convertvector(l, VI), VF);
+		u = __builtin_convertvector((VI)(h >> 8), VF) * (1.0f / 16777216.0f);
+		up = u < l - f;
+		NAME(v_store)(lod + i, f + (VF)((VI)one & up));
+	}
+	return i;
+}
+
 /* read_rays' copy of the lookups to three arrays, LANES rays at a time. */
 LANES_ATTR static uint32_t
 NAME(split_lanes)(uint32_t i, uint32_t n, const float *restrict lookup, float *restrict x,

@@ -41,7 +41,7 @@
 #include "raytraced-mis.h"
 
 enum { SAMPLES, PATTERN, ANIMATE, SAMPLER, ESTIMATOR, MASKING, MIPOFFSET, SEED, FRAMES,
-       FIRST, TOTAL, BASIS, NPARAMS };
+       FIRST, TOTAL, BASIS, FILTERING, NPARAMS };
 /* the pattern= choices, in sequences.h's order */
 enum { PATTERN_WHITE = SEQUENCE_WHITE, PATTERN_BLUE = SEQUENCE_BLUE,
        PATTERN_DETERMINISTIC = SEQUENCE_LOW_DISCREPANCY };
@@ -49,6 +49,7 @@ enum { ESTIMATOR_EXACT, ESTIMATOR_ORIGINAL };
 enum { MASKING_CORRELATED, MASKING_SEPARABLE };
 enum { SAMPLER_VNDF, SAMPLER_MIS };
 enum { BASIS_HDRP, BASIS_VIEW };
+enum { FILTERING_TRILINEAR, FILTERING_STOCHASTIC };
 
 static const struct rf_param params[NPARAMS] = {
 	{ "samples", "rays per pixel", 1, 65536, 64, RF_PARAM_INTEGER, NULL },
@@ -83,6 +84,9 @@ static const struct rf_param params[NPARAMS] = {
 	  "fixed to the world's axes (the write-up's rays), or one whose x axis leans "
 	  "toward V (a scene turned as a whole draws the same rays, turned)", 0, 1, 0,
 	  RF_PARAM_CHOICE, "hdrp|view" },
+	{ "filtering", "how a ray reads between two levels: both, weighted by the lod's "
+	  "fraction, or one of them drawn with that probability (the same mean, half "
+	  "the texels)", 0, 1, 0, RF_PARAM_CHOICE, "trilinear|stochastic" },
 };
 
 static const char *const inputs[] = {
@@ -102,6 +106,8 @@ struct raytraced {
 	float rays; /* total x frames: how many rays share the lobe */
 	float *ham0, *ham1; /* points first .. of the Hammersley set of total */
 	int pattern, animate, estimator, masking, mipoffset, basis;
+	int stochastic;   /* filtering=stochastic */
+	uint32_t lod_key; /* the pixel's offset of its rays' level numbers */
 	uint32_t frames; /* frames=: how many the output will be averaged over */
 	int split;       /* frames' rays are blocks of one set (create) */
 	uint32_t r2_step; /* R2 steps the frame's set moves by: the frame, or
@@ -410,6 +416,34 @@ footprint_lods(int wide, const struct rf_host *host, uint32_t n, const float *re
 	}
 }
 
+/* filtering=stochastic (stochastic texture filtering, Pharr et al. 2024):
+ * ray i reads one level, the lod's floor, or the next one up with
+ * probability the lod's fraction, so its mean is the trilinear read's
+ * and it costs one level's texels (the host reads one level where every
+ * lod of a vector is whole).  Its number is the i-th of the golden-ratio
+ * sequence offset by a hash of pixel, seed and frame (lod_key): the
+ * pixel's rays are spread evenly over [0, 1), and apart from their
+ * directions' numbers.  In fixed point, so the same bits anywhere. */
+static void
+stochastic_lods(struct raytraced *rt, uint32_t n)
+{
+	uint32_t i = 0;
+
+#if defined(RF__LANES_WIDE)
+	if (rt->wide)
+		i = round_lanes_8(rt->lod_key, rt->first, i, n, rt->index, rt->lod);
+#endif
+#if defined(__SSE2__)
+	i = round_lanes_4(rt->lod_key, rt->first, i, n, rt->index, rt->lod);
+#endif
+	for (; i < n; i++) {
+		float l = rt->lod[i], f = (float)(int32_t)l; /* l >= 0: its floor */
+		uint32_t h = rt->lod_key + (rt->first + rt->index[i]) * 0x9E3779B9u;
+
+		rt->lod[i] = rf__unit_float(h) < l - f ? f + 1.0f : f;
+	}
+}
+
 /* The write-up's mipoffset level: pr * clamp(d, 0, 6) for the mirror
  * ray's hit distance d. */
 static float
@@ -537,6 +571,8 @@ trace_lobe(struct raytraced *rt, const struct lobe *lb, uint32_t n, const float 
 	project(rt, lb->p, count);
 	if (!original && !rt->mipoffset) {
 		footprint_lods(rt->wide, host, count, rt->lookup, rt->jac, rt->pdf, share, rt->lod);
+		if (rt->stochastic)
+			stochastic_lods(rt, count);
 	} else {
 		for (i = 0; i < count; i++)
 			rt->lod[i] = lb->fixed_lod;
@@ -616,6 +652,12 @@ shade_pixel(struct raytraced *rt, const float *in, uint32_t px, uint32_t py, flo
 			for (i = 0; i < 3; i++)
 				out[i] = rt->rgba[i] / (a + b);
 		return;
+	}
+	if (rt->stochastic) {
+		uint32_t key[4] = { px, py, rt->seed ^ 0x85EBCA6Bu, rt->animate ? rt->frame : 0 };
+
+		rf__pcg4d(key);
+		rt->lod_key = key[0];
 	}
 	if (rt->grid && mis_setup(rt, &lb))
 		dens = rt->dens;
@@ -723,6 +765,7 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	rt->masking = (int)values[MASKING];
 	rt->mipoffset = values[MIPOFFSET] != 0.0;
 	rt->basis = (int)values[BASIS];
+	rt->stochastic = (int)values[FILTERING] == FILTERING_STOCHASTIC;
 	rt->seed = (uint32_t)values[SEED] + host->seed;
 	rt->first = (uint32_t)values[FIRST];
 	rt->total = values[TOTAL] > 0.0 ? (uint32_t)values[TOTAL] : rt->samples;
