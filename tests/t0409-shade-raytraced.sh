@@ -88,12 +88,13 @@ test_expect_success 'setup: 66 frames of the same view' '
 
 # One ray a pixel, a new pattern each frame: against the mean of 64 other
 # frames (the one-ray estimator's own expectation, blur of its footprint
-# included), the noise of frame 0 and of frame 1 must be unrelated.  The
+# included: frames=1 keeps every frame's footprint that of one ray), the
+# noise of frame 0 and of frame 1 must be unrelated.  The
 # original's sliding seed, which hands frame 1 frame 0's second number,
 # or a pattern that ignores FRAME, would show here.
 test_expect_success 'animate=1 (white): frame 1 does not reuse frame 0'"'"'s numbers' '
-	reflect-shade -fa -m raytraced:samples=1:animate=1:pattern=white --env=room.rfl \
-		frames.rfl >anim.txt &&
+	reflect-shade -fa -m raytraced:samples=1:animate=1:pattern=white:frames=1 \
+		--env=room.rfl frames.rfl >anim.txt &&
 	column anim.txt spec.G >anim &&
 	frames anim 66 &&
 	! cmp -s f0 f1 &&

@@ -72,7 +72,8 @@ static const struct rf_param params[NPARAMS] = {
 	  NULL },
 	{ "seed", "added to --seed", 0, 4294967295.0, 0, RF_PARAM_INTEGER, NULL },
 	{ "frames", "frames the output will be averaged over (reflect-accumulate): "
-	  "each ray's footprint is that of samples x frames rays", 1, 1e6, 1,
+	  "each ray's footprint is that of samples x frames rays; 0: with animate, "
+	  "that of samples x (FRAME + 1) rays, else samples", 0, 1e6, 0,
 	  RF_PARAM_INTEGER, NULL },
 	{ "first", "index of the first ray in the set of total= rays: a run of samples= "
 	  "rays from it, merged by reflect-accumulate with the others of the set", 0,
@@ -776,12 +777,21 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 		free(rt);
 		return -1;
 	}
-	rt->rays = (float)((double)rt->total * values[FRAMES]);
-	rt->frames = (uint32_t)values[FRAMES];
+	rt->frames = values[FRAMES] >= 1.0 ? (uint32_t)values[FRAMES] : 1;
+	rt->rays = (float)((double)rt->total * rt->frames);
 	rt->split = rt->animate && rt->frames > 1 && rt->pattern != PATTERN_WHITE &&
-	            (double)rt->total * values[FRAMES] < 2147483648.0;
+	            (double)rt->total * rt->frames < 2147483648.0;
 	if ((frame = host->header_get(host->ctx, "FRAME")))
 		rt->frame = (uint32_t)strtoul(frame, NULL, 10);
+	if (rt->animate && values[FRAMES] < 1.0)
+		/* Frames to be averaged, how many untold: frame f has f before
+		 * it, so its rays share the lobe with the K (f + 1) rays so far.
+		 * The blur of a read so falls as 1 / (f + 1), and a mean of N
+		 * frames carries ln N / N of one frame's: it converges to the
+		 * truth, where the footprint of K rays alone never did (64 one-ray
+		 * frames of the default scene: 0.553 of relative error against
+		 * 0.105 for one frame of 16 rays). */
+		rt->rays = (float)((double)rt->total * ((double)rt->frame + 1.0));
 	if ((int)values[SAMPLER] == SAMPLER_MIS) {
 		if (rt->estimator == ESTIMATOR_ORIGINAL) {
 			free(rt);
