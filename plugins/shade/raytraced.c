@@ -730,6 +730,15 @@ destroy(void *state)
 	free(rt);
 }
 
+#define CACHE_LINE 64
+
+/* n bytes rounded up to whole cache lines. */
+static size_t
+whole_lines(size_t n)
+{
+	return (n + CACHE_LINE - 1) / CACHE_LINE * CACHE_LINE;
+}
+
 static int
 create(const struct rf_host *host, const double *values, void **state, char *err,
        size_t errlen)
@@ -746,7 +755,13 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 		         "(it needs reflect-shade of plugin ABI 1.1 or later)");
 		return -1;
 	}
-	if (!(rt = calloc(1, sizeof(*rt)))) {
+	/* Each thread has an instance: its struct and its block of scratch
+	 * take whole cache lines of their own, or the two threads' per-ray
+	 * writes share a line at their ends (at 16 rays a pixel that cost
+	 * 12 % of the run on 2 threads, varying with the struct's size). */
+	if ((rt = aligned_alloc(CACHE_LINE, whole_lines(sizeof(*rt)))))
+		memset(rt, 0, sizeof(*rt));
+	if (!rt) {
 		snprintf(err, errlen, "out of memory");
 		return -1;
 	}
@@ -818,7 +833,8 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	 * and an index, for the rays or the table's cells if more. */
 	k = rt->samples > (rt->grid + 1) * rt->grid ? rt->samples
 	                                             : (rt->grid + 1) * rt->grid;
-	if (!(block = malloc(k * 22 * sizeof(float) + mis_floats(rt->grid) * sizeof(float)))) {
+	if (!(block = aligned_alloc(CACHE_LINE, whole_lines((k * 22 + mis_floats(rt->grid)) *
+	                                                   sizeof(float))))) {
 		free(rt);
 		snprintf(err, errlen, "out of memory for %zu rays", k);
 		return -1;
