@@ -40,6 +40,11 @@
  * no hit (P outside the box, or an infinite projection) with N = V, or
  * lobe=round, reads what `none` reads; the same room in other units
  * gives the same pixels (angles and ratios only).
+ *
+ * Speed: the eight width rays, their log map and the taps of a pixel
+ * go in lanes (footprint-lanes.h, the same bits at 4 and 8), its angles
+ * by series rather than libm, and the taps of eight pixels in one read
+ * of the environment; the model is the same to float rounding.
  */
 #include <math.h>
 #include <stdint.h>
@@ -51,6 +56,29 @@
 
 #include "footprint-shape.h"
 #include "footprint-table.h"
+
+/* a pixel's rays, log map and taps in vectors of 4 lanes, and of 8
+ * with AVX2 */
+#include "maths/lanes.h"
+#define RF__LANES_BODY "footprint-lanes.h"
+#if defined(__SSE2__)
+#include "maths/lanes-widths.h"
+#else
+/* the compiler's generic vectors, the same operations */
+typedef float fp__v4f __attribute__((vector_size(16)));
+typedef int fp__v4i __attribute__((vector_size(16)));
+#define LANES 4
+#define VF fp__v4f
+#define VI fp__v4i
+#define NAME(x) x##_4
+#define LANES_ATTR
+#include RF__LANES_BODY
+#undef LANES
+#undef VF
+#undef VI
+#undef NAME
+#undef LANES_ATTR
+#endif
 
 enum { TAPS, LOBE, BEND, NPARAMS };
 enum { LOBE_MEASURED, LOBE_ROUND };
@@ -77,13 +105,58 @@ static const char *const outputs[] = { RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHAD
 #define RAYS 9 /* the footprint's centre, its four width points and four
                   at half their widths */
 #define TAPS_MAX FOOTPRINT_TAPS_MAX
+#define CHUNK 8 /* pixels a read of the environment */
 
 struct footprint {
 	const struct rf_host *host;
 	unsigned taps;
 	int round;
 	double bend;
+	int wide; /* the eight-lane code (AVX2) */
+	int grow; /* kernels_grow_check() */
 };
+
+static void
+width_rays(int wide, const float *ca, const float *sa, const float *tb, const float d[3],
+           const float par[3], const float across[3], float *out)
+{
+#if defined(RF__LANES_WIDE)
+	if (wide) {
+		fp_rays_8(ca, sa, tb, d, par, across, out);
+		return;
+	}
+#endif
+	(void)wide;
+	fp_rays_4(ca, sa, tb, d, par, across, out);
+}
+
+static void
+tap_rays(int wide, const float *ia, const float *ib, const float d[3], const float par[3],
+         const float across[3], float *out)
+{
+#if defined(RF__LANES_WIDE)
+	if (wide) {
+		fp_taps_8(ia, ib, d, par, across, out);
+		return;
+	}
+#endif
+	(void)wide;
+	fp_taps_4(ia, ib, d, par, across, out);
+}
+
+static void
+log_rays(int wide, const float *look, const float c[3], const float t1[3],
+         const float t2[3], float *gx, float *gy)
+{
+#if defined(RF__LANES_WIDE)
+	if (wide) {
+		fp_log_8(look, c, t1, t2, gx, gy);
+		return;
+	}
+#endif
+	(void)wide;
+	fp_log_4(look, c, t1, t2, gx, gy);
+}
 
 /* n taps' places along the footprint's long axis, in units of its
  * width, for kernels q times as wide: the n-quantiles of
@@ -118,13 +191,14 @@ dot(const double a[3], const double b[3])
 static inline int
 unit(double v[3])
 {
-	double len = sqrt(dot(v, v));
+	double len = sqrt(dot(v, v)), inv;
 
 	if (!(len > 0.0) || !(len < INFINITY))
 		return -1;
-	v[0] /= len;
-	v[1] /= len;
-	v[2] /= len;
+	inv = 1.0 / len;
+	v[0] *= inv;
+	v[1] *= inv;
+	v[2] *= inv;
 	return 0;
 }
 
@@ -134,6 +208,83 @@ cross(const double a[3], const double b[3], double c[3])
 	c[0] = a[1] * b[2] - a[2] * b[1];
 	c[1] = a[2] * b[0] - a[0] * b[2];
 	c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* The angles, without libm: a pixel takes some thirty sines, cosines,
+ * tangents and arctangents, which libm's correctly rounded routines made
+ * a third of the mode's time.  These series are good to ~1e-12 over the
+ * ranges the mode gives them, far below the float the pixel ends in. */
+#define PI_2_HI 1.5707963267341256   /* pi / 2 in two parts, so that   */
+#define PI_2_LO 6.077100506506192e-11 /* x - k pi / 2 stays exact      */
+
+/* fmax and fmin, NaN giving the other as theirs do, without the call
+ * libm makes of them */
+static inline double
+fp_max(double a, double b)
+{
+	return a > b || b != b ? a : b;
+}
+
+static inline double
+fp_min(double a, double b)
+{
+	return a < b || b != b ? a : b;
+}
+
+/* sin and cos of x: x less the nearest multiple of pi / 2, then Taylor
+ * to the 14th power on [-pi / 4, pi / 4] (error below 3e-14). */
+static inline void
+fp_sincos(double x, double *s, double *c)
+{
+	double k = nearbyint(x * (2.0 / M_PI)), r, r2, sr, cr;
+	long q = (long)k;
+
+	r = (x - k * PI_2_HI) - k * PI_2_LO;
+	r2 = r * r;
+	sr = r + r * r2 * (-1.0 / 6 + r2 * (1.0 / 120 + r2 * (-1.0 / 5040 + r2 *
+	     (1.0 / 362880 + r2 * (-1.0 / 39916800 + r2 * (1.0 / 6227020800.0))))));
+	cr = 1.0 + r2 * (-0.5 + r2 * (1.0 / 24 + r2 * (-1.0 / 720 + r2 * (1.0 / 40320 +
+	     r2 * (-1.0 / 3628800 + r2 * (1.0 / 479001600.0 + r2 *
+	     (-1.0 / 87178291200.0)))))));
+	switch (q & 3) {
+	case 0: *s = sr; *c = cr; break;
+	case 1: *s = cr; *c = -sr; break;
+	case 2: *s = -sr; *c = -cr; break;
+	default: *s = -cr; *c = sr; break;
+	}
+}
+
+/* atan of t in [0, 1]: past tan(pi / 12) by atan t = pi / 6 +
+ * atan((sqrt(3) t - 1) / (t + sqrt(3))), then Taylor to the 17th power
+ * on [0, tan(pi / 12)] (error below 1e-12). */
+static inline double
+fp_atan01(double t)
+{
+	double base = 0.0, u2;
+
+	if (t > 0.2679491924311227) {
+		t = (1.7320508075688772 * t - 1.0) / (t + 1.7320508075688772);
+		base = M_PI / 6.0;
+	}
+	u2 = t * t;
+	return base + t + t * u2 * (-1.0 / 3 + u2 * (1.0 / 5 + u2 * (-1.0 / 7 + u2 *
+	       (1.0 / 9 + u2 * (-1.0 / 11 + u2 * (1.0 / 13 + u2 * (-1.0 / 15 + u2 *
+	       (1.0 / 17))))))));
+}
+
+/* atan2 of finite y, x, as libm's (0 for 0, 0). */
+static inline double
+fp_atan2(double y, double x)
+{
+	double ay = fabs(y), ax = fabs(x), a;
+
+	if (ay <= ax)
+		a = ax > 0.0 ? fp_atan01(ay / ax) : 0.0;
+	else
+		a = M_PI_2 - fp_atan01(ax / ay);
+	if (x < 0.0)
+		a = M_PI - a;
+	return copysign(a, y);
 }
 
 /* Any unit vector perpendicular to unit n. */
@@ -168,44 +319,51 @@ lobe_at(double theta_v, double pr, double e[4])
 		             fy * footprint_table[i + 1][j + 1][k]);
 }
 
-/* The perceptual roughness whose prefilter kernel is w wide: the row
- * theta_v = 0, piecewise linear in roughness, inverted. */
-static double
-kernel_roughness(double w)
+/* Whether the kernels' widths (the row theta_v = 0) never shrink with
+ * roughness, as a lobe's do: then the first one as wide as w is found
+ * by halves. */
+static int
+kernels_grow_check(void)
 {
 	unsigned j;
 
-	if (!(w > 0.0))
-		return 0.0;
-	for (j = 1; j < FOOTPRINT_ROUGHNESSES; j++) {
-		double lo = footprint_table[0][j - 1][3], hi = footprint_table[0][j][3];
-
-		if (w <= hi)
-			return ((double)(j - 1) + (w - lo) / (hi - lo)) /
-			       (FOOTPRINT_ROUGHNESSES - 1);
-	}
-	return 1.0;
+	for (j = 1; j < FOOTPRINT_ROUGHNESSES; j++)
+		if (!(footprint_table[0][j - 1][3] <= footprint_table[0][j][3]))
+			return 0;
+	return 1;
 }
 
-/* u's place in the tangent plane at unit c, t1 t2 (the logarithmic
- * map: the angle from c, along the great circle's direction). */
-static void
-log_map(const double c[3], const double t1[3], const double t2[3], const float u[3],
-        double g[2])
+/* The perceptual roughness whose prefilter kernel is w wide: the row
+ * theta_v = 0, piecewise linear in roughness, inverted. */
+static double
+kernel_roughness(int kernels_grow, double w)
 {
-	double v[3] = { u[0], u[1], u[2] }, x, y, s, ang;
+	unsigned j, lo_j = 1, hi_j = FOOTPRINT_ROUGHNESSES;
+	double lo, hi;
 
-	unit(v);
-	x = dot(v, t1);
-	y = dot(v, t2);
-	s = sqrt(x * x + y * y);
-	ang = atan2(s, dot(v, c));
-	if (s > 0.0) {
-		g[0] = ang * x / s;
-		g[1] = ang * y / s;
+	if (!(w > 0.0))
+		return 0.0;
+	/* the first j with w <= the width at j, by halves: the row grows
+	 * with roughness (kernels_grow() checks it; else one by one) */
+	if (kernels_grow) {
+		while (lo_j < hi_j) {
+			unsigned mid = (lo_j + hi_j) / 2;
+
+			if (w <= footprint_table[0][mid][3])
+				hi_j = mid;
+			else
+				lo_j = mid + 1;
+		}
+		j = lo_j;
 	} else {
-		g[0] = g[1] = 0.0;
+		for (j = 1; j < FOOTPRINT_ROUGHNESSES && !(w <= footprint_table[0][j][3]); j++)
+			;
 	}
+	if (j == FOOTPRINT_ROUGHNESSES)
+		return 1.0;
+	lo = footprint_table[0][j - 1][3];
+	hi = footprint_table[0][j][3];
+	return ((double)(j - 1) + (w - lo) / (hi - lo)) / (FOOTPRINT_ROUGHNESSES - 1);
 }
 
 /* The direction at in-plane angle a from d (toward par) and across
@@ -229,7 +387,11 @@ static void
 lobe_direction(const double d[3], const double par[3], const double across[3], double a,
                double b, float out[3])
 {
-	lobe_direction_trig(d, par, across, cos(a), sin(a), tan(b), out);
+	double ca, sa, cb, sb;
+
+	fp_sincos(a, &sa, &ca);
+	fp_sincos(b, &sb, &cb);
+	lobe_direction_trig(d, par, across, ca, sa, sb / cb, out);
 }
 
 /* Just above the surface: a tap no lower than this (a cosine) reads. */
@@ -241,33 +403,37 @@ above(const float l[3], const double below[3])
 	return l[0] * below[0] + l[1] * below[1] + l[2] * below[2] > HORIZON;
 }
 
-static void
-shade_pixel(const struct footprint *fp, const float *in, float out[3])
+/* The pixel's taps, appended to sx, sy, sz (directions) and sl (lods);
+ * their number (0: black). */
+static unsigned
+shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, float *sz,
+            float *sl)
 {
 	const struct rf_host *host = fp->host;
 	double n[3] = { in[3], in[4], in[5] };
 	double v[3] = { in[6], in[7], in[8] }, ng[3] = { in[10], in[11], in[12] }, pr = in[9];
-	double mu, theta_v, e[4], x[3], y[3], d[3], par[3], c[3], t1[3], t2[3], g[RAYS][2];
-	double a[2], b[2], m11, m12, m22, tr, det, disc, smaj, smin, phi, w, ca, sa;
+	double mu, sv, theta_v, e[4], x[3], y[3], d[3], par[3], c[3], t1[3], t2[3];
+	float df[3], parf[3], yf[3], cf[3], t1f[3], t2f[3], gx[8], gy[8];
+	double a[2], b[2], m11, m12, m22, tr, det, disc, smaj, smin, w, ca, sa;
 	double lod;
 	float pf[3] = { in[0], in[1], in[2] }, dirs[3 * RAYS], look[3 * RAYS], dist[RAYS],
 	      jac[RAYS], tdir[3 * TAPS_MAX], tlook[3 * TAPS_MAX], tdist[TAPS_MAX],
-	      tjac[TAPS_MAX], sx[TAPS_MAX], sy[TAPS_MAX], sz[TAPS_MAX], sl[TAPS_MAX],
-	      rgba[4 * TAPS_MAX];
+	      tjac[TAPS_MAX];
 	const double *below;
 	double centre_dot;
 	int centre_above;
 	unsigned k, i, ntap, kept;
 
-	out[0] = out[1] = out[2] = 0.0f;
 	if (unit(n) < 0 || unit(v) < 0 || !(pr >= 0.0))
-		return;
+		return 0;
 	pr = pr < 1.0 ? pr : 1.0;
 	mu = dot(n, v);
 	if (!(mu > 0.0))
-		return; /* seen from below its surface: no light, as in Cycles */
+		return 0; /* seen from below its surface: no light, as in Cycles */
 	below = unit(ng) == 0 ? ng : n;
-	theta_v = acos(mu < 1.0 ? mu : 1.0);
+	mu = mu < 1.0 ? mu : 1.0;
+	sv = sqrt((1.0 - mu) * (1.0 + mu)); /* sin theta_v */
+	theta_v = fp_atan2(sv, mu);
 	lobe_at(fp->round ? 0.0 : theta_v, pr, e);
 	/* The incidence plane: x toward V along the surface, y across. */
 	for (k = 0; k < 3; k++)
@@ -285,7 +451,11 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 	{
 		/* the centre, theta_v + bend from N toward -x: R itself for
 		 * lobe=round, whose row has no bend */
-		double th = theta_v + fp->bend * e[0], st = sin(th), ct = cos(th);
+		double sb, cb, st, ct;
+
+		fp_sincos(fp->bend * e[0], &sb, &cb);
+		st = sv * cb + mu * sb;
+		ct = mu * cb - sv * sb;
 
 		for (k = 0; k < 3; k++) {
 			d[k] = -st * x[k] + ct * n[k];
@@ -297,35 +467,47 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 	 * beside P, and take the footprint with it.  (lobe=round is the
 	 * prefilter's kernel about R, as none reads it: horizon and all.) */
 	if (!fp->round) {
-		double el = asin(fmax(-1.0, fmin(1.0, dot(d, below))));
+		double h = fp_max(-1.0, fp_min(1.0, dot(d, below)));
+		double el = fp_atan2(h, sqrt((1.0 - h) * (1.0 + h)));
 
 		if (e[2] > el - 1e-3)
-			e[2] = fmax(0.0, el - 1e-3);
+			e[2] = fp_max(0.0, el - 1e-3);
 	}
 	/* The footprint's centre and width points, at the widths and at
 	 * half of them, taken through the box. */
 	{
 		/* Each ray turns one way only: of its cos, sin and tan, two are
 		 * those of 0 (1, 0, 0 exactly), and only four angles each way
-		 * are left to take; the bytes are those of lobe_direction. */
+		 * are left to take.  The centre in double, the eight others in
+		 * lanes (float, as they go to the host). */
 		const double in_plane[4] = { e[2], -e[1], 0.5 * e[2], -0.5 * e[1] };
-		const double across[4] = { e[3], -e[3], 0.5 * e[3], -0.5 * e[3] };
-		double cos_in[4], sin_in[4], tan_across[4];
+		const double across[2] = { e[3], 0.5 * e[3] };
+		double sn, cs;
+		float ca8[8], sa8[8], tb8[8];
 
+		/* rays 1 2 5 6 turn in-plane, 3 4 7 8 across */
 		for (i = 0; i < 4; i++) {
-			cos_in[i] = cos(in_plane[i]);
-			sin_in[i] = sin(in_plane[i]);
-			tan_across[i] = tan(across[i]);
+			unsigned r = i < 2 ? i : i + 2;
+
+			fp_sincos(in_plane[i], &sn, &cs);
+			ca8[r] = (float)cs;
+			sa8[r] = (float)sn;
+			tb8[r] = 0.0f;
+		}
+		for (i = 0; i < 2; i++) {
+			fp_sincos(across[i], &sn, &cs);
+			ca8[2 + 4 * i] = ca8[3 + 4 * i] = 1.0f;
+			sa8[2 + 4 * i] = sa8[3 + 4 * i] = 0.0f;
+			tb8[2 + 4 * i] = (float)(sn / cs);
+			tb8[3 + 4 * i] = -tb8[2 + 4 * i];
+		}
+		for (k = 0; k < 3; k++) {
+			df[k] = (float)d[k];
+			parf[k] = (float)par[k];
+			yf[k] = (float)y[k];
 		}
 		lobe_direction_trig(d, par, y, 1.0, 0.0, 0.0, dirs);
-		lobe_direction_trig(d, par, y, cos_in[0], sin_in[0], 0.0, dirs + 3);
-		lobe_direction_trig(d, par, y, cos_in[1], sin_in[1], 0.0, dirs + 6);
-		lobe_direction_trig(d, par, y, 1.0, 0.0, tan_across[0], dirs + 9);
-		lobe_direction_trig(d, par, y, 1.0, 0.0, tan_across[1], dirs + 12);
-		lobe_direction_trig(d, par, y, cos_in[2], sin_in[2], 0.0, dirs + 15);
-		lobe_direction_trig(d, par, y, cos_in[3], sin_in[3], 0.0, dirs + 18);
-		lobe_direction_trig(d, par, y, 1.0, 0.0, tan_across[2], dirs + 21);
-		lobe_direction_trig(d, par, y, 1.0, 0.0, tan_across[3], dirs + 24);
+		width_rays(fp->wide, ca8, sa8, tb8, df, parf, yf, dirs + 3);
 	}
 	if (host->project_rays) {
 		host->project_rays(host->ctx, RAYS, pf, dirs, look, dist, jac);
@@ -339,12 +521,19 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 	unit(c);
 	perpendicular(c, t1);
 	cross(c, t1, t2);
-	for (i = 1; i < RAYS; i++) /* the centre's own is 0 */
-		log_map(c, t1, t2, look + 3 * i, g[i]);
-	a[0] = 0.25 * (g[1][0] - g[2][0]) + 0.5 * (g[5][0] - g[6][0]);
-	a[1] = 0.25 * (g[1][1] - g[2][1]) + 0.5 * (g[5][1] - g[6][1]);
-	b[0] = 0.25 * (g[3][0] - g[4][0]) + 0.5 * (g[7][0] - g[8][0]);
-	b[1] = 0.25 * (g[3][1] - g[4][1]) + 0.5 * (g[7][1] - g[8][1]);
+	/* u's place in the tangent plane at c (the logarithmic map: the
+	 * angle from c, along the great circle's direction); the centre's
+	 * own is 0 */
+	for (k = 0; k < 3; k++) {
+		cf[k] = (float)c[k];
+		t1f[k] = (float)t1[k];
+		t2f[k] = (float)t2[k];
+	}
+	log_rays(fp->wide, look + 3, cf, t1f, t2f, gx, gy);
+	a[0] = 0.25 * ((double)gx[0] - gx[1]) + 0.5 * ((double)gx[4] - gx[5]);
+	a[1] = 0.25 * ((double)gy[0] - gy[1]) + 0.5 * ((double)gy[4] - gy[5]);
+	b[0] = 0.25 * ((double)gx[2] - gx[3]) + 0.5 * ((double)gx[6] - gx[7]);
+	b[1] = 0.25 * ((double)gy[2] - gy[3]) + 0.5 * ((double)gy[6] - gy[7]);
 	/* [A B]^T [A B]: its eigenvalues are the squared widths at C, its
 	 * eigenvectors the directions at P (in width units) that map onto
 	 * them. */
@@ -353,34 +542,61 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 	m12 = a[0] * b[0] + a[1] * b[1];
 	tr = m11 + m22;
 	det = m11 * m22 - m12 * m12;
-	disc = sqrt(fmax(0.0, 0.25 * tr * tr - det));
-	smaj = sqrt(fmax(0.0, 0.5 * tr + disc));
-	smin = sqrt(fmax(0.0, 0.5 * tr - disc));
-	phi = 0.5 * atan2(2.0 * m12, m11 - m22);
+	disc = sqrt(fp_max(0.0, 0.25 * tr * tr - det));
+	smaj = sqrt(fp_max(0.0, 0.5 * tr + disc));
+	smin = sqrt(fp_max(0.0, 0.5 * tr - disc));
+	{
+		/* cos and sin of the major axis' angle phi from those of 2 phi
+		 * (half angles, no arctangent): 2 phi is atan2(2 m12,
+		 * m11 - m22), so phi is in (-pi/2, pi/2] and cos phi >= 0. */
+		double r2 = sqrt(4.0 * m12 * m12 + (m11 - m22) * (m11 - m22)), c2, s2;
+
+		if (!(r2 > 0.0)) {
+			ca = 1.0;
+			sa = 0.0;
+		} else {
+			c2 = (m11 - m22) / r2;
+			s2 = 2.0 * m12 / r2;
+			if (c2 >= 0.0) {
+				ca = sqrt(0.5 * (1.0 + c2));
+				sa = 0.5 * s2 / ca;
+			} else {
+				sa = copysign(sqrt(0.5 * (1.0 - c2)), m12);
+				ca = 0.5 * fabs(s2) / fabs(sa);
+			}
+		}
+	}
 	/* All taps, unless the footprint is round (q = 1: one kernel is
 	 * it); each kernel as wide as the minor axis, or a share of the
 	 * major one, whichever is wider. */
 	ntap = fp->taps;
-	w = fmax(smin, smaj / ntap);
+	w = fp_max(smin, smaj / ntap);
 	if (!(smaj > 0.0) || w >= smaj || ntap == 1) {
 		ntap = 1;
 		w = smaj;
 	}
-	ca = cos(phi);
-	sa = sin(phi);
 	kept = 0;
 	{
-		double pos[TAPS_MAX];
+		double pos[TAPS_MAX], tia[8], tib[8];
+		float ia8[8], ib8[8], tap8[24];
 
 		tap_layout(ntap, w / smaj, pos);
-
-		for (i = 0; i < ntap; i++) {
-			double ta = pos[i] * ca, tb = pos[i] * sa;
-			double ia = ta * (ta > 0.0 ? e[2] : e[1]), ib = tb * e[3];
+		for (i = 0; i < 8; i++) {
+			double ta = i < ntap ? pos[i] * ca : 0.0, tb = i < ntap ? pos[i] * sa : 0.0;
 
 			/* in-plane: toward the horizon by its own width, toward
 			 * the normal by the other */
-			lobe_direction(d, par, y, ia, ib, tdir + 3 * kept);
+			tia[i] = ta * (ta > 0.0 ? e[2] : e[1]);
+			tib[i] = tb * e[3];
+			ia8[i] = (float)tia[i];
+			ib8[i] = (float)tib[i];
+		}
+		tap_rays(fp->wide, ia8, ib8, df, parf, yf, tap8);
+
+		for (i = 0; i < ntap; i++) {
+			double ia = tia[i], ib = tib[i];
+
+			memcpy(tdir + 3 * kept, tap8 + 3 * i, 3 * sizeof(float));
 			if (!above(tdir + 3 * kept, below)) {
 				/* The t-shaped tail reaches past the horizon, which
 				 * the measured lobe never does: the tap slides back
@@ -407,7 +623,7 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 	if (!kept) {
 		/* every tap below the surface: the centre, if it is above */
 		if (!(centre_dot > 0.0))
-			return;
+			return 0;
 		ntap = 1;
 		kept = 1;
 	}
@@ -422,7 +638,7 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 	/* Each tap's kernel: w where the centre lands, scaled by how much
 	 * more (or less) solid angle at C the tap's own exit takes per solid
 	 * angle at P than the centre's does. */
-	lod = host->roughness_to_lod(host->ctx, (float)kernel_roughness(w));
+	lod = host->roughness_to_lod(host->ctx, (float)kernel_roughness(fp->grow, w));
 	for (i = 0; i < kept; i++) {
 		sx[i] = tlook[3 * i];
 		sy[i] = tlook[3 * i + 1];
@@ -431,14 +647,9 @@ shade_pixel(const struct footprint *fp, const float *in, float out[3])
 		if (ntap > 1 && host->project_rays && jac[0] > 0.0f && tjac[i] > 0.0f &&
 		    tjac[i] < INFINITY && tjac[i] != jac[0])
 			sl[i] = host->roughness_to_lod(
-				host->ctx, (float)kernel_roughness(w * sqrt(tjac[i] / jac[0])));
+				host->ctx, (float)kernel_roughness(fp->grow, w * sqrt(tjac[i] / jac[0])));
 	}
-	host->sample_many(host->ctx, kept, sx, sy, sz, sl, rgba);
-	for (i = 0; i < kept; i++)
-		for (k = 0; k < 3; k++)
-			out[k] += rgba[4 * i + k];
-	for (k = 0; k < 3; k++)
-		out[k] /= (float)kept;
+	return kept;
 }
 
 static void
@@ -447,10 +658,39 @@ run(void *state, const struct rf_span *span)
 	const struct footprint *fp = state;
 	const float *in = span->in;
 	float *out = span->out;
-	uint32_t i;
+	uint32_t i0, i, n, k, t;
 
-	for (i = 0; i < span->npix; i++, in += NINPUTS, out += 3)
-		shade_pixel(fp, in, out);
+	/* eight pixels' taps in one read of the environment: its vector
+	 * path takes eight at a time */
+	for (i0 = 0; i0 < span->npix; i0 += CHUNK) {
+		float sx[CHUNK * TAPS_MAX], sy[CHUNK * TAPS_MAX], sz[CHUNK * TAPS_MAX],
+		      sl[CHUNK * TAPS_MAX], rgba[4 * CHUNK * TAPS_MAX];
+		unsigned kept[CHUNK];
+
+		n = span->npix - i0 < CHUNK ? span->npix - i0 : CHUNK;
+		for (i = t = 0; i < n; i++) {
+			kept[i] = shade_pixel(fp, in + (size_t)(i0 + i) * NINPUTS, sx + t, sy + t,
+			                      sz + t, sl + t);
+			t += kept[i];
+		}
+		if (t)
+			fp->host->sample_many(fp->host->ctx, t, sx, sy, sz, sl, rgba);
+		for (i = t = 0; i < n; i++) {
+			float *o = out + 3 * (size_t)(i0 + i);
+
+			o[0] = o[1] = o[2] = 0.0f;
+			for (k = 0; k < kept[i]; k++, t++) {
+				o[0] += rgba[4 * t];
+				o[1] += rgba[4 * t + 1];
+				o[2] += rgba[4 * t + 2];
+			}
+			if (kept[i]) {
+				o[0] /= (float)kept[i];
+				o[1] /= (float)kept[i];
+				o[2] /= (float)kept[i];
+			}
+		}
+	}
 }
 
 static void
@@ -479,6 +719,8 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	fp->taps = (unsigned)values[TAPS];
 	fp->round = values[LOBE] == LOBE_ROUND;
 	fp->bend = values[BEND];
+	fp->wide = rf__lanes_wide();
+	fp->grow = kernels_grow_check();
 	*state = fp;
 	return 0;
 }
