@@ -11,6 +11,11 @@ int rf__stage_ready(const rf_stage *s, size_t y, size_t nrows, size_t *in_ncomp,
                     size_t *out_ncomp);
 int rf__stage_threads(const rf_stage *s);
 void rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int thread);
+/* For a pass that overwrites the channels names (NULL-terminated) at
+ * walls (mask 0) without reading them: when every output of the plugin
+ * is one of them, rf__stage_row runs it only on the pixels between
+ * walls and writes 0 at walls; else on every pixel. */
+void rf__stage_skip_walls(rf_stage *s, const char *const *names);
 /* Around a block of rf__stage_row calls: the invalid input they met
  * counted, and RF_EINVAL (rf_stage_error) for the first under ERROR. */
 void rf__stage_block_begin(rf_stage *s);

@@ -55,6 +55,7 @@ struct rf_stage {
 	struct rf__check check; /* on the plugin's inputs, as gathered */
 	struct rf__check out_check; /* on its outputs, as it wrote them */
 	int mask_col;           /* the stream's mask, or -1 */
+	int skip_walls;         /* run() only between walls (rf__stage_skip_walls) */
 	/* An occlusion mode's factor: its output column, the input's own
 	 * occlusion (-1: none) and the channels it multiplies, named. */
 	int occ_col, occ_prev, occ_targets[6], nocc_targets;
@@ -572,6 +573,50 @@ apply_occlusion(const rf_stage *s, struct worker *w, const float *in, float *out
 	}
 }
 
+void
+rf__stage_skip_walls(rf_stage *s, const char *const *names)
+{
+	size_t i, k;
+
+	s->skip_walls = 0;
+	if (s->mask_col < 0 || s->occ_col >= 0)
+		return;
+	for (i = 0; i < s->nout; i++) {
+		for (k = 0; names[k] && strcmp(names[k], s->p->outputs[i]); k++)
+			;
+		if (!names[k])
+			return;
+	}
+	s->skip_walls = 1;
+}
+
+/* run() over the row's runs of pixels that are not walls (mask 0): a
+ * wall's outputs are written 0.  Walls are half the default scene's
+ * pixels, and a ray-traced mode's time is its pixels'. */
+static void
+run_between_walls(rf_stage *s, struct worker *w, struct rf_span *span, const float *in,
+                  size_t y)
+{
+	const size_t nc = s->in_ncomp, mc = (size_t)s->mask_col;
+	size_t x = 0, x0;
+
+	while (x < s->ncols) {
+		for (; x < s->ncols && in[x * nc + mc] == 0.0f; x++)
+			memset(w->scatter + x * s->nout, 0, s->nout * sizeof(float));
+		for (x0 = x; x < s->ncols && in[x * nc + mc] != 0.0f; x++)
+			;
+		if (x == x0)
+			break;
+		span->npix = (uint32_t)(x - x0);
+		span->x = (uint32_t)(s->region.x0 + x0);
+		span->in = w->gather + x0 * s->nin;
+		span->out = w->scatter + x0 * s->nout;
+		rf__call_enter(&s->site, "run", s->frames, y, 1);
+		s->p->run(w->state, span);
+		rf__call_leave();
+	}
+}
+
 /* One row (row y of the frame) on thread `thread`: its input passed
  * through, the plugin's inputs gathered, run, its outputs scattered. */
 void
@@ -606,9 +651,13 @@ rf__stage_row(rf_stage *s, const float *in, float *out, size_t y, int thread)
 			g[s->fixed_at[i]] = s->fixed_value[i];
 	}
 	zeroed = s->check.n ? check_row(s, w, in, y) : 0;
-	rf__call_enter(&s->site, "run", s->frames, y, 1);
-	s->p->run(w->state, &span);
-	rf__call_leave();
+	if (s->skip_walls) {
+		run_between_walls(s, w, &span, in, y);
+	} else {
+		rf__call_enter(&s->site, "run", s->frames, y, 1);
+		s->p->run(w->state, &span);
+		rf__call_leave();
+	}
 	if (s->out_check.n && !rf__check_row(&s->out_check, w->scatter, s->nout, s->ncols))
 		zeroed = check_outputs(s, w, in, y, zeroed);
 	for (x = 0; x < s->ncols; x++) {

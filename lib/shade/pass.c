@@ -42,6 +42,10 @@ static const char *const in_names[IN_COUNT] = {
 	"emission.R", "emission.G", "emission.B"
 };
 
+/* What a mode that traces the reflection writes. */
+static const char *const spec_names[] = { RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHADE_SPEC_B,
+                                          NULL };
+
 enum { OUT_SR, OUT_SG, OUT_SB, OUT_R, OUT_G, OUT_B, OUT_DR, OUT_DG, OUT_DB, OUT_COUNT };
 
 static const char *const out_names[OUT_COUNT] = {
@@ -1026,6 +1030,10 @@ rf__shade_run_stage(rf_shade *s, rf_stage *stage, const float *in, float *out, s
 	s->stage_in_ncomp = sin;
 	if ((rc = block_begin(s)) < 0)
 		return rc;
+	/* shade_pixel never reads a mode's radiance at a wall: the mode
+	 * need not trace it there. */
+	if (s->mode_radiance)
+		rf__stage_skip_walls(stage, spec_names);
 	rf__stage_block_begin(stage);
 	for (k = 1; s->blending && s->mode_radiance && k < s->blend.nprobes; k++) {
 		size_t ki, ko;
@@ -1036,6 +1044,7 @@ rf__shade_run_stage(rf_shade *s, rf_stage *stage, const float *in, float *out, s
 			return rc;
 		if (ko != s->out_ncomp)
 			return RF_EINVAL;
+		rf__stage_skip_walls(s->blend_stage[k], spec_names);
 		rf__stage_block_begin(s->blend_stage[k]);
 	}
 	rf__pool_run(s->pool, nrows, stage_and_shade_row, s);
