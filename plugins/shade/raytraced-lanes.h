@@ -98,7 +98,7 @@ NAME(lobe_lanes)(struct raytraced *rt, const struct lobe *lb, uint32_t i, uint32
 		pd = g1v * (alpha2 / (3.14159265359f * t * t)) / (4.0f * nv);
 #if LANES == 8
 		/* The lanes that count packed to the front by one permutation
-		 * (rt->pack: their indices, four bits each) and written whole
+		 * (pack_lanes: their indices, four bits each) and written whole
 		 * at the count: what follows them is overwritten later or never
 		 * read.  The count never passes the vector's first ray, so every
 		 * write is inside the arrays.  The lanes one by one took 18 % of
@@ -107,7 +107,7 @@ NAME(lobe_lanes)(struct raytraced *rt, const struct lobe *lb, uint32_t i, uint32
 			const __m256i shifts = _mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28);
 			int m = _mm256_movemask_ps((__m256)ok);
 			__m256i at = _mm256_and_si256(
-				_mm256_srlv_epi32(_mm256_set1_epi32((int)rt->pack[m]), shifts),
+				_mm256_srlv_epi32(_mm256_set1_epi32((int)pack_lanes[m]), shifts),
 				_mm256_set1_epi32(15));
 			VF d[3];
 

@@ -119,8 +119,20 @@ struct raytraced {
 	float *table; /* its nodes and marginals (raytraced-mis.h) */
 	float *dens; /* each ray's density in the square */
 	int wide;    /* the eight-lane code (AVX2) */
-	uint32_t pack[256]; /* of each 8-bit mask, its set bits' lanes, 4 bits each */
 };
+
+/* Of each 8-bit mask of lanes, its set bits' lane numbers in order, 4
+ * bits each (lobe_lanes_8 packs the rays that count by it): bit b of m
+ * goes to the place of the bits of m below it. */
+#define PACK_POP(m) (((m) & 1) + ((m) >> 1 & 1) + ((m) >> 2 & 1) + ((m) >> 3 & 1) + \
+                     ((m) >> 4 & 1) + ((m) >> 5 & 1) + ((m) >> 6 & 1) + ((m) >> 7 & 1))
+#define PACK_BIT(m, b) (((m) >> (b) & 1u) * ((uint32_t)(b) << 4 * PACK_POP((m) & ((1u << (b)) - 1))))
+#define PACK(m) (PACK_BIT(m, 1) | PACK_BIT(m, 2) | PACK_BIT(m, 3) | PACK_BIT(m, 4) | \
+                 PACK_BIT(m, 5) | PACK_BIT(m, 6) | PACK_BIT(m, 7))
+#define PACK4(m) PACK(m), PACK(m + 1), PACK(m + 2), PACK(m + 3)
+#define PACK16(m) PACK4(m), PACK4(m + 4), PACK4(m + 8), PACK4(m + 12)
+#define PACK64(m) PACK16(m), PACK16(m + 16), PACK16(m + 32), PACK16(m + 48)
+static const uint32_t pack_lanes[256] = { PACK64(0u), PACK64(64u), PACK64(128u), PACK64(192u) };
 
 /* ---- random numbers ------------------------------------------------------ */
 
@@ -767,13 +779,6 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	}
 	rt->host = host;
 	rt->wide = rf__lanes_wide();
-	for (i = 0; i < 256; i++) {
-		uint32_t bit, at = 0;
-
-		for (bit = 0; bit < 8; bit++)
-			if (i >> bit & 1)
-				rt->pack[i] |= bit << (4 * at++);
-	}
 	rt->samples = (uint32_t)values[SAMPLES];
 	rt->pattern = (int)values[PATTERN];
 	rt->animate = values[ANIMATE] != 0.0;
