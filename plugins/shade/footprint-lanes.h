@@ -9,52 +9,11 @@
  * multiply-add, so either width gives the same bits.
  */
 
+#include "maths/lanes.h"
+
 #if LANES == 8
 #include <immintrin.h>
 #endif
-
-LANES_ATTR static inline VF
-NAME(fv_splat)(float x)
-{
-	VF v;
-	int k;
-
-	for (k = 0; k < LANES; k++)
-		v[k] = x;
-	return v;
-}
-
-LANES_ATTR static inline VF
-NAME(fv_sel)(VI m, VF a, VF b)
-{
-	return (VF)(((VI)a & m) | ((VI)b & ~m));
-}
-
-LANES_ATTR static inline VF
-NAME(fv_sqrt)(VF x)
-{
-	VF r;
-	int k;
-
-	for (k = 0; k < LANES; k++)
-		r[k] = __builtin_sqrtf(x[k]);
-	return r;
-}
-
-LANES_ATTR static inline VF
-NAME(fv_load)(const float *p)
-{
-	VF v;
-
-	memcpy(&v, p, sizeof(v));
-	return v;
-}
-
-LANES_ATTR static inline void
-NAME(fv_store)(float *p, VF v)
-{
-	memcpy(p, &v, sizeof(v));
-}
 
 /* Unit direction ca d + sa par + tb across, stored as xyz triples. */
 LANES_ATTR static inline void
@@ -66,7 +25,7 @@ NAME(fv_direction)(VF ca, VF sa, VF tb, const float d[3], const float par[3],
 
 	for (j = 0; j < 3; j++)
 		r[j] = ca * d[j] + sa * par[j] + tb * across[j];
-	len = NAME(fv_splat)(1.0f) / NAME(fv_sqrt)(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+	len = NAME(v_splat)(1.0f) / NAME(v_sqrt)(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
 	for (j = 0; j < 3; j++)
 		r[j] = r[j] * len;
 	for (k = 0; k < LANES; k++)
@@ -80,9 +39,9 @@ NAME(fv_direction)(VF ca, VF sa, VF tb, const float d[3], const float par[3],
 LANES_ATTR static inline void
 NAME(fv_sincos)(VF x, VF *s, VF *c)
 {
-	const VF zero = NAME(fv_splat)(0.0f), half = NAME(fv_splat)(0.5f);
+	const VF zero = NAME(v_splat)(0.0f), half = NAME(v_splat)(0.5f);
 	VI q = __builtin_convertvector(x * (float)(2.0 / M_PI) +
-	                               NAME(fv_sel)(x < zero, -half, half), VI), swap, neg_s, neg_c;
+	                               NAME(v_select)(x < zero, -half, half), VI), swap, neg_s, neg_c;
 	VF k = __builtin_convertvector(q, VF), r, r2, sr, cr, t;
 
 	r = (x - k * 1.5703125f) - k * 4.838267948965580e-4f;
@@ -94,11 +53,11 @@ NAME(fv_sincos)(VF x, VF *s, VF *c)
 	swap = (q & 1) != 0;
 	neg_s = (q & 2) != 0;
 	neg_c = ((q + 1) & 2) != 0;
-	t = NAME(fv_sel)(swap, cr, sr);
-	cr = NAME(fv_sel)(swap, sr, cr);
+	t = NAME(v_select)(swap, cr, sr);
+	cr = NAME(v_select)(swap, sr, cr);
 	sr = t;
-	*s = NAME(fv_sel)(neg_s, -sr, sr);
-	*c = NAME(fv_sel)(neg_c, -cr, cr);
+	*s = NAME(v_select)(neg_s, -sr, sr);
+	*c = NAME(v_select)(neg_c, -cr, cr);
 }
 
 /* atan2(s, z) for s >= 0: to [0, 1] by the smaller over the larger,
@@ -107,21 +66,21 @@ NAME(fv_sincos)(VF x, VF *s, VF *c)
 LANES_ATTR static inline VF
 NAME(fv_atan2p)(VF s, VF z)
 {
-	const VF zero = NAME(fv_splat)(0.0f), sqrt3 = NAME(fv_splat)(1.7320508075688772f);
-	VF az = NAME(fv_sel)(z < zero, -z, z), lo, hi, t, u, u2, a;
+	const VF zero = NAME(v_splat)(0.0f), sqrt3 = NAME(v_splat)(1.7320508075688772f);
+	VF az = NAME(v_select)(z < zero, -z, z), lo, hi, t, u, u2, a;
 	VI big = s > az, far;
 
-	lo = NAME(fv_sel)(big, az, s);
-	hi = NAME(fv_sel)(big, s, az);
-	t = lo / NAME(fv_sel)(hi > zero, hi, NAME(fv_splat)(1.0f));
+	lo = NAME(v_select)(big, az, s);
+	hi = NAME(v_select)(big, s, az);
+	t = lo / NAME(v_select)(hi > zero, hi, NAME(v_splat)(1.0f));
 	far = t > 0.2679491924311227f;
-	u = NAME(fv_sel)(far, (sqrt3 * t - 1.0f) / (t + sqrt3), t);
+	u = NAME(v_select)(far, (sqrt3 * t - 1.0f) / (t + sqrt3), t);
 	u2 = u * u;
 	a = u + u * u2 * (-1.0f / 3 + u2 * (1.0f / 5 + u2 * (-1.0f / 7 + u2 * (1.0f / 9 +
 	    u2 * (-1.0f / 11 + u2 * (1.0f / 13 + u2 * (-1.0f / 15)))))));
-	a = NAME(fv_sel)(far, a + (float)(M_PI / 6.0), a);
-	a = NAME(fv_sel)(big, (float)M_PI_2 - a, a);
-	return NAME(fv_sel)(z < zero, (float)M_PI - a, a);
+	a = NAME(v_select)(far, a + (float)(M_PI / 6.0), a);
+	a = NAME(v_select)(big, (float)M_PI_2 - a, a);
+	return NAME(v_select)(z < zero, (float)M_PI - a, a);
 }
 
 /* The eight width rays: lane i turns by the angle whose cos, sin and
@@ -133,8 +92,8 @@ NAME(fp_rays)(const float *ca, const float *sa, const float *tb, const float d[3
 	int i;
 
 	for (i = 0; i < 8; i += LANES)
-		NAME(fv_direction)(NAME(fv_load)(ca + i), NAME(fv_load)(sa + i),
-		                   NAME(fv_load)(tb + i), d, par, across, out + 3 * i);
+		NAME(fv_direction)(NAME(v_load)(ca + i), NAME(v_load)(sa + i),
+		                   NAME(v_load)(tb + i), d, par, across, out + 3 * i);
 }
 
 /* Up to eight taps at in-plane angle ia and across angle ib: out gets
@@ -148,8 +107,8 @@ NAME(fp_taps)(const float *ia, const float *ib, const float d[3], const float pa
 	for (i = 0; i < 8; i += LANES) {
 		VF sa, ca, sb, cb;
 
-		NAME(fv_sincos)(NAME(fv_load)(ia + i), &sa, &ca);
-		NAME(fv_sincos)(NAME(fv_load)(ib + i), &sb, &cb);
+		NAME(fv_sincos)(NAME(v_load)(ia + i), &sa, &ca);
+		NAME(fv_sincos)(NAME(v_load)(ib + i), &sb, &cb);
 		NAME(fv_direction)(ca, sa, sb / cb, d, par, across, out + 3 * i);
 	}
 }
@@ -163,7 +122,7 @@ NAME(fp_log)(const float *look, const float c[3], const float t1[3], const float
 	int i, k;
 
 	for (i = 0; i < 8; i += LANES) {
-		const VF zero = NAME(fv_splat)(0.0f);
+		const VF zero = NAME(v_splat)(0.0f);
 		VF v[3], inv, x, y, z, s, ang, f;
 
 		for (k = 0; k < LANES; k++) {
@@ -171,18 +130,18 @@ NAME(fp_log)(const float *look, const float c[3], const float t1[3], const float
 			v[1][k] = look[3 * (i + k) + 1];
 			v[2][k] = look[3 * (i + k) + 2];
 		}
-		inv = NAME(fv_splat)(1.0f) / NAME(fv_sqrt)(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+		inv = NAME(v_splat)(1.0f) / NAME(v_sqrt)(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
 		v[0] = v[0] * inv;
 		v[1] = v[1] * inv;
 		v[2] = v[2] * inv;
 		x = v[0] * t1[0] + v[1] * t1[1] + v[2] * t1[2];
 		y = v[0] * t2[0] + v[1] * t2[1] + v[2] * t2[2];
 		z = v[0] * c[0] + v[1] * c[1] + v[2] * c[2];
-		s = NAME(fv_sqrt)(x * x + y * y);
+		s = NAME(v_sqrt)(x * x + y * y);
 		ang = NAME(fv_atan2p)(s, z);
-		f = NAME(fv_sel)(s > zero, ang / NAME(fv_sel)(s > zero, s, NAME(fv_splat)(1.0f)),
+		f = NAME(v_select)(s > zero, ang / NAME(v_select)(s > zero, s, NAME(v_splat)(1.0f)),
 		                 zero);
-		NAME(fv_store)(gx + i, x * f);
-		NAME(fv_store)(gy + i, y * f);
+		NAME(v_store)(gx + i, x * f);
+		NAME(v_store)(gy + i, y * f);
 	}
 }
