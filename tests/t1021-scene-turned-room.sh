@@ -206,7 +206,14 @@ test_expect_success 'every mode: the turned scene gives the same image' '
 				reflect-shade -q -m $m --env=c$s.exr --final p$s.rfl >h$s.rfl &&
 				reflect-filter -fa h$s.rfl >h$s.txt || return 1
 			done &&
-			same_channels ha.txt hb.txt spec.R spec.G spec.B R G B diffuse.R diffuse.G diffuse.B >count &&
+			# footprint takes its width rays and their log map in
+			# float lanes, which round differently in the turned
+			# frame, and the rounding of a width moves the level of
+			# a tap: 1.03e-4 at worst here (4e-6 when they were
+			# double), twice that allowed
+			case $m in footprint) mode_tol=2e-4 ;; *) mode_tol=2e-5 ;; esac &&
+			tol=$mode_tol same_channels ha.txt hb.txt spec.R spec.G spec.B R G B \
+				diffuse.R diffuse.G diffuse.B >count &&
 			echo 10800 >expect &&
 			cmp expect count || return 1
 		done || return 1
