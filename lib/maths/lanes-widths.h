@@ -1,12 +1,13 @@
 /*
  * Includes the header named by RF__LANES_BODY (a string) once for each
- * width the compiler can make: 4 lanes (SSE, every x86-64), with
- * functions suffixed _4, and where it can target AVX2, 8 lanes (_8),
- * to be chosen at run time by rf__lanes_wide().  See lanes.h.
+ * width the compiler can make: 4 lanes (SSE on every x86-64, generic
+ * vectors elsewhere), with functions suffixed _4, and where it can
+ * target AVX2, 8 lanes (_8), to be chosen at run time by
+ * rf__lanes_wide().  See lanes.h.
  */
 #include "maths/lanes.h"
 
-#if defined(__SSE2__)
+#if defined(RF__LANES_NARROW)
 #define LANES 4
 #define VF rf__lanes_v4f
 #define VI rf__lanes_v4i

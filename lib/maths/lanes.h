@@ -26,7 +26,10 @@
 typedef float rf__lanes_v8f __attribute__((vector_size(32)));
 typedef int rf__lanes_v8i __attribute__((vector_size(32)));
 #endif
-#if defined(__SSE2__)
+/* Four lanes: SSE on every x86-64, and the compiler's generic vectors
+ * (the same operations, the same bits) wherever else it has them. */
+#if defined(__SSE2__) || defined(__GNUC__) || defined(__clang__)
+#define RF__LANES_NARROW 1
 typedef float rf__lanes_v4f __attribute__((vector_size(16)));
 typedef int rf__lanes_v4i __attribute__((vector_size(16)));
 #endif

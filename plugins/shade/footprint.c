@@ -61,24 +61,7 @@
  * with AVX2 */
 #include "maths/lanes.h"
 #define RF__LANES_BODY "footprint-lanes.h"
-#if defined(__SSE2__)
 #include "maths/lanes-widths.h"
-#else
-/* the compiler's generic vectors, the same operations */
-typedef float fp__v4f __attribute__((vector_size(16)));
-typedef int fp__v4i __attribute__((vector_size(16)));
-#define LANES 4
-#define VF fp__v4f
-#define VI fp__v4i
-#define NAME(x) x##_4
-#define LANES_ATTR
-#include RF__LANES_BODY
-#undef LANES
-#undef VF
-#undef VI
-#undef NAME
-#undef LANES_ATTR
-#endif
 
 enum { TAPS, LOBE, BEND, NPARAMS };
 enum { LOBE_MEASURED, LOBE_ROUND };
