@@ -101,7 +101,6 @@ struct footprint {
 	double bend;
 	float inner; /* an inner tap's weight, an outer one's being 1 */
 	int wide; /* the eight-lane code (AVX2) */
-	int grow; /* kernels_grow_check() */
 };
 
 static void
@@ -322,46 +321,27 @@ lobe_at(double theta_v, double pr, double e[4])
 		             fy * footprint_table[i + 1][j + 1][k]);
 }
 
-/* Whether the kernels' widths (the row theta_v = 0) never shrink with
- * roughness, as a lobe's do: then the first one as wide as w is found
- * by halves. */
-static int
-kernels_grow_check(void)
-{
-	unsigned j;
-
-	for (j = 1; j < FOOTPRINT_ROUGHNESSES; j++)
-		if (!(footprint_table[0][j - 1][3] <= footprint_table[0][j][3]))
-			return 0;
-	return 1;
-}
-
 /* The perceptual roughness whose prefilter kernel is w wide: the row
- * theta_v = 0, piecewise linear in roughness, inverted. */
+ * theta_v = 0, piecewise linear in roughness, inverted.  The row grows
+ * with roughness (footprint-gen refuses a table where it does not), so
+ * the first entry as wide as w is found by halves. */
 static double
-kernel_roughness(int kernels_grow, double w)
+kernel_roughness(double w)
 {
 	unsigned j, lo_j = 1, hi_j = FOOTPRINT_ROUGHNESSES;
 	double lo, hi;
 
 	if (!(w > 0.0))
 		return 0.0;
-	/* the first j with w <= the width at j, by halves: the row grows
-	 * with roughness (kernels_grow() checks it; else one by one) */
-	if (kernels_grow) {
-		while (lo_j < hi_j) {
-			unsigned mid = (lo_j + hi_j) / 2;
+	while (lo_j < hi_j) {
+		unsigned mid = (lo_j + hi_j) / 2;
 
-			if (w <= footprint_table[0][mid][3])
-				hi_j = mid;
-			else
-				lo_j = mid + 1;
-		}
-		j = lo_j;
-	} else {
-		for (j = 1; j < FOOTPRINT_ROUGHNESSES && !(w <= footprint_table[0][j][3]); j++)
-			;
+		if (w <= footprint_table[0][mid][3])
+			hi_j = mid;
+		else
+			lo_j = mid + 1;
 	}
+	j = lo_j;
 	if (j == FOOTPRINT_ROUGHNESSES)
 		return 1.0;
 	lo = footprint_table[0][j - 1][3];
@@ -644,7 +624,7 @@ shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, f
 	/* Each tap's kernel: w where the centre lands, scaled by how much
 	 * more (or less) solid angle at C the tap's own exit takes per solid
 	 * angle at P than the centre's does. */
-	lod = host->roughness_to_lod(host->ctx, (float)kernel_roughness(fp->grow, w));
+	lod = host->roughness_to_lod(host->ctx, (float)kernel_roughness(w));
 	for (i = 0; i < kept; i++) {
 		sx[i] = tlook[3 * i];
 		sy[i] = tlook[3 * i + 1];
@@ -653,7 +633,7 @@ shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, f
 		if (ntap > 1 && host->project_rays && jac[0] > 0.0f && tjac[i] > 0.0f &&
 		    tjac[i] < INFINITY && tjac[i] != jac[0])
 			sl[i] = host->roughness_to_lod(
-				host->ctx, (float)kernel_roughness(fp->grow, w * sqrt(tjac[i] / jac[0])));
+				host->ctx, (float)kernel_roughness(w * sqrt(tjac[i] / jac[0])));
 	}
 	return kept;
 }
@@ -728,7 +708,6 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	fp->bend = values[BEND];
 	fp->inner = (float)values[INNER];
 	fp->wide = rf__lanes_wide();
-	fp->grow = kernels_grow_check();
 	*state = fp;
 	return 0;
 }
