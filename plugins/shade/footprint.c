@@ -100,50 +100,23 @@ struct footprint {
 	int round;
 	double bend;
 	float inner; /* an inner tap's weight, an outer one's being 1 */
-	int wide; /* the eight-lane code (AVX2) */
+	const struct lanes *lanes; /* eight wide with AVX2, else four */
 };
 
-static void
-width_rays(int wide, const float *ca, const float *sa, const float *tb, const float d[3],
-           const float par[3], const float across[3], float *out)
-{
-#if defined(RF__LANES_WIDE)
-	if (wide) {
-		fp_rays_8(ca, sa, tb, d, par, across, out);
-		return;
-	}
-#endif
-	(void)wide;
-	fp_rays_4(ca, sa, tb, d, par, across, out);
-}
+/* The lane code of one width, picked once at create. */
+struct lanes {
+	void (*rays)(const float *ca, const float *sa, const float *tb, const float d[3],
+	             const float par[3], const float across[3], float *out);
+	void (*taps)(const float *ia, const float *ib, const float d[3], const float par[3],
+	             const float across[3], float *out);
+	void (*log)(const float *look, const float c[3], const float t1[3], const float t2[3],
+	            float *gx, float *gy);
+};
 
-static void
-tap_rays(int wide, const float *ia, const float *ib, const float d[3], const float par[3],
-         const float across[3], float *out)
-{
+static const struct lanes lanes_4 = { fp_rays_4, fp_taps_4, fp_log_4 };
 #if defined(RF__LANES_WIDE)
-	if (wide) {
-		fp_taps_8(ia, ib, d, par, across, out);
-		return;
-	}
+static const struct lanes lanes_8 = { fp_rays_8, fp_taps_8, fp_log_8 };
 #endif
-	(void)wide;
-	fp_taps_4(ia, ib, d, par, across, out);
-}
-
-static void
-log_rays(int wide, const float *look, const float c[3], const float t1[3],
-         const float t2[3], float *gx, float *gy)
-{
-#if defined(RF__LANES_WIDE)
-	if (wide) {
-		fp_log_8(look, c, t1, t2, gx, gy);
-		return;
-	}
-#endif
-	(void)wide;
-	fp_log_4(look, c, t1, t2, gx, gy);
-}
 
 /* n taps' places along the footprint's long axis, in units of its
  * width, for kernels q times as wide: the n-quantiles of
@@ -490,7 +463,7 @@ shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, f
 			yf[k] = (float)y[k];
 		}
 		lobe_direction_trig(d, par, y, 1.0, 0.0, 0.0, dirs);
-		width_rays(fp->wide, ca8, sa8, tb8, df, parf, yf, dirs + 3);
+		fp->lanes->rays(ca8, sa8, tb8, df, parf, yf, dirs + 3);
 	}
 	if (host->project_rays) {
 		host->project_rays(host->ctx, RAYS, pf, dirs, look, dist, jac);
@@ -512,7 +485,7 @@ shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, f
 		t1f[k] = (float)t1[k];
 		t2f[k] = (float)t2[k];
 	}
-	log_rays(fp->wide, look + 3, cf, t1f, t2f, gx, gy);
+	fp->lanes->log(look + 3, cf, t1f, t2f, gx, gy);
 	a[0] = 0.25 * ((double)gx[0] - gx[1]) + 0.5 * ((double)gx[4] - gx[5]);
 	a[1] = 0.25 * ((double)gy[0] - gy[1]) + 0.5 * ((double)gy[4] - gy[5]);
 	b[0] = 0.25 * ((double)gx[2] - gx[3]) + 0.5 * ((double)gx[6] - gx[7]);
@@ -574,7 +547,7 @@ shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, f
 			ia8[i] = (float)tia[i];
 			ib8[i] = (float)tib[i];
 		}
-		tap_rays(fp->wide, ia8, ib8, df, parf, yf, tap8);
+		fp->lanes->taps(ia8, ib8, df, parf, yf, tap8);
 
 		for (i = 0; i < ntap; i++) {
 			double ia = tia[i], ib = tib[i];
@@ -707,7 +680,11 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	fp->round = values[LOBE] == LOBE_ROUND;
 	fp->bend = values[BEND];
 	fp->inner = (float)values[INNER];
-	fp->wide = rf__lanes_wide();
+	fp->lanes = &lanes_4;
+#if defined(RF__LANES_WIDE)
+	if (rf__lanes_wide())
+		fp->lanes = &lanes_8;
+#endif
 	*state = fp;
 	return 0;
 }
