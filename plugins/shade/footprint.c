@@ -584,11 +584,10 @@ shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, f
 		ntap = 1;
 		kept = 1;
 	}
-	if (ntap == 1)
-		sw[0] = 1.0f;
 	if (ntap == 1) {
 		memcpy(tlook, look, 3 * sizeof(float)); /* the centre, already projected */
 		tjac[0] = jac[0];
+		sw[0] = 1.0f;
 	} else if (host->project_rays) {
 		host->project_rays(host->ctx, kept, pf, tdir, tlook, tdist, tjac);
 	} else {
