@@ -165,4 +165,50 @@ test_expect_success 'a standard error below 0, or NaN where the stream has it: r
 	reflect-filter -m atrous:variance=off nan.txt >/dev/null
 '
 
+# After the filter a value's standard error is the error of the value as
+# it was, not as it is: a second filter would take it for the noise still
+# there.  So the filter drops the .se of each value it filters, and keeps
+# every other channel as it came.
+test_expect_success 'the standard errors of the values filtered are dropped' '
+	floor se.txt 0.5 &&
+	reflect-filter -fa se.txt >out.txt &&
+	test_grep "^CHANNELS=N.X N.Y N.Z P.X P.Y P.Z roughness objid spec.R spec.G.se spec.B.se$" out.txt &&
+	test_grep "^NCOMP=11$" out.txt &&
+	for c in N.X N.Y N.Z P.X P.Y P.Z roughness objid spec.G.se spec.B.se
+	do
+		column se.txt $c >before &&
+		column out.txt $c >after &&
+		test -s after &&
+		test_cmp_numbers before after 1e-7 || return 1
+	done &&
+	column se.txt spec.R >before &&
+	column out.txt spec.R >after &&
+	! cmp -s before after
+'
+
+test_expect_success 'a standard error filtered itself, or of a value not filtered, stays' '
+	reflect-filter -fa --channels=spec.R,spec.R.se se.txt >both.txt &&
+	test_grep "^CHANNELS=N.X N.Y N.Z P.X P.Y P.Z roughness objid spec.R spec.R.se spec.G.se spec.B.se$" both.txt &&
+	column both.txt spec.R.se | sort -u >got &&
+	echo 0.5 >want &&
+	diff -u want got &&
+	reflect-filter -fa --channels=P.X se.txt >other.txt &&
+	test_grep "^NCOMP=12$" other.txt &&
+	column se.txt spec.R spec.R.se >before &&
+	column other.txt spec.R spec.R.se >after &&
+	cmp before after
+'
+
+test_expect_success 'a tile of a frame with standard errors: the tile of the filtered frame' '
+	reflect-filter -fa -m quad se.txt >whole.txt &&
+	reflect-filter -fa -m quad --region=3,2,11,9 se.txt >tile.txt &&
+	test_grep "^NCOMP=11$" tile.txt &&
+	column whole.txt P.X P.Z spec.R spec.G.se |
+		awk "{ x = int(NR - 1) % 16; y = int((NR - 1) / 16) }
+			x >= 3 && x < 11 && y >= 2 && y < 9" >want &&
+	column tile.txt P.X P.Z spec.R spec.G.se >got &&
+	test $(wc -l <got) -eq 56 &&
+	cmp want got
+'
+
 test_done

@@ -517,7 +517,9 @@ RF_EXTERN const char *rf_accumulator_error(const rf_accumulator *a);
  * a band of rows per pass, not the frame: it reads the frame's rows
  * through a callback as its bands have room, and writes each row as soon
  * as it is filtered, the filtered channels (those named, or by default
- * every spec.* channel and R G B) in place, every other channel as read.
+ * every spec.* channel and R G B) in place, every other channel as read,
+ * but for the standard errors of those filtered (NAME.se, not filtered
+ * themselves), which the filter made stale: the output has them not.
  */
 typedef struct rf_filter rf_filter;
 
@@ -534,8 +536,9 @@ RF_EXTERN int rf_filter_create(rf_filter **f, const struct rf_plugin *p,
                                int nthreads, const struct rf_filter_options *o,
                                char *err, size_t errlen);
 RF_EXTERN void rf_filter_destroy(rf_filter *f);
-/* Takes the next frame's header; the output header (the input's) is
- * valid until the next call.  err names a missing guide channel. */
+/* Takes the next frame's header; the output header (the input's, less
+ * the stale standard errors) is valid until the next call.  err names a
+ * missing guide channel. */
 RF_EXTERN int rf_filter_begin_frame(rf_filter *f, const rf_header *in, rf_header **out,
                                     char *err, size_t errlen);
 /* Filters the frame: every row read once, written once, in order.  A

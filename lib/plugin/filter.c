@@ -67,6 +67,12 @@ struct rf_filter {
 	uint32_t npasses, radius[RF_FILTER_PASSES_MAX];
 	rf_header *out_h;
 	size_t ncols, nrows, ncomp, frames;
+	/* The output's channels as input columns: every one but the
+	 * standard errors (NAME.se) of the values filtered, which were the
+	 * errors of the values before the filter. */
+	int out_col[RF_CHANNELS_MAX];
+	size_t out_ncomp;
+	int out_value_col[RF_CHANNELS_MAX]; /* value_col's in the output */
 	struct level level[RF_FILTER_PASSES_MAX + 1];
 	float *full; /* whole input rows, from the next output row on */
 	size_t full_cap;
@@ -184,6 +190,60 @@ rf_filter_destroy(rf_filter *f)
 	free(f);
 }
 
+/* Whether input channel c is the standard error of a value filtered
+ * (and not filtered itself, as --channels may ask). */
+static int
+stale_error(const rf_filter *f, const rf_header *in, size_t c)
+{
+	const char *name = rf_header_channel(in, c);
+	size_t len = strlen(name), i;
+
+	if (len <= 3 || strcmp(name + len - 3, ".se"))
+		return 0;
+	for (i = 0; i < f->nv; i++)
+		if ((size_t)f->value_col[i] == c)
+			return 0;
+	for (i = 0; i < f->nv; i++) {
+		const char *v = rf_header_channel(in, (size_t)f->value_col[i]);
+
+		if (strlen(v) == len - 3 && !strncmp(v, name, len - 3))
+			return 1;
+	}
+	return 0;
+}
+
+/* f->out_col and the output header's channels: the input's, less the
+ * standard errors the filter made stale. */
+static int
+drop_stale_errors(rf_filter *f, const rf_header *in)
+{
+	size_t c, i, len = 0;
+	char *names;
+	int rc;
+
+	f->out_ncomp = 0;
+	for (c = 0; c < f->ncomp; c++)
+		if (!stale_error(f, in, c)) {
+			for (i = 0; i < f->nv; i++)
+				if ((size_t)f->value_col[i] == c)
+					f->out_value_col[i] = (int)f->out_ncomp;
+			f->out_col[f->out_ncomp++] = (int)c;
+			len += strlen(rf_header_channel(in, c)) + 1;
+		}
+	if (f->out_ncomp == f->ncomp)
+		return 0;
+	if (!(names = malloc(len + 1)))
+		return RF_ENOMEM;
+	names[0] = '\0';
+	for (c = 0; c < f->out_ncomp; c++) {
+		strcat(names, rf_header_channel(in, (size_t)f->out_col[c]));
+		strcat(names, " ");
+	}
+	rc = rf_header_set_channels(f->out_h, names);
+	free(names);
+	return rc;
+}
+
 int
 rf_filter_begin_frame(rf_filter *f, const rf_header *in, rf_header **out, char *err,
                       size_t errlen)
@@ -238,7 +298,7 @@ rf_filter_begin_frame(rf_filter *f, const rf_header *in, rf_header **out, char *
 		goto nomem;
 	rf_header_destroy(f->out_h);
 	f->out_h = NULL;
-	if ((rc = rf_header_dup(&f->out_h, in)) < 0)
+	if ((rc = rf_header_dup(&f->out_h, in)) < 0 || (rc = drop_stale_errors(f, in)) < 0)
 		return rc;
 	*out = f->out_h;
 	f->frames++;
@@ -305,7 +365,7 @@ pass_failure(rf_filter *f)
 	rf__format(f->error, sizeof(f->error), "row %zu, pixel %zu: mode '%s' broke its "
 	           "output contract: pass %u wrote channel '%s' as %s", b->bad_y + 1,
 	           b->bad_x + 1, f->p->name, b->bad_pass + 1,
-	           rf_header_channel(f->out_h, (size_t)f->value_col[b->bad_value]),
+	           rf_header_channel(f->out_h, (size_t)f->out_value_col[b->bad_value]),
 	           isnan(b->bad) ? "nan" : b->bad > 0 ? "inf" : "-inf");
 	return RF_EINVAL;
 }
@@ -420,7 +480,7 @@ take_rows(rf_filter *f, size_t y, size_t n)
 				if (!isfinite(v)) {
 					rf__format(f->error, sizeof(f->error), "row %zu, pixel %zu: "
 					           "channel '%s' is %s", y + k + 1, x + 1,
-					           rf_header_channel(f->out_h, (size_t)f->value_col[i]),
+					           rf_header_channel(f->out_h, (size_t)f->out_value_col[i]),
 					           isnan(v) ? "nan" : v > 0 ? "inf" : "-inf");
 					return RF_EINVAL;
 				}
@@ -429,7 +489,7 @@ take_rows(rf_filter *f, size_t y, size_t n)
 					           "channel '%s' is %g, past a quarter of the float "
 					           "range (%g), where a filter's sums overflow", y + k + 1,
 					           x + 1,
-					           rf_header_channel(f->out_h, (size_t)f->value_col[i]),
+					           rf_header_channel(f->out_h, (size_t)f->out_value_col[i]),
 					           (double)v, (double)VALUE_MAX);
 					return RF_EINVAL;
 				}
@@ -529,12 +589,19 @@ rf_filter_frame(rf_filter *f, rf_filter_read_fn *read_rows, rf_filter_write_fn *
 				m = f->block_rows;
 			for (k = 0; k < m; k++) {
 				const float *res = level_row(f, f->npasses, out_next + k);
-				float *o = f->block + k * f->ncols * f->ncomp;
+				const float *row = full_row(f, out_next + k);
+				float *o = f->block + k * f->ncols * f->out_ncomp;
 
-				memcpy(o, full_row(f, out_next + k), f->ncols * f->ncomp * sizeof(float));
-				for (x = 0; x < f->ncols; x++, o += f->ncomp)
+				if (f->out_ncomp == f->ncomp) {
+					memcpy(o, row, f->ncols * f->ncomp * sizeof(float));
+				} else {
+					for (x = 0; x < f->ncols; x++, row += f->ncomp)
+						for (i = 0; i < f->out_ncomp; i++)
+							o[x * f->out_ncomp + i] = row[f->out_col[i]];
+				}
+				for (x = 0; x < f->ncols; x++, o += f->out_ncomp)
 					for (i = 0; i < f->nv; i++)
-						o[f->value_col[i]] = res[(f->ng + i) * f->ncols + x];
+						o[f->out_value_col[i]] = res[(f->ng + i) * f->ncols + x];
 			}
 			if ((rc = write_rows(arg, f->block, m)) < 0)
 				return rc;
