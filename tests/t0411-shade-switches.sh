@@ -67,4 +67,22 @@ test_expect_success 'the occlusion after it still box-projects, as the write-up 
 	awk "\$1 < 1 { n++ } END { exit !(n > 0) }" a
 '
 
+# A projection without parallax (one that reads no P) writes the probe
+# with box projection off: the modes that trace rays from P then take the
+# room as far away as it did, not as a box.
+test_expect_success 'after -m infinite, the modes that trace rays keep their directions' '
+	reflect-info inf.rfl | grep "PROBE_BOX_PROJECTION=0" &&
+	reflect-info box.rfl | grep "PROBE_BOX_PROJECTION=1" &&
+	reflect-project --box-projection=off g.rfl >off.rfl &&
+	for m in raytraced:samples=4 footprint
+	do
+		reflect-shade -h -m $m inf.rfl >inf.raw 2>/dev/null &&
+		reflect-shade -h -m $m off.rfl >off.raw 2>/dev/null &&
+		reflect-shade -h -m $m box.rfl >box.raw 2>/dev/null &&
+		test -s inf.raw &&
+		cmp inf.raw off.raw &&
+		! cmp -s inf.raw box.raw || return 1
+	done
+'
+
 test_done

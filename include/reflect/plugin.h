@@ -109,7 +109,11 @@ struct rf_probe {
 
 /* What a plugin is for: the tool that loads it. */
 enum rf_plugin_kind {
-	RF_KIND_PROJECTION = 1, /* reflect-project: lookup direction and distances */
+	/* reflect-project: lookup direction and distances.  A projection
+	 * mode that reads no P.* has no parallax: the host writes its probe
+	 * with box projection off, and project_rays after it keeps the
+	 * rays' directions. */
+	RF_KIND_PROJECTION = 1,
 	RF_KIND_SHADE = 2,      /* reflect-shade: roughness.eff, or spec.R G B */
 	RF_KIND_OCCLUSION = 3,  /* reflect-occlude: specular occlusion term */
 	RF_KIND_ACCUMULATE = 4, /* reflect-accumulate: combines frames */

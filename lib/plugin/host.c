@@ -565,6 +565,21 @@ rf__host_filter_reset(const struct rf_host *table)
 	((rf_plugin_host *)table->ctx)->filter_npasses = 0;
 }
 
+void
+rf__host_take_distant(const struct rf_host *table)
+{
+	rf_plugin_host *h;
+
+	/* a table of the caller's own has no probe of this file's to mend */
+	if (!table || table->probe_weights != probe_weights || !(h = table->ctx) ||
+	    !h->table.probe)
+		return;
+	h->probe.box_projection = 0;
+	if (h->blend.nprobes)
+		h->blend.probes[0].box_projection = 0;
+	sync_legacy(h);
+}
+
 static void
 dfg(void *ctx, float n_dot_v, float roughness, float *a, float *b)
 {

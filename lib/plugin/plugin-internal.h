@@ -58,6 +58,11 @@ const struct rf_host *rf__host_for_plugin(const struct rf_host *table,
                                           size_t errlen);
 uint32_t rf__host_filter_passes(const struct rf_host *table, uint32_t *radius);
 void rf__host_filter_reset(const struct rf_host *table);
+/* A projection mode that does not read P has no parallax: box projection
+ * off in the host's probe (tables of rf_plugin_host only), so that the
+ * probe it writes to the stream says so, and the modes after it that
+ * trace their own rays (project_rays) keep their directions too. */
+void rf__host_take_distant(const struct rf_host *table);
 
 /* A mode as a crash report names it, made when an instance is: its name
  * and its file (found from the descriptor's address; NULL when unknown). */

@@ -123,6 +123,20 @@ rf__plugin_destroy(const struct rf_plugin *p, const struct rf__call_site *site, 
 	rf__call_leave();
 }
 
+/* Whether mode p reads the surface's position, which parallax needs. */
+static int
+reads_position(const struct rf_plugin *p)
+{
+	const char *const *lists[2] = { p->inputs, rf_plugin_optional_inputs(p) };
+	size_t k, i;
+
+	for (k = 0; k < 2; k++)
+		for (i = 0; lists[k] && lists[k][i]; i++)
+			if (!strncmp(lists[k][i], "P.", 2))
+				return 1;
+	return 0;
+}
+
 int
 rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
                 const struct rf_host *host, int nthreads, char *err, size_t errlen)
@@ -164,6 +178,8 @@ rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
 			rf_stage_destroy(s);
 			return RF_EPLUGIN;
 		}
+	if (p->kind == RF_KIND_PROJECTION && !reads_position(p))
+		rf__host_take_distant(host);
 	*sp = s;
 	return 0;
 }
