@@ -14,7 +14,7 @@ test_expect_success 'reflect-shade -m footprint --help: reads, optional reads, p
 	test_line_count 0 err &&
 	test_grep "^usage: reflect-shade -m footprint\[:KEY=VALUE\.\.\.\] \[options\] \[file\]$" out &&
 	test_grep "^footprint${tab}the GGX lobe.s footprint on the box as the probe sees it, read in up to four taps$" out &&
-	test_grep "^  file: $B/shade-footprint\.so (version 1\.1, plugin ABI 1\.3, reflect developers, MIT)$" out &&
+	test_grep "^  file: $B/shade-footprint\.so (version 1\.2, plugin ABI 1\.3, reflect developers, MIT)$" out &&
 	test_grep "^  found in: REFLECT_PLUGIN_PATH$" out &&
 	test_grep "^  reads: P\.X P\.Y P\.Z N\.X N\.Y N\.Z V\.X V\.Y V\.Z roughness$" out &&
 	test_grep "^  reads when present: Ng\.X Ng\.Y Ng\.Z$" out &&

@@ -12,7 +12,9 @@
  *     normal and toward the horizon, and its width across, as angles in
  *     units of the prefilter's own kernel.  The centre D goes bend= of
  *     the way from R to that median (the one fitted number, see the
- *     page).
+ *     page) where the box projects the lobe; without one (infinite
+ *     projection, box projection off, P outside the box) D is the
+ *     median itself, which reads the lobe best there.
  *  2. Its footprint seen from C.  Nine rays from P, the centre, the
  *     four width points and four at half the widths, go to where they
  *     leave the box (the host's project_rays, as reflect-project takes
@@ -74,7 +76,8 @@ static const struct rf_param params[NPARAMS] = {
 	  "round: the prefilter's kernel about R, parallax and contact only",
 	  0, 1, LOBE_MEASURED, RF_PARAM_CHOICE, "measured|round" },
 	{ "bend", "how far the centre moves from R toward the lobe's median (0: R, "
-	  "1: the median); the default is fitted on the rooms of reflect-mode-footprint(7)",
+	  "1: the median) where the lobe is read through the box (without one, 1); "
+	  "the default is fitted on the rooms of reflect-mode-footprint(7)",
 	  0, 1.5, 0.5, 0, NULL },
 	{ "inner", "how much more an inner tap weighs than an outer one (1: alike); "
 	  "the default is fitted on the rooms of reflect-mode-footprint(7)",
@@ -371,7 +374,7 @@ shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, f
 	double mu, sv, theta_v, e[4], x[3], y[3], d[3], par[3], c[3], t1[3], t2[3];
 	float df[3], parf[3], yf[3], cf[3], t1f[3], t2f[3], gx[8], gy[8];
 	double a[2], b[2], m11, m12, m22, tr, det, disc, smaj, smin, w, ca, sa;
-	double lod;
+	double lod, bend, horizon_width;
 	float pf[3] = { in[0], in[1], in[2] }, dirs[3 * RAYS], look[3 * RAYS], dist[RAYS],
 	      jac[RAYS], tdir[3 * TAPS_MAX], tlook[3 * TAPS_MAX], tdist[TAPS_MAX],
 	      tjac[TAPS_MAX];
@@ -404,12 +407,19 @@ shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, f
 		unit(x);
 	}
 	cross(n, x, y);
+	/* Where the rays keep their directions (no box: infinite projection,
+	 * box projection off) the lobe is read as it is, about its own
+	 * median; bend= is for the box (see the page). */
+	bend = host->project_rays && host->probe && host->probe->box_projection ? fp->bend : 1.0;
+	horizon_width = e[2];
+cast:
+	e[2] = horizon_width;
 	{
 		/* the centre, theta_v + bend from N toward -x: R itself for
 		 * lobe=round, whose row has no bend */
 		double sb, cb, st, ct;
 
-		fp_sincos(fp->bend * e[0], &sb, &cb);
+		fp_sincos(bend * e[0], &sb, &cb);
 		st = sv * cb + mu * sb;
 		ct = mu * cb - sv * sb;
 
@@ -467,6 +477,10 @@ shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, f
 	}
 	if (host->project_rays) {
 		host->project_rays(host->ctx, RAYS, pf, dirs, look, dist, jac);
+		if (!(dist[0] < INFINITY) && bend != 1.0) {
+			bend = 1.0; /* P outside the box: no box either */
+			goto cast;
+		}
 	} else {
 		memcpy(look, dirs, sizeof(look));
 	}
@@ -697,7 +711,7 @@ static const struct rf_plugin descriptor = {
 	.name = "footprint",
 	.summary = "the GGX lobe's footprint on the box as the probe sees it, read in up "
 	           "to four taps",
-	.version = "1.1",
+	.version = "1.2",
 	.author = "reflect developers",
 	.license = "MIT",
 	.nparams = NPARAMS,
