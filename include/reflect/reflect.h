@@ -531,6 +531,8 @@ struct rf_filter_options {
 typedef int rf_filter_read_fn(void *arg, float *rows, size_t nrows);
 typedef int rf_filter_write_fn(void *arg, const float *rows, size_t nrows);
 
+/* host is an rf_plugin_host's table (rf_plugin_host_table), to which
+ * the mode declares its passes; RF_EINVAL for a table of the caller's. */
 RF_EXTERN int rf_filter_create(rf_filter **f, const struct rf_plugin *p,
                                const double *values, const struct rf_host *host,
                                int nthreads, const struct rf_filter_options *o,

@@ -135,6 +135,13 @@ rf_filter_create(rf_filter **fp, const struct rf_plugin *p, const double *values
 		           rf_plugin_kind_name(p->kind));
 		return RF_EPLUGIN;
 	}
+	/* a filter mode declares its passes to the host in create(): a
+	 * caller's own table would take them where the filter cannot see */
+	if (!rf__host_is_own(host)) {
+		rf__format(err, errlen, "a filter runs with the table of an rf_plugin_host "
+		           "(rf_plugin_host_table), which its mode declares its passes to");
+		return RF_EINVAL;
+	}
 	if (!(f = calloc(1, sizeof(*f))))
 		return RF_ENOMEM;
 	f->p = p;

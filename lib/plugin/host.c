@@ -546,6 +546,12 @@ filter_passes(void *ctx, uint32_t passes, const uint32_t *radius)
 	return 0;
 }
 
+int
+rf__host_is_own(const struct rf_host *table)
+{
+	return table && table->probe_weights == probe_weights && table->ctx;
+}
+
 uint32_t
 rf__host_filter_passes(const struct rf_host *table, uint32_t *radius)
 {
@@ -571,8 +577,7 @@ rf__host_take_distant(const struct rf_host *table)
 	rf_plugin_host *h;
 
 	/* a table of the caller's own has no probe of this file's to mend */
-	if (!table || table->probe_weights != probe_weights || !(h = table->ctx) ||
-	    !h->table.probe)
+	if (!rf__host_is_own(table) || !(h = table->ctx)->table.probe)
 		return;
 	h->probe.box_projection = 0;
 	if (h->blend.nprobes)

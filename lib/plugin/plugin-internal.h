@@ -56,6 +56,9 @@ struct rf_host;
 const struct rf_host *rf__host_for_plugin(const struct rf_host *table,
                                           const struct rf_plugin *p, char *err,
                                           size_t errlen);
+/* Whether table is one of rf_plugin_host's (rf_plugin_host_table), not
+ * a caller's own: only those keep what a mode declares to them. */
+int rf__host_is_own(const struct rf_host *table);
 uint32_t rf__host_filter_passes(const struct rf_host *table, uint32_t *radius);
 void rf__host_filter_reset(const struct rf_host *table);
 /* A projection mode that does not read P has no parallax: box projection

@@ -480,6 +480,62 @@ TEST(radiance_reads_plain_levels)
 	rf_cubemap_destroy(plain);
 }
 
+/* A filter mode that declares one pass of radius 1. */
+static int
+copy_create(const struct rf_host *host, const double *values, void **state, char *err,
+            size_t errlen)
+{
+	const uint32_t radius = 1;
+
+	(void)values, (void)err, (void)errlen;
+	*state = NULL;
+	return host->filter_passes(host->ctx, 1, &radius);
+}
+
+static void
+copy_run(void *state, const struct rf_span *span)
+{
+	(void)state, (void)span; /* never run: no frame is filtered here */
+}
+
+static void
+copy_destroy(void *state)
+{
+	(void)state;
+}
+
+/* A filter's mode declares its passes to the host's own table: the
+ * library refuses a table of the caller's (it would have taken them
+ * where the filter cannot see, and crashed), and takes the host's. */
+TEST(filter_needs_the_hosts_table)
+{
+	static const char *const none[] = { NULL };
+	static const struct rf_plugin copy = {
+		RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR, sizeof(struct rf_plugin),
+		RF_KIND_FILTER, 0, "one_pass", "test: declares one pass", "1.0", "reflect tests",
+		"MIT", 0, NULL, none, none, copy_create, copy_run, copy_destroy,
+	};
+	struct rf_host own;
+	rf_plugin_host *h;
+	rf_filter *f = NULL;
+	char err[256] = "";
+
+	memset(&own, 0, sizeof(own));
+	own.size = sizeof(own);
+	own.abi_major = RF_PLUGIN_ABI_MAJOR;
+	own.abi_minor = RF_PLUGIN_ABI_MINOR;
+	ASSERT_EQ(rf_filter_create(&f, &copy, NULL, &own, 1, NULL, err, sizeof(err)), RF_EINVAL);
+	ASSERT(f == NULL);
+	ASSERT(strstr(err, "rf_plugin_host_table") != NULL);
+	ASSERT_EQ(rf_plugin_host_create(&h), 0);
+	ASSERT_EQ(rf_filter_create(&f, &copy, NULL, rf_plugin_host_table(h), 2, NULL, err,
+	                           sizeof(err)), 0);
+	ASSERT_EQ(rf_filter_passes(f), 1);
+	ASSERT_EQ(rf_filter_reach(f), 1);
+	rf_filter_destroy(f);
+	rf_plugin_host_destroy(h);
+}
+
 int
 main(void)
 {
@@ -491,5 +547,6 @@ main(void)
 	RUN(random_pairs_of_the_host);
 	RUN(probe_list_and_weights);
 	RUN(radiance_reads_plain_levels);
+	RUN(filter_needs_the_hosts_table);
 	TAP_DONE();
 }
