@@ -148,6 +148,24 @@ test_expect_success 'each probe is read with its own box' '
 	test_cmp_numbers expect got 1e-6
 '
 
+# The same pixel facing +Z (N = V = +Z, so R = +Z) through reflect-project:
+# the box projection reads 1 as above; a projection without parallax
+# (-m infinite) turns it off in every probe, so that B reads R: +Z, 5.
+test_expect_success 'after -m infinite every probe keeps R, not the first only' '
+	sed "s/^1.9 1 0.3 .*/1.9 1 0.3 0 0 1 0 0 1 0 1 0 0 1 0 0 1/" one-pixel.txt >facing.txt &&
+	reflect-project facing.txt >box.rfl &&
+	reflect-project -m infinite facing.txt >inf.rfl &&
+	reflect-info inf.rfl >info &&
+	test_grep "[[:space:]]PROBE_BOX_PROJECTION=0$" info &&
+	test_grep "[[:space:]]PROBE2_BOX_PROJECTION=0$" info &&
+	reflect-shade -fa -m none box.rfl | column - weight.probe2 spec.R >got &&
+	echo "1 1" >expect &&
+	test_cmp_numbers expect got 1e-6 &&
+	reflect-shade -fa -m none inf.rfl | column - weight.probe2 spec.R >got &&
+	echo "1 5" >expect &&
+	test_cmp_numbers expect got 1e-6
+'
+
 # Across the metre of the doorway in steps of 2 cm, spec moves by at most
 # 2 x 1.5 x 0.02 (smoothstep's steepest slope is 1.5) = 0.06 a step; a
 # switch to one probe jumps by 2.

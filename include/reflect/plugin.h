@@ -110,9 +110,9 @@ struct rf_probe {
 /* What a plugin is for: the tool that loads it. */
 enum rf_plugin_kind {
 	/* reflect-project: lookup direction and distances.  A projection
-	 * mode that reads no P.* has no parallax: the host writes its probe
-	 * with box projection off, and project_rays after it keeps the
-	 * rays' directions. */
+	 * mode that reads no P.* has no parallax: the host writes its
+	 * probes (every one the frame blends) with box projection off, and
+	 * project_rays after it keeps the rays' directions. */
 	RF_KIND_PROJECTION = 1,
 	RF_KIND_SHADE = 2,      /* reflect-shade: roughness.eff, or spec.R G B */
 	RF_KIND_OCCLUSION = 3,  /* reflect-occlude: specular occlusion term */

@@ -50,6 +50,7 @@ struct rf_plugin_host {
 	char failure[256];
 	/* The frame's probes (probe_weights): the first is probe. */
 	struct rf_blend blend;
+	int distant; /* every probe's box projection off (take_distant) */
 	/* The frame's camera (CAMERA), for pixel_footprint. */
 	int has_camera;
 	struct rf_camera camera;
@@ -571,6 +572,18 @@ rf__host_filter_reset(const struct rf_host *table)
 	((rf_plugin_host *)table->ctx)->filter_npasses = 0;
 }
 
+/* Box projection off in every probe of the frame's, as take_distant
+ * asked, the first (probe) included. */
+static void
+distant_probes(rf_plugin_host *h)
+{
+	uint32_t i;
+
+	for (i = 0; i < h->blend.nprobes; i++)
+		h->blend.probes[i].box_projection = 0;
+	sync_legacy(h);
+}
+
 void
 rf__host_take_distant(const struct rf_host *table)
 {
@@ -579,10 +592,9 @@ rf__host_take_distant(const struct rf_host *table)
 	/* a table of the caller's own has no probe of this file's to mend */
 	if (!rf__host_is_own(table) || !(h = table->ctx)->table.probe)
 		return;
+	h->distant = 1;
 	h->probe.box_projection = 0;
-	if (h->blend.nprobes)
-		h->blend.probes[0].box_projection = 0;
-	sync_legacy(h);
+	distant_probes(h);
 }
 
 static void
@@ -660,7 +672,10 @@ rf_plugin_host_set_frame(rf_plugin_host *h, const rf_header *frame)
 		if (h->table.nprobes && h->table.probe)
 			h->blend.probes[0] = h->probe;
 		rf_blend_order(&h->blend);
-		sync_legacy(h);
+		if (h->distant)
+			distant_probes(h);
+		else
+			sync_legacy(h);
 	}
 	if (!v || rf__scan_doubles(v, c, 10) < 0)
 		return;

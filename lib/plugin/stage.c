@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "plugin/plugin-internal.h"
+#include "probe/probe-internal.h"
 #include "util/invalid.h"
 #include "util/pixels.h"
 #include "util/pool.h"
@@ -28,6 +29,7 @@ struct rf_stage {
 	const struct rf_plugin *p;
 	struct rf__call_site site; /* for a crash report */
 	const struct rf_host *host; /* for a run() that failed (fail()) */
+	int distant; /* a projection without parallax (rf__host_take_distant) */
 	int nthreads;
 	struct worker *workers;
 	size_t nin, nout;
@@ -178,8 +180,10 @@ rf_stage_create(rf_stage **sp, const struct rf_plugin *p, const double *values,
 			rf_stage_destroy(s);
 			return RF_EPLUGIN;
 		}
-	if (p->kind == RF_KIND_PROJECTION && !reads_position(p))
+	if (p->kind == RF_KIND_PROJECTION && !reads_position(p)) {
+		s->distant = 1;
 		rf__host_take_distant(host);
+	}
 	*sp = s;
 	return 0;
 }
@@ -268,6 +272,13 @@ rf_stage_begin_frame(rf_stage *s, const rf_header *in, rf_header **out,
 	rf_header_destroy(s->out_h);
 	if (rf_header_dup(&s->out_h, in) < 0)
 		return RF_ENOMEM;
+	/* every probe's, not the first's only: the blend after it takes
+	 * each probe's key for its own */
+	if (s->distant && (c = rf__header_probes_distant(s->out_h)) < 0) {
+		rf__format(err, errlen, "cannot turn the probes' box projection off: %s",
+		           rf_strerror(c));
+		return c;
+	}
 	s->nabsent = 0;
 	for (i = s->nrequired; i < s->nin; i++) {
 		const char *name = rf_plugin_optional_inputs(s->p)[i - s->nrequired];

@@ -46,6 +46,27 @@ rf__header_set_probe_keys(rf_header *h, size_t index, const double box_min[3],
 	return rf_header_set(h, projection_key, box_projection ? "1" : "0");
 }
 
+int
+rf__header_probes_distant(rf_header *h)
+{
+	char box[64], projection[64];
+	size_t i;
+	int rc;
+
+	/* the list ends where rf_probe_list_read's does: at a probe without
+	 * a box */
+	for (i = 0; i < RF_PROBES_MAX; i++) {
+		rf__header_probe_key(box, sizeof(box), i, RF_KEY_PROBE_BOX);
+		if (!rf_header_get(h, box))
+			break;
+		rf__header_probe_key(projection, sizeof(projection), i,
+		                     RF_KEY_PROBE_BOX_PROJECTION);
+		if ((rc = rf_header_set(h, projection, "0")) < 0)
+			return rc;
+	}
+	return 0;
+}
+
 void
 rf__header_probe_key(char *buf, size_t size, size_t index, const char *key)
 {

@@ -15,6 +15,9 @@ int rf__probe_blend_parse(const char *v, float face[6]);
 int rf__header_set_probe_keys(rf_header *h, size_t index, const double box_min[3],
                               const double box_max[3], const double center[3],
                               int box_projection);
+/* Every probe of h with box projection off (its BOX_PROJECTION key 0):
+ * the frame of a projection without parallax. */
+int rf__header_probes_distant(rf_header *h);
 /* The shape keys of probe `index` (PROBE_SHAPE, PROBE_ROTATION,
  * PROBE_PROXY...) into *probe, whose box and bevel are read already;
  * RF_EINVAL with err naming the key and the fix. */
