@@ -482,8 +482,8 @@ TEST(radiance_reads_plain_levels)
 
 /* A filter mode that declares one pass of radius 1. */
 static int
-copy_create(const struct rf_host *host, const double *values, void **state, char *err,
-            size_t errlen)
+one_pass_create(const struct rf_host *host, const double *values, void **state, char *err,
+                size_t errlen)
 {
 	const uint32_t radius = 1;
 
@@ -493,13 +493,13 @@ copy_create(const struct rf_host *host, const double *values, void **state, char
 }
 
 static void
-copy_run(void *state, const struct rf_span *span)
+one_pass_run(void *state, const struct rf_span *span)
 {
 	(void)state, (void)span; /* never run: no frame is filtered here */
 }
 
 static void
-copy_destroy(void *state)
+one_pass_destroy(void *state)
 {
 	(void)state;
 }
@@ -510,10 +510,10 @@ copy_destroy(void *state)
 TEST(filter_needs_the_hosts_table)
 {
 	static const char *const none[] = { NULL };
-	static const struct rf_plugin copy = {
+	static const struct rf_plugin one_pass = {
 		RF_PLUGIN_ABI_MAJOR, RF_PLUGIN_ABI_MINOR, sizeof(struct rf_plugin),
 		RF_KIND_FILTER, 0, "one_pass", "test: declares one pass", "1.0", "reflect tests",
-		"MIT", 0, NULL, none, none, copy_create, copy_run, copy_destroy,
+		"MIT", 0, NULL, none, none, one_pass_create, one_pass_run, one_pass_destroy,
 	};
 	struct rf_host own;
 	rf_plugin_host *h;
@@ -524,11 +524,11 @@ TEST(filter_needs_the_hosts_table)
 	own.size = sizeof(own);
 	own.abi_major = RF_PLUGIN_ABI_MAJOR;
 	own.abi_minor = RF_PLUGIN_ABI_MINOR;
-	ASSERT_EQ(rf_filter_create(&f, &copy, NULL, &own, 1, NULL, err, sizeof(err)), RF_EINVAL);
+	ASSERT_EQ(rf_filter_create(&f, &one_pass, NULL, &own, 1, NULL, err, sizeof(err)), RF_EINVAL);
 	ASSERT(f == NULL);
 	ASSERT(strstr(err, "rf_plugin_host_table") != NULL);
 	ASSERT_EQ(rf_plugin_host_create(&h), 0);
-	ASSERT_EQ(rf_filter_create(&f, &copy, NULL, rf_plugin_host_table(h), 2, NULL, err,
+	ASSERT_EQ(rf_filter_create(&f, &one_pass, NULL, rf_plugin_host_table(h), 2, NULL, err,
 	                           sizeof(err)), 0);
 	ASSERT_EQ(rf_filter_passes(f), 1);
 	ASSERT_EQ(rf_filter_reach(f), 1);
