@@ -33,6 +33,7 @@
 #include "maths/ggx.h"
 #include "footprint-shape.h"
 #include "footprint-table.h"
+#include "footprint-kernel.h"
 
 enum { RAYS, TAPS, NPARAMS };
 
@@ -190,25 +191,6 @@ log_map(struct scratch *s, const float *dir, unsigned n, double m[3], double t1[
 	axis[1] /= big;
 }
 
-/* The perceptual roughness whose prefilter kernel is w wide, as
- * footprint reads it from the same table. */
-static double
-kernel_roughness(double w)
-{
-	unsigned j;
-
-	if (!(w > footprint_table[0][0][3]))
-		return 0.0;
-	for (j = 1; j < FOOTPRINT_ROUGHNESSES; j++)
-		if (w <= footprint_table[0][j][3]) {
-			double lo = footprint_table[0][j - 1][3], hi = footprint_table[0][j][3];
-
-			return ((double)(j - 1) + (w - lo) / (hi - lo)) /
-			       (FOOTPRINT_ROUGHNESSES - 1);
-		}
-	return 1.0;
-}
-
 /* The pixel's taps (directions, lods, weights); their number. */
 static unsigned
 shade_pixel(const struct oracle *o, struct scratch *s, const float *in, float *sx, float *sy,
@@ -310,7 +292,7 @@ shade_pixel(const struct oracle *o, struct scratch *s, const float *in, float *s
 		sy[kept] = (float)m[1];
 		sz[kept] = (float)m[2];
 		sl[kept] = host->roughness_to_lod(host->ctx,
-		                                  (float)kernel_roughness(sqrt(wa * wb)));
+		                                  (float)footprint_kernel_roughness(sqrt(wa * wb)));
 		sw[kept] = 0.0f;
 		for (k = 0; k < nn; k++)
 			sw[kept] += (float)s->share_w[k];

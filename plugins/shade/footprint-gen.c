@@ -189,10 +189,10 @@ main(void)
 		kernel[j] = measure_kernel(pr, s, vw);
 		measure(0.0, pr, s, vw, e);
 		scale[j] = kernel[j] / ((e[1] + e[2] + e[3]) / 3.0);
-		/* footprint.c finds a kernel as wide as w by halves */
+		/* footprint_kernel_roughness() finds a kernel as wide as w by halves */
 		if (!((float)kernel[j] > (j > 1 ? (float)kernel[j - 1] : 0.0f))) {
 			fprintf(stderr, "footprint-gen: the prefilter's kernel at roughness %g is "
-			        "no wider than at %g (%g, %g); footprint.c's kernel_roughness() "
+			        "no wider than at %g (%g, %g); footprint_kernel_roughness() "
 			        "needs them to grow\n", pr, (double)(j - 1) / (FOOTPRINT_ROUGHNESSES - 1),
 			        kernel[j], j > 1 ? kernel[j - 1] : 0.0);
 			return 1;

@@ -59,6 +59,7 @@
 
 #include "footprint-shape.h"
 #include "footprint-table.h"
+#include "footprint-kernel.h"
 
 /* a pixel's rays, log map and taps in vectors of 4 lanes, and of 8
  * with AVX2 */
@@ -295,34 +296,6 @@ lobe_at(double theta_v, double pr, double e[4])
 		                     fy * footprint_table[i][j + 1][k]) +
 		       fx * ((1.0 - fy) * footprint_table[i + 1][j][k] +
 		             fy * footprint_table[i + 1][j + 1][k]);
-}
-
-/* The perceptual roughness whose prefilter kernel is w wide: the row
- * theta_v = 0, piecewise linear in roughness, inverted.  The row grows
- * with roughness (footprint-gen refuses a table where it does not), so
- * the first entry as wide as w is found by halves. */
-static double
-kernel_roughness(double w)
-{
-	unsigned j, lo_j = 1, hi_j = FOOTPRINT_ROUGHNESSES;
-	double lo, hi;
-
-	if (!(w > 0.0))
-		return 0.0;
-	while (lo_j < hi_j) {
-		unsigned mid = (lo_j + hi_j) / 2;
-
-		if (w <= footprint_table[0][mid][3])
-			hi_j = mid;
-		else
-			lo_j = mid + 1;
-	}
-	j = lo_j;
-	if (j == FOOTPRINT_ROUGHNESSES)
-		return 1.0;
-	lo = footprint_table[0][j - 1][3];
-	hi = footprint_table[0][j][3];
-	return ((double)(j - 1) + (w - lo) / (hi - lo)) / (FOOTPRINT_ROUGHNESSES - 1);
 }
 
 /* The direction at in-plane angle a from d (toward par) and across
@@ -610,7 +583,7 @@ cast:
 	/* Each tap's kernel: w where the centre lands, scaled by how much
 	 * more (or less) solid angle at C the tap's own exit takes per solid
 	 * angle at P than the centre's does. */
-	lod = host->roughness_to_lod(host->ctx, (float)kernel_roughness(w));
+	lod = host->roughness_to_lod(host->ctx, (float)footprint_kernel_roughness(w));
 	for (i = 0; i < kept; i++) {
 		sx[i] = tlook[3 * i];
 		sy[i] = tlook[3 * i + 1];
@@ -619,7 +592,7 @@ cast:
 		if (ntap > 1 && host->project_rays && jac[0] > 0.0f && tjac[i] > 0.0f &&
 		    tjac[i] < INFINITY && tjac[i] != jac[0])
 			sl[i] = host->roughness_to_lod(
-				host->ctx, (float)kernel_roughness(w * sqrt(tjac[i] / jac[0])));
+				host->ctx, (float)footprint_kernel_roughness(w * sqrt(tjac[i] / jac[0])));
 	}
 	return kept;
 }
