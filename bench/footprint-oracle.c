@@ -119,12 +119,12 @@ by_u(const void *a, const void *b)
 	return (x > y) - (x < y);
 }
 
-/* The value at which n values (with weights w) reach share q of their
+/* Values v (n of them, with weights w) sorted into tmp; their total
  * weight. */
 static double
-quantile(struct ray *tmp, const double *v, const double *w, unsigned n, double q)
+sort_weighted(struct ray *tmp, const double *v, const double *w, unsigned n)
 {
-	double total = 0.0, sum = 0.0;
+	double total = 0.0;
 	unsigned i;
 
 	for (i = 0; i < n; i++) {
@@ -133,10 +133,33 @@ quantile(struct ray *tmp, const double *v, const double *w, unsigned n, double q
 		total += w[i];
 	}
 	qsort(tmp, n, sizeof(*tmp), by_u);
+	return total;
+}
+
+/* The value at which n sorted values reach share q of their total
+ * weight. */
+static double
+share_point(const struct ray *sorted, unsigned n, double total, double q)
+{
+	double sum = 0.0;
+	unsigned i;
+
 	for (i = 0; i < n; i++)
-		if ((sum += tmp[i].w) >= q * total)
-			return tmp[i].u;
-	return n ? tmp[n - 1].u : 0.0;
+		if ((sum += sorted[i].w) >= q * total)
+			return sorted[i].u;
+	return n ? sorted[n - 1].u : 0.0;
+}
+
+/* The weighted median of n values and half the distance between their
+ * quartiles, from one sort. */
+static void
+median_spread(struct ray *tmp, const double *v, const double *w, unsigned n, double *median,
+              double *half_iqr)
+{
+	double total = sort_weighted(tmp, v, w, n);
+
+	*median = share_point(tmp, n, total, 0.5);
+	*half_iqr = 0.5 * (share_point(tmp, n, total, 0.75) - share_point(tmp, n, total, 0.25));
 }
 
 /* Directions dir (n, unit) about their weighted mean m: their places in
@@ -169,7 +192,7 @@ log_map(struct scratch *s, const float *dir, unsigned n, double m[3], double t1[
 		gy[k] = len > 1e-12 ? acos(c) * dot(q, t2) / len : 0.0;
 		r[k] = sqrt(gx[k] * gx[k] + gy[k] * gy[k]);
 	}
-	core = quantile(s->sorted, r, s->w, n, CORE);
+	core = share_point(s->sorted, n, sort_weighted(s->sorted, r, s->w, n), CORE);
 	for (k = 0; k < n; k++)
 		if (r[k] <= core) {
 			cxx += s->w[k] * gx[k] * gx[k];
@@ -275,12 +298,8 @@ shade_pixel(const struct oracle *o, struct scratch *s, const float *in, float *s
 			s->across[k] = -s->cx[r] * caxis[1] + s->cy[r] * caxis[0];
 			s->share_w[k] = s->w[r];
 		}
-		a = quantile(s->sorted, s->along, s->share_w, nn, 0.5);
-		b = quantile(s->sorted, s->across, s->share_w, nn, 0.5);
-		wa = 0.5 * (quantile(s->sorted, s->along, s->share_w, nn, 0.75) -
-		            quantile(s->sorted, s->along, s->share_w, nn, 0.25));
-		wb = 0.5 * (quantile(s->sorted, s->across, s->share_w, nn, 0.75) -
-		            quantile(s->sorted, s->across, s->share_w, nn, 0.25));
+		median_spread(s->sorted, s->along, s->share_w, nn, &a, &wa);
+		median_spread(s->sorted, s->across, s->share_w, nn, &b, &wb);
 		/* the medians' place back on the sphere (the exponential map) */
 		g2[0] = a * caxis[0] - b * caxis[1];
 		g2[1] = a * caxis[1] + b * caxis[0];
