@@ -29,25 +29,29 @@
  *  3. Its axes.  The singular values of [A B] are the footprint's
  *     major and minor widths at C; the right singular vector says which
  *     direction at P maps onto the major axis.
- *  4. Taps.  n = taps=; each tap reads the prefilter's kernel of width
- *     w = max(minor, major / n), so the lod is that of the roughness
- *     whose kernel is w wide; the n taps sit at the n-quantiles of the
- *     lobe's (t-shaped) marginal along the major axis, drawn in by
- *     sqrt(1 - (w / major)^2) for the width each tap adds, each
+ *  4. Taps.  n = taps=; the n taps sit at the n-quantiles of the
+ *     lobe's (t-shaped) marginal along the major axis, each
  *     box-projected from P itself (the parallax inside the lobe), the
- *     inner taps weighing inner= times the outer ones, each kernel
- *     scaled by its own exit's Jacobian against the centre's.  A tap
- *     past the horizon (Ng, else N) slides back.
+ *     inner taps weighing inner= times the outer ones.  A tap past the
+ *     horizon (Ng, else N) slides back.  Without the box every tap
+ *     reads the prefilter's kernel of width w = max(minor, major / n)
+ *     (the lod of the roughness whose kernel is w wide), drawn in by
+ *     sqrt(1 - (w / major)^2) for the width each adds.  Through the box
+ *     each tap stands for its share of the lobe: four more rays about
+ *     it, along and across, say how wide that share is at C, and its
+ *     kernel is that wide; the taps are drawn in by sqrt(1 - 1/n^2) and
+ *     go over to one tap of width w as the footprint gets round.
  *
  * Limits: roughness 0 reads the box-projected mirror direction at lod 0;
  * no hit (P outside the box, or an infinite projection) with N = V, or
  * lobe=round, reads what `none` reads; the same room in other units
  * gives the same pixels (angles and ratios only).
  *
- * Speed: the eight width rays, their log map and the taps of a pixel
- * go in lanes (footprint-lanes.h, the same bits at 4 and 8), its angles
- * by series rather than libm, and the taps of eight pixels in one read
- * of the environment; the model is the same to float rounding.
+ * Speed: the eight width rays, their log map, the taps of a pixel and
+ * their stencils go in lanes (footprint-lanes.h, the same bits at 4 and
+ * 8), its angles by series rather than libm, and the taps of eight
+ * pixels in one read of the environment; the model is the same to float
+ * rounding.
  */
 #include <math.h>
 #include <stdint.h>
@@ -79,7 +83,7 @@ static const struct rf_param params[NPARAMS] = {
 	{ "bend", "how far the centre moves from R toward the lobe's median (0: R, "
 	  "1: the median) where the lobe is read through the box (without one, 1); "
 	  "the default is fitted on the rooms of reflect-mode-footprint(7)",
-	  0, 1.5, 0.5, 0, NULL },
+	  0, 1.5, 0.55, 0, NULL },
 	{ "inner", "how much more an inner tap weighs than an outer one (1: alike); "
 	  "the default is fitted on the rooms of reflect-mode-footprint(7)",
 	  0.25, 4, 1.5, 0, NULL },
@@ -97,6 +101,23 @@ static const char *const outputs[] = { RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHAD
                   at half their widths */
 #define TAPS_MAX FOOTPRINT_TAPS_MAX
 #define CHUNK 8 /* pixels a read of the environment */
+#define STENCIL 4 /* rays a tap's share is measured by, through the box */
+/* Half a share's extent along the long axis, in width units, where its
+ * stencil's rays go: for the two end shares, which reach into the
+ * lobe's tails, and for the others, which lie between its quartiles.
+ * The t marginal's own (half the distance between a share's quartiles)
+ * are 0.87 and 0.24 at four taps; these and SHARE_KERNEL are fitted on
+ * the rooms (see the page). */
+#define SHARE_OUTER 0.6
+#define SHARE_INNER 0.3
+/* A share's kernel against the mean (geometric) of its two half-widths
+ * at C. */
+#define SHARE_KERNEL 1.15
+/* From this ratio of the footprint's minor axis to its major one, the
+ * taps close in and their kernels go over to the footprint's own, to
+ * be one tap and one kernel where it is round (at P = C head on, what
+ * none reads); fitted on the rooms (see the page). */
+#define ROUND_FROM 0.6
 
 struct footprint {
 	const struct rf_host *host;
@@ -123,7 +144,7 @@ static const struct lanes lanes_8 = { fp_rays_8, fp_taps_8, fp_log_8 };
 #endif
 
 /* n taps' places along the footprint's long axis, in units of its
- * width, for kernels q times as wide: the n-quantiles of
+ * width, for kernels q times as wide as that axis: the n-quantiles of
  * the lobe's marginal there, which is the marginal of GGX's slopes
  * (Student's t of two degrees of freedom, t(p) = (2p - 1) / sqrt(2 p
  * (1 - p)), in units of its quartile t(3/4) = sqrt(2/3)), drawn in by
@@ -335,6 +356,70 @@ above(const float l[3], const double below[3])
 	return l[0] * below[0] + l[1] * below[1] + l[2] * below[2] > HORIZON;
 }
 
+/* The stencils of n taps at angles (a, b) from d, into out (3 STENCIL n
+ * floats): each tap's share, half of it either way along the long axis
+ * (cos phi, sin phi in width units; half[i] widths, the in-plane width
+ * that of the tap's side) and across it (one width), so that where the
+ * box takes them says how wide the share is at C. */
+static void
+stencils(const struct footprint *fp, unsigned n, const double *a, const double *b,
+         const double *side, const double *half, const double e[4], double ca, double sa,
+         const float d[3], const float par[3], const float across[3], float *out)
+{
+	float sa8[2 * 8] = { 0 }, sb8[2 * 8] = { 0 };
+	unsigned i;
+
+	for (i = 0; i < n; i++) {
+		double h = half[i];
+		float *ra = sa8 + STENCIL * i, *rb = sb8 + STENCIL * i;
+
+		ra[0] = (float)(a[i] + h * ca * side[i]);
+		rb[0] = (float)(b[i] + h * sa * e[3]);
+		ra[1] = (float)(a[i] - h * ca * side[i]);
+		rb[1] = (float)(b[i] - h * sa * e[3]);
+		ra[2] = (float)(a[i] - sa * side[i]);
+		rb[2] = (float)(b[i] + ca * e[3]);
+		ra[3] = (float)(a[i] + sa * side[i]);
+		rb[3] = (float)(b[i] - ca * e[3]);
+	}
+	fp->lanes->taps(sa8, sb8, d, par, across, out);
+	if (n > 2)
+		fp->lanes->taps(sa8 + 8, sb8 + 8, d, par, across, out + 24);
+}
+
+/* The kernel for a tap's share: SHARE_KERNEL times the geometric mean
+ * of its half-widths at C, along and across, each half the chord
+ * between its stencil's two lookups, or the whole chord from the
+ * tap's own lookup where one of the two rays is below the surface (its
+ * exit would be the surface's own wall, beside P).  w where neither
+ * way can be measured. */
+static double
+share_kernel(const float tap[3], const float *dirs, const float *look, const double below[3],
+             double w)
+{
+	double half[2][3], along, across, c[3];
+	unsigned k, j;
+
+	for (j = 0; j < 2; j++) {
+		const float *plus = look + 6 * j, *minus = plus + 3;
+		int up_plus = above(dirs + 6 * j, below), up_minus = above(dirs + 6 * j + 3, below);
+
+		for (k = 0; k < 3; k++)
+			half[j][k] = up_plus && up_minus ? 0.5 * ((double)plus[k] - minus[k])
+			             : up_plus           ? (double)plus[k] - tap[k]
+			             : up_minus          ? (double)tap[k] - minus[k]
+			                                 : 0.0;
+	}
+	cross(half[0], half[1], c);
+	along = sqrt(dot(half[0], half[0]));
+	across = sqrt(dot(half[1], half[1]));
+	if (along > 0.0 && across > 0.0)
+		return SHARE_KERNEL * sqrt(sqrt(dot(c, c)));
+	if (along > 0.0 || across > 0.0)
+		return SHARE_KERNEL * (along + across);
+	return w;
+}
+
 /* The pixel's taps, appended to sx, sy, sz (directions), sl (lods) and
  * sw (weights); their number (0: black). */
 static unsigned
@@ -347,13 +432,16 @@ shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, f
 	double mu, sv, theta_v, e[4], x[3], y[3], d[3], par[3], c[3], t1[3], t2[3];
 	float df[3], parf[3], yf[3], cf[3], t1f[3], t2f[3], gx[8], gy[8];
 	double a[2], b[2], m11, m12, m22, tr, det, disc, smaj, smin, w, ca, sa;
-	double lod, bend, horizon_width;
+	double lod, bend, horizon_width, roundness;
+	/* the taps' directions, then their stencils' */
 	float pf[3] = { in[0], in[1], in[2] }, dirs[3 * RAYS], look[3 * RAYS], dist[RAYS],
-	      jac[RAYS], tdir[3 * TAPS_MAX], tlook[3 * TAPS_MAX], tdist[TAPS_MAX],
-	      tjac[TAPS_MAX];
+	      jac[RAYS], tdir[3 * TAPS_MAX * (1 + STENCIL)],
+	      tlook[3 * TAPS_MAX * (1 + STENCIL)], tdist[TAPS_MAX * (1 + STENCIL)],
+	      tjac[TAPS_MAX * (1 + STENCIL)];
+	double tap_a[TAPS_MAX], tap_b[TAPS_MAX], tap_side[TAPS_MAX], tap_half[TAPS_MAX];
 	const double *below;
 	double centre_dot;
-	int centre_above;
+	int centre_above, boxed;
 	unsigned k, i, ntap, kept;
 
 	if (unit(n) < 0 || unit(v) < 0 || !(pr >= 0.0))
@@ -457,6 +545,11 @@ cast:
 	} else {
 		memcpy(look, dirs, sizeof(look));
 	}
+	/* where the box projects the lobe, each tap's kernel is measured
+	 * on its own share of it (below); elsewhere the footprint is the
+	 * lobe's, and one kernel serves every tap */
+	boxed = host->project_rays && host->probe && host->probe->box_projection &&
+	        dist[0] < INFINITY;
 	centre_dot = dirs[0] * below[0] + dirs[1] * below[1] + dirs[2] * below[2];
 	centre_above = centre_dot > HORIZON;
 	for (k = 0; k < 3; k++)
@@ -510,8 +603,9 @@ cast:
 		}
 	}
 	/* All taps, unless the footprint is round (q = 1: one kernel is
-	 * it); each kernel as wide as the minor axis, or a share of the
-	 * major one, whichever is wider. */
+	 * it); without the box each kernel as wide as the minor axis, or a
+	 * share of the major one, whichever is wider (through the box each
+	 * covers a share: q = 1 / n). */
 	ntap = fp->taps;
 	w = fp_max(smin, smaj / ntap);
 	if (!(smaj > 0.0) || w >= smaj || ntap == 1) {
@@ -523,7 +617,8 @@ cast:
 		double pos[TAPS_MAX], tia[8], tib[8];
 		float ia8[8], ib8[8], tap8[24];
 
-		tap_layout(ntap, w / smaj, pos);
+		roundness = fp_min(1.0, fp_max(0.0, (w / smaj - ROUND_FROM) / (1.0 - ROUND_FROM)));
+		tap_layout(ntap, boxed ? 1.0 / ntap + roundness * (1.0 - 1.0 / ntap) : w / smaj, pos);
 		for (i = 0; i < 8; i++) {
 			double ta = i < ntap ? pos[i] * ca : 0.0, tb = i < ntap ? pos[i] * sa : 0.0;
 
@@ -555,11 +650,16 @@ cast:
 					lobe_direction(d, par, y, f * ia, f * ib, tdir + 3 * kept);
 					f += above(tdir + 3 * kept, below) ? step : -step;
 				}
-				lobe_direction(d, par, y, (f - 2.0 * step) * ia, (f - 2.0 * step) * ib,
-				               tdir + 3 * kept);
+				ia *= f - 2.0 * step;
+				ib *= f - 2.0 * step;
+				lobe_direction(d, par, y, ia, ib, tdir + 3 * kept);
 				if (!above(tdir + 3 * kept, below))
 					continue;
 			}
+			tap_a[kept] = ia;
+			tap_b[kept] = ib;
+			tap_side[kept] = ia > 0.0 ? e[2] : e[1];
+			tap_half[kept] = i == 0 || i + 1 == ntap ? SHARE_OUTER : SHARE_INNER;
 			sw[kept] = tap_weight(fp, i, ntap);
 			kept++;
 		}
@@ -573,26 +673,30 @@ cast:
 	}
 	if (ntap == 1) {
 		memcpy(tlook, look, 3 * sizeof(float)); /* the centre, already projected */
-		tjac[0] = jac[0];
 		sw[0] = 1.0f;
+	} else if (boxed && roundness < 1.0) {
+		stencils(fp, kept, tap_a, tap_b, tap_side, tap_half, e, ca, sa, df, parf, yf,
+		         tdir + 3 * kept);
+		host->project_rays(host->ctx, kept * (1 + STENCIL), pf, tdir, tlook, tdist, tjac);
 	} else if (host->project_rays) {
 		host->project_rays(host->ctx, kept, pf, tdir, tlook, tdist, tjac);
 	} else {
 		memcpy(tlook, tdir, 3 * kept * sizeof(float));
 	}
-	/* Each tap's kernel: w where the centre lands, scaled by how much
-	 * more (or less) solid angle at C the tap's own exit takes per solid
-	 * angle at P than the centre's does. */
 	lod = host->roughness_to_lod(host->ctx, (float)footprint_kernel_roughness(w));
 	for (i = 0; i < kept; i++) {
 		sx[i] = tlook[3 * i];
 		sy[i] = tlook[3 * i + 1];
 		sz[i] = tlook[3 * i + 2];
 		sl[i] = (float)lod;
-		if (ntap > 1 && host->project_rays && jac[0] > 0.0f && tjac[i] > 0.0f &&
-		    tjac[i] < INFINITY && tjac[i] != jac[0])
+		if (ntap > 1 && boxed && roundness < 1.0) {
+			double share = share_kernel(tlook + 3 * i, tdir + 3 * (kept + STENCIL * i),
+			                            tlook + 3 * (kept + STENCIL * i), below, w);
+
 			sl[i] = host->roughness_to_lod(
-				host->ctx, (float)footprint_kernel_roughness(w * sqrt(tjac[i] / jac[0])));
+				host->ctx,
+				(float)footprint_kernel_roughness((1.0 - roundness) * share + roundness * w));
+		}
 	}
 	return kept;
 }
