@@ -357,20 +357,24 @@ above(const float l[3], const double below[3])
 }
 
 /* The stencils of n taps at angles (a, b) from d, into out (3 STENCIL n
- * floats): each tap's share, half of it either way along the long axis
- * (cos phi, sin phi in width units; half[i] widths, the in-plane width
- * that of the tap's side) and across it (one width), so that where the
- * box takes them says how wide the share is at C. */
+ * floats, written eight directions at a time: room for four taps'
+ * stencils is room for any): each tap's share, half of it either way
+ * along the long axis (cos phi, sin phi in width units; half[i] widths,
+ * in-plane by the width of the tap's side) and across it (one width),
+ * so that where the box takes them says how wide the share is at C. */
 static void
 stencils(const struct footprint *fp, unsigned n, const double *a, const double *b,
-         const double *side, const double *half, const double e[4], double ca, double sa,
-         const float d[3], const float par[3], const float across[3], float *out)
+         const double *half, const double e[4], double ca, double sa, const float d[3],
+         const float par[3], const float across[3], float *out)
 {
 	float sa8[2 * 8] = { 0 }, sb8[2 * 8] = { 0 };
+	double side[TAPS_MAX];
 	unsigned i;
 
 	for (i = 0; i < n; i++) {
 		double h = half[i];
+
+		side[i] = a[i] > 0.0 ? e[2] : e[1];
 		float *ra = sa8 + STENCIL * i, *rb = sb8 + STENCIL * i;
 
 		ra[0] = (float)(a[i] + h * ca * side[i]);
@@ -397,7 +401,7 @@ static double
 share_kernel(const float tap[3], const float *dirs, const float *look, const double below[3],
              double w)
 {
-	double half[2][3], along, across, c[3];
+	double half[2][3], along, across, c[3]; /* along, across: squared */
 	unsigned k, j;
 
 	for (j = 0; j < 2; j++) {
@@ -410,13 +414,14 @@ share_kernel(const float tap[3], const float *dirs, const float *look, const dou
 			             : up_minus          ? (double)tap[k] - minus[k]
 			                                 : 0.0;
 	}
-	cross(half[0], half[1], c);
-	along = sqrt(dot(half[0], half[0]));
-	across = sqrt(dot(half[1], half[1]));
-	if (along > 0.0 && across > 0.0)
+	along = dot(half[0], half[0]);
+	across = dot(half[1], half[1]);
+	if (along > 0.0 && across > 0.0) {
+		cross(half[0], half[1], c);
 		return SHARE_KERNEL * sqrt(sqrt(dot(c, c)));
+	}
 	if (along > 0.0 || across > 0.0)
-		return SHARE_KERNEL * (along + across);
+		return SHARE_KERNEL * (sqrt(along) + sqrt(across));
 	return w;
 }
 
@@ -433,15 +438,15 @@ shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, f
 	float df[3], parf[3], yf[3], cf[3], t1f[3], t2f[3], gx[8], gy[8];
 	double a[2], b[2], m11, m12, m22, tr, det, disc, smaj, smin, w, ca, sa;
 	double lod, bend, horizon_width, roundness;
-	/* the taps' directions, then their stencils' */
+	/* the taps' directions, then their stencils' (see stencils()) */
 	float pf[3] = { in[0], in[1], in[2] }, dirs[3 * RAYS], look[3 * RAYS], dist[RAYS],
 	      jac[RAYS], tdir[3 * TAPS_MAX * (1 + STENCIL)],
 	      tlook[3 * TAPS_MAX * (1 + STENCIL)], tdist[TAPS_MAX * (1 + STENCIL)],
 	      tjac[TAPS_MAX * (1 + STENCIL)];
-	double tap_a[TAPS_MAX], tap_b[TAPS_MAX], tap_side[TAPS_MAX], tap_half[TAPS_MAX];
+	double tap_a[TAPS_MAX], tap_b[TAPS_MAX], tap_half[TAPS_MAX];
 	const double *below;
 	double centre_dot;
-	int centre_above, boxed;
+	int centre_above, boxed, own;
 	unsigned k, i, ntap, kept;
 
 	if (unit(n) < 0 || unit(v) < 0 || !(pr >= 0.0))
@@ -658,7 +663,6 @@ cast:
 			}
 			tap_a[kept] = ia;
 			tap_b[kept] = ib;
-			tap_side[kept] = ia > 0.0 ? e[2] : e[1];
 			tap_half[kept] = i == 0 || i + 1 == ntap ? SHARE_OUTER : SHARE_INNER;
 			sw[kept] = tap_weight(fp, i, ntap);
 			kept++;
@@ -675,7 +679,7 @@ cast:
 		memcpy(tlook, look, 3 * sizeof(float)); /* the centre, already projected */
 		sw[0] = 1.0f;
 	} else if (boxed && roundness < 1.0) {
-		stencils(fp, kept, tap_a, tap_b, tap_side, tap_half, e, ca, sa, df, parf, yf,
+		stencils(fp, kept, tap_a, tap_b, tap_half, e, ca, sa, df, parf, yf,
 		         tdir + 3 * kept);
 		host->project_rays(host->ctx, kept * (1 + STENCIL), pf, tdir, tlook, tdist, tjac);
 	} else if (host->project_rays) {
@@ -683,13 +687,15 @@ cast:
 	} else {
 		memcpy(tlook, tdir, 3 * kept * sizeof(float));
 	}
-	lod = host->roughness_to_lod(host->ctx, (float)footprint_kernel_roughness(w));
+	/* one kernel for every tap, unless each has its share's */
+	own = ntap > 1 && boxed && roundness < 1.0;
+	lod = own ? 0.0 : host->roughness_to_lod(host->ctx, (float)footprint_kernel_roughness(w));
 	for (i = 0; i < kept; i++) {
 		sx[i] = tlook[3 * i];
 		sy[i] = tlook[3 * i + 1];
 		sz[i] = tlook[3 * i + 2];
 		sl[i] = (float)lod;
-		if (ntap > 1 && boxed && roundness < 1.0) {
+		if (own) {
 			double share = share_kernel(tlook + 3 * i, tdir + 3 * (kept + STENCIL * i),
 			                            tlook + 3 * (kept + STENCIL * i), below, w);
 
