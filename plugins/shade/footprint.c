@@ -39,8 +39,9 @@
  *     sqrt(1 - (w / major)^2) for the width each adds.  Through the box
  *     each tap stands for its share of the lobe: four more rays about
  *     it, along and across, say how wide that share is at C, and its
- *     kernel is that wide; the taps are drawn in by sqrt(1 - 1/n^2) and
- *     go over to one tap of width w as the footprint gets round.
+ *     kernel is that wide times a factor that grows with roughness;
+ *     the taps are drawn in by sqrt(1 - 1/n^2) and go over to one tap
+ *     of width w as the footprint gets round.
  *
  * Limits: roughness 0 reads the box-projected mirror direction at lod 0;
  * no hit (P outside the box, or an infinite projection) with N = V, or
@@ -111,8 +112,15 @@ static const char *const outputs[] = { RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHAD
 #define SHARE_OUTER 0.6
 #define SHARE_INNER 0.3
 /* A share's kernel against the mean (geometric) of its two half-widths
- * at C. */
+ * at C: SHARE_KERNEL at roughness SHARE_KERNEL_AT, and relatively
+ * SHARE_KERNEL_SLOPE more per unit of roughness.  Each room's own best
+ * factor grows with its floor's roughness, from about 1.0 at 0.2 to 1.4
+ * at 0.7 (log-linear, the same in rooms with and without spheres),
+ * which one constant cannot follow; fitted on the rooms (see the
+ * page). */
 #define SHARE_KERNEL 1.15
+#define SHARE_KERNEL_AT 0.4
+#define SHARE_KERNEL_SLOPE 0.6
 /* From this ratio of the footprint's minor axis to its major one, the
  * taps close in and their kernels go over to the footprint's own, to
  * be one tap and one kernel where it is round (at P = C head on, what
@@ -391,15 +399,15 @@ stencils(const struct footprint *fp, unsigned n, const double *a, const double *
 		fp->lanes->taps(sa8 + 8, sb8 + 8, d, par, across, out + 24);
 }
 
-/* The kernel for a tap's share: SHARE_KERNEL times the geometric mean
- * of its half-widths at C, along and across, each half the chord
+/* The kernel for a tap's share: factor times the geometric mean of its
+ * half-widths at C, along and across, each half the chord
  * between its stencil's two lookups, or the whole chord from the
  * tap's own lookup where one of the two rays is below the surface (its
  * exit would be the surface's own wall, beside P).  w where neither
  * way can be measured. */
 static double
 share_kernel(const float tap[3], const float *dirs, const float *look, const double below[3],
-             double w)
+             double w, double factor)
 {
 	double half[2][3], along, across, c[3]; /* along, across: squared */
 	unsigned k, j;
@@ -418,10 +426,10 @@ share_kernel(const float tap[3], const float *dirs, const float *look, const dou
 	across = dot(half[1], half[1]);
 	if (along > 0.0 && across > 0.0) {
 		cross(half[0], half[1], c);
-		return SHARE_KERNEL * sqrt(sqrt(dot(c, c)));
+		return factor * sqrt(sqrt(dot(c, c)));
 	}
 	if (along > 0.0 || across > 0.0)
-		return SHARE_KERNEL * (sqrt(along) + sqrt(across));
+		return factor * (sqrt(along) + sqrt(across));
 	return w;
 }
 
@@ -437,7 +445,7 @@ shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, f
 	double mu, sv, theta_v, e[4], x[3], y[3], d[3], par[3], c[3], t1[3], t2[3];
 	float df[3], parf[3], yf[3], cf[3], t1f[3], t2f[3], gx[8], gy[8];
 	double a[2], b[2], m11, m12, m22, tr, det, disc, smaj, smin, w, ca, sa;
-	double lod, bend, horizon_width, roundness;
+	double lod, bend, horizon_width, roundness, factor;
 	/* the taps' directions, then their stencils' (see stencils()) */
 	float pf[3] = { in[0], in[1], in[2] }, dirs[3 * RAYS], look[3 * RAYS], dist[RAYS],
 	      jac[RAYS], tdir[3 * TAPS_MAX * (1 + STENCIL)],
@@ -690,6 +698,7 @@ cast:
 	/* one kernel for every tap, unless each has its share's */
 	own = ntap > 1 && boxed && roundness < 1.0;
 	lod = own ? 0.0 : host->roughness_to_lod(host->ctx, (float)footprint_kernel_roughness(w));
+	factor = SHARE_KERNEL * (1.0 + SHARE_KERNEL_SLOPE * (pr - SHARE_KERNEL_AT));
 	for (i = 0; i < kept; i++) {
 		sx[i] = tlook[3 * i];
 		sy[i] = tlook[3 * i + 1];
@@ -697,7 +706,8 @@ cast:
 		sl[i] = (float)lod;
 		if (own) {
 			double share = share_kernel(tlook + 3 * i, tdir + 3 * (kept + STENCIL * i),
-			                            tlook + 3 * (kept + STENCIL * i), below, w);
+			                            tlook + 3 * (kept + STENCIL * i), below, w,
+			                            factor);
 
 			sl[i] = host->roughness_to_lod(
 				host->ctx,
