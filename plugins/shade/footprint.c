@@ -37,7 +37,7 @@
  *     reads the prefilter's kernel of width w = max(minor, major / n)
  *     (the lod of the roughness whose kernel is w wide), drawn in by
  *     sqrt(1 - (w / major)^2) for the width each adds.  Through the box
- *     each tap stands for its share of the lobe: four more rays about
+ *     each tap stands for its share of the lobe: three more rays about
  *     it, along and across, say how wide that share is at C, and its
  *     kernel is that wide times a factor that grows with roughness;
  *     the taps are drawn in by sqrt(1 - 1/n^2) and go over to one tap
@@ -102,7 +102,7 @@ static const char *const outputs[] = { RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHAD
                   at half their widths */
 #define TAPS_MAX FOOTPRINT_TAPS_MAX
 #define CHUNK 8 /* pixels a read of the environment */
-#define STENCIL 4 /* rays a tap's share is measured by, through the box */
+#define STENCIL 3 /* rays a tap's share is measured by, through the box */
 /* Half a share's extent along the long axis, in width units, where its
  * stencil's rays go: for the two end shares, which reach into the
  * lobe's tails, and for the others, which lie between its quartiles.
@@ -188,6 +188,13 @@ static inline float
 tap_weight(const struct footprint *fp, unsigned i, unsigned n)
 {
 	return i > 0 && i + 1 < n ? fp->inner : 1.0f;
+}
+
+/* Half tap i of n's share's extent along the long axis, in widths. */
+static inline double
+share_half(unsigned i, unsigned n)
+{
+	return i == 0 || i + 1 == n ? SHARE_OUTER : SHARE_INNER;
 }
 
 static inline double
@@ -364,63 +371,48 @@ above(const float l[3], const double below[3])
 	return l[0] * below[0] + l[1] * below[1] + l[2] * below[2] > HORIZON;
 }
 
-/* The stencils of n taps at angles (a, b) from d, into out (3 STENCIL n
- * floats, written eight directions at a time: room for four taps'
- * stencils is room for any): each tap's share, half of it either way
- * along the long axis (cos phi, sin phi in width units; half[i] widths,
- * in-plane by the width of the tap's side) and across it (one width),
- * so that where the box takes them says how wide the share is at C. */
+/* The stencil of a tap at angles (a, b) from d, as angles (ra, rb, 3
+ * each): its share, half of it either way along the long axis (cos phi,
+ * sin phi in width units; half widths, in-plane by the width of the
+ * tap's side), and one width to one side across it, so that where the
+ * box takes them says how wide the share is at C.  (The other side
+ * across, a fourth ray, changed the rooms' error by under 0.001.) */
 static void
-stencils(const struct footprint *fp, unsigned n, const double *a, const double *b,
-         const double *half, const double e[4], double ca, double sa, const float d[3],
-         const float par[3], const float across[3], float *out)
+stencil_angles(double a, double b, double half, const double e[4], double ca, double sa,
+               float *ra, float *rb)
 {
-	float sa8[2 * 8] = { 0 }, sb8[2 * 8] = { 0 };
-	double side[TAPS_MAX];
-	unsigned i;
+	double side = a > 0.0 ? e[2] : e[1];
 
-	for (i = 0; i < n; i++) {
-		double h = half[i];
-
-		side[i] = a[i] > 0.0 ? e[2] : e[1];
-		float *ra = sa8 + STENCIL * i, *rb = sb8 + STENCIL * i;
-
-		ra[0] = (float)(a[i] + h * ca * side[i]);
-		rb[0] = (float)(b[i] + h * sa * e[3]);
-		ra[1] = (float)(a[i] - h * ca * side[i]);
-		rb[1] = (float)(b[i] - h * sa * e[3]);
-		ra[2] = (float)(a[i] - sa * side[i]);
-		rb[2] = (float)(b[i] + ca * e[3]);
-		ra[3] = (float)(a[i] + sa * side[i]);
-		rb[3] = (float)(b[i] - ca * e[3]);
-	}
-	fp->lanes->taps(sa8, sb8, d, par, across, out);
-	if (n > 2)
-		fp->lanes->taps(sa8 + 8, sb8 + 8, d, par, across, out + 24);
+	ra[0] = (float)(a + half * ca * side);
+	rb[0] = (float)(b + half * sa * e[3]);
+	ra[1] = (float)(a - half * ca * side);
+	rb[1] = (float)(b - half * sa * e[3]);
+	ra[2] = (float)(a - sa * side);
+	rb[2] = (float)(b + ca * e[3]);
 }
 
 /* The kernel for a tap's share: factor times the geometric mean of its
- * half-widths at C, along and across, each half the chord
- * between its stencil's two lookups, or the whole chord from the
+ * half-widths at C, along and across: along, half the chord between
+ * its stencil's two lookups that way, or the whole chord from the
  * tap's own lookup where one of the two rays is below the surface (its
- * exit would be the surface's own wall, beside P).  w where neither
- * way can be measured. */
+ * exit would be the surface's own wall, beside P); across, the chord
+ * from the tap's lookup to the third ray's.  w where neither way can be
+ * measured. */
 static double
 share_kernel(const float tap[3], const float *dirs, const float *look, const double below[3],
              double w, double factor)
 {
 	double half[2][3], along, across, c[3]; /* along, across: squared */
-	unsigned k, j;
+	int up_plus = above(dirs, below), up_minus = above(dirs + 3, below);
+	int up_side = above(dirs + 6, below);
+	unsigned k;
 
-	for (j = 0; j < 2; j++) {
-		const float *plus = look + 6 * j, *minus = plus + 3;
-		int up_plus = above(dirs + 6 * j, below), up_minus = above(dirs + 6 * j + 3, below);
-
-		for (k = 0; k < 3; k++)
-			half[j][k] = up_plus && up_minus ? 0.5 * ((double)plus[k] - minus[k])
-			             : up_plus           ? (double)plus[k] - tap[k]
-			             : up_minus          ? (double)tap[k] - minus[k]
-			                                 : 0.0;
+	for (k = 0; k < 3; k++) {
+		half[0][k] = up_plus && up_minus ? 0.5 * ((double)look[k] - look[3 + k])
+		             : up_plus           ? (double)look[k] - tap[k]
+		             : up_minus          ? (double)tap[k] - look[3 + k]
+		                                 : 0.0;
+		half[1][k] = up_side ? (double)look[6 + k] - tap[k] : 0.0;
 	}
 	along = dot(half[0], half[0]);
 	across = dot(half[1], half[1]);
@@ -446,12 +438,11 @@ shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, f
 	float df[3], parf[3], yf[3], cf[3], t1f[3], t2f[3], gx[8], gy[8];
 	double a[2], b[2], m11, m12, m22, tr, det, disc, smaj, smin, w, ca, sa;
 	double lod, bend, horizon_width, roundness, factor;
-	/* the taps' directions, then their stencils' (see stencils()) */
+	/* the taps' directions, then their stencils' (see stencil_angles()) */
 	float pf[3] = { in[0], in[1], in[2] }, dirs[3 * RAYS], look[3 * RAYS], dist[RAYS],
 	      jac[RAYS], tdir[3 * TAPS_MAX * (1 + STENCIL)],
 	      tlook[3 * TAPS_MAX * (1 + STENCIL)], tdist[TAPS_MAX * (1 + STENCIL)],
 	      tjac[TAPS_MAX * (1 + STENCIL)];
-	double tap_a[TAPS_MAX], tap_b[TAPS_MAX], tap_half[TAPS_MAX];
 	const double *below;
 	double centre_dot;
 	int centre_above, boxed, own;
@@ -626,35 +617,47 @@ cast:
 		w = smaj;
 	}
 	kept = 0;
+	roundness = fp_min(1.0, fp_max(0.0, (w / smaj - ROUND_FROM) / (1.0 - ROUND_FROM)));
+	/* one kernel for every tap, unless each has its share's */
+	own = ntap > 1 && boxed && roundness < 1.0;
 	{
-		double pos[TAPS_MAX], tia[8], tib[8];
-		float ia8[8], ib8[8], tap8[24];
+		/* the taps' angles in lanes 0 to 3, their stencils' (if
+		 * measured) after them: two lane calls of eight directions */
+		double pos[TAPS_MAX], tia[TAPS_MAX], tib[TAPS_MAX];
+		float ia16[2 * 8] = { 0 }, ib16[2 * 8] = { 0 }, dir16[3 * 2 * 8];
+		unsigned src[TAPS_MAX];
 
-		roundness = fp_min(1.0, fp_max(0.0, (w / smaj - ROUND_FROM) / (1.0 - ROUND_FROM)));
 		tap_layout(ntap, boxed ? 1.0 / ntap + roundness * (1.0 - 1.0 / ntap) : w / smaj, pos);
-		for (i = 0; i < 8; i++) {
-			double ta = i < ntap ? pos[i] * ca : 0.0, tb = i < ntap ? pos[i] * sa : 0.0;
+		for (i = 0; i < ntap; i++) {
+			double ta = pos[i] * ca, tb = pos[i] * sa;
 
 			/* in-plane: toward the horizon by its own width, toward
 			 * the normal by the other */
 			tia[i] = ta * (ta > 0.0 ? e[2] : e[1]);
 			tib[i] = tb * e[3];
-			ia8[i] = (float)tia[i];
-			ib8[i] = (float)tib[i];
+			ia16[i] = (float)tia[i];
+			ib16[i] = (float)tib[i];
+			if (own)
+				stencil_angles(tia[i], tib[i], share_half(i, ntap), e, ca, sa,
+				               ia16 + TAPS_MAX + STENCIL * i,
+				               ib16 + TAPS_MAX + STENCIL * i);
 		}
-		fp->lanes->taps(ia8, ib8, df, parf, yf, tap8);
+		fp->lanes->taps(ia16, ib16, df, parf, yf, dir16);
+		if (own)
+			fp->lanes->taps(ia16 + 8, ib16 + 8, df, parf, yf, dir16 + 24);
 
 		for (i = 0; i < ntap; i++) {
 			double ia = tia[i], ib = tib[i];
 
-			memcpy(tdir + 3 * kept, tap8 + 3 * i, 3 * sizeof(float));
+			memcpy(tdir + 3 * kept, dir16 + 3 * i, 3 * sizeof(float));
 			if (!above(tdir + 3 * kept, below)) {
 				/* The t-shaped tail reaches past the horizon, which
 				 * the measured lobe never does: the tap slides back
 				 * toward the centre until it is just above (halving
 				 * steps), so the picture stays continuous where a
-				 * tap would cross it. */
+				 * tap would cross it; its stencil goes with it. */
 				double f = 0.5, step = 0.25;
+				float ra[STENCIL], rb[STENCIL];
 				unsigned it;
 
 				if (!centre_above)
@@ -668,13 +671,21 @@ cast:
 				lobe_direction(d, par, y, ia, ib, tdir + 3 * kept);
 				if (!above(tdir + 3 * kept, below))
 					continue;
+				if (own) {
+					stencil_angles(ia, ib, share_half(i, ntap), e, ca, sa, ra, rb);
+					for (k = 0; k < STENCIL; k++)
+						lobe_direction(d, par, y, ra[k], rb[k],
+						               dir16 + 3 * (TAPS_MAX + STENCIL * i + k));
+				}
 			}
-			tap_a[kept] = ia;
-			tap_b[kept] = ib;
-			tap_half[kept] = i == 0 || i + 1 == ntap ? SHARE_OUTER : SHARE_INNER;
+			src[kept] = i;
 			sw[kept] = tap_weight(fp, i, ntap);
 			kept++;
 		}
+		/* the kept taps' stencils after the kept taps */
+		for (i = 0; own && i < kept; i++)
+			memcpy(tdir + 3 * (kept + STENCIL * i),
+			       dir16 + 3 * (TAPS_MAX + STENCIL * src[i]), 3 * STENCIL * sizeof(float));
 	}
 	if (!kept) {
 		/* every tap below the surface: the centre, if it is above */
@@ -682,21 +693,18 @@ cast:
 			return 0;
 		ntap = 1;
 		kept = 1;
+		own = 0;
 	}
 	if (ntap == 1) {
 		memcpy(tlook, look, 3 * sizeof(float)); /* the centre, already projected */
 		sw[0] = 1.0f;
-	} else if (boxed && roundness < 1.0) {
-		stencils(fp, kept, tap_a, tap_b, tap_half, e, ca, sa, df, parf, yf,
-		         tdir + 3 * kept);
+	} else if (own) {
 		host->project_rays(host->ctx, kept * (1 + STENCIL), pf, tdir, tlook, tdist, tjac);
 	} else if (host->project_rays) {
 		host->project_rays(host->ctx, kept, pf, tdir, tlook, tdist, tjac);
 	} else {
 		memcpy(tlook, tdir, 3 * kept * sizeof(float));
 	}
-	/* one kernel for every tap, unless each has its share's */
-	own = ntap > 1 && boxed && roundness < 1.0;
 	lod = own ? 0.0 : host->roughness_to_lod(host->ctx, (float)footprint_kernel_roughness(w));
 	factor = SHARE_KERNEL * (1.0 + SHARE_KERNEL_SLOPE * (pr - SHARE_KERNEL_AT));
 	for (i = 0; i < kept; i++) {
