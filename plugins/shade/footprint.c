@@ -178,6 +178,14 @@ tap_layout(unsigned n, double q, double pos[TAPS_MAX])
 		pos[i] = at[n - 1][i] * shrink;
 }
 
+/* Whether tap i of n is one of the two ends, whose share reaches into
+ * the lobe's tails. */
+static inline int
+end_tap(unsigned i, unsigned n)
+{
+	return i == 0 || i + 1 == n;
+}
+
 /* Tap i of n's weight: the ones between the two ends weigh inner, the
  * ends 1.  Fitting only the weights of four kernels at tap_layout()'s
  * places to the t marginal, by least squares, gives the inner ones 1.2
@@ -187,14 +195,14 @@ tap_layout(unsigned n, double q, double pos[TAPS_MAX])
 static inline float
 tap_weight(const struct footprint *fp, unsigned i, unsigned n)
 {
-	return i > 0 && i + 1 < n ? fp->inner : 1.0f;
+	return end_tap(i, n) ? 1.0f : fp->inner;
 }
 
 /* Half tap i of n's share's extent along the long axis, in widths. */
 static inline double
 share_half(unsigned i, unsigned n)
 {
-	return i == 0 || i + 1 == n ? SHARE_OUTER : SHARE_INNER;
+	return end_tap(i, n) ? SHARE_OUTER : SHARE_INNER;
 }
 
 static inline double
