@@ -16,6 +16,11 @@
  *     bend away from R), phi50 - phi25 and phi75 - phi50 its widths
  *     toward the normal and toward the horizon;
  *   - the median of |psi|, psi = atan2(L.y, L.D), the width across.
+ * A second table, footprint_shares, cuts each of those lobes by phi into
+ * n = 1 to 4 shares of equal weight, for the mode's place=shares: each
+ * share's median phi, half the distance between its quartiles in phi,
+ * and the median of its |psi'|, psi' = atan2(L.y, |L in the xz plane|)
+ * (the across angle of the mode's lobe_direction()), in radians.
  * Quartiles and medians, not moments: GGX's tails leave the second
  * moment to the hemisphere's edge, the quartiles stay where the lobe is.
  * Widths are kept in the units of the prefilter's own kernel, L(l)
@@ -124,15 +129,17 @@ measure_kernel(double pr, struct sample *s, double *vw)
 	return quantile(vw, n, total, 0.5);
 }
 
-/* The lobe for a view at theta_v and perceptual roughness pr. */
-static void
-measure(double theta_v, double pr, struct sample *s, double *vw, double out[4])
+/* The reflected lobe for a view at theta_v and perceptual roughness pr,
+ * as samples sorted by in-plane angle (and as the pairs quantile reads,
+ * in vw); their number, and their total weight in *total. */
+static size_t
+draw_lobe(double theta_v, double pr, struct sample *s, double *vw, double *total)
 {
 	double alpha = pr * pr, a2 = alpha * alpha, mu = cos(theta_v), v[3], lv;
-	double total = 0.0, phi25, phi50, phi75, d[3];
 	struct rf__ggx_vndf g;
 	size_t k, n = 0;
 
+	*total = 0.0;
 	if (mu < 1e-3)
 		mu = 1e-3;
 	v[0] = sqrt(1.0 - mu * mu);
@@ -152,10 +159,21 @@ measure(double theta_v, double pr, struct sample *s, double *vw, double out[4])
 			continue; /* below the surface (or no normal): no light */
 		s[n].w = (1.0 + lv) / (1.0 + lv + rf__ggx_lambda(a2, l[2]));
 		s[n].phi = atan2(-l[0], l[2]);
-		total += s[n].w;
+		*total += s[n].w;
 		n++;
 	}
 	sort_by_phi(s, n, vw);
+	return n;
+}
+
+/* The lobe for a view at theta_v and perceptual roughness pr. */
+static void
+measure(double theta_v, double pr, struct sample *s, double *vw, double out[4])
+{
+	double total, phi25, phi50, phi75, d[3];
+	size_t k, n;
+
+	n = draw_lobe(theta_v, pr, s, vw, &total);
 	phi25 = quantile(vw, n, total, 0.25);
 	phi50 = quantile(vw, n, total, 0.5);
 	phi75 = quantile(vw, n, total, 0.75);
@@ -175,11 +193,51 @@ measure(double theta_v, double pr, struct sample *s, double *vw, double out[4])
 	out[3] = quantile(vw, n, total, 0.5);
 }
 
+/* The lobe for a view at theta_v and perceptual roughness pr cut into
+ * n shares of equal weight by in-plane angle, as the taps of the mode's
+ * box path read it: for share t, out[t] gets its median phi, half the
+ * distance between its quartiles in phi, and the median of its |psi|,
+ * psi = atan2(L.y, |L in the plane|) (the across angle of the mode's
+ * lobe_direction(), whose in-plane angle is phi). */
+static void
+measure_shares(double theta_v, double pr, unsigned n, struct sample *s, double *vw,
+               double *psi, double out[][3])
+{
+	double total;
+	size_t k, m = draw_lobe(theta_v, pr, s, vw, &total), first = 0;
+	unsigned t;
+
+	for (t = 0; t < n; t++) {
+		double q25 = quantile(vw, m, total, (t + 0.25) / n);
+		double q75 = quantile(vw, m, total, (t + 0.75) / n);
+		double end = (t + 1.0) / n * total, sum = 0.0, share = 0.0;
+		size_t last, j = 0;
+
+		/* the share: the samples whose weight so far is under its end */
+		for (k = 0; k < first; k++)
+			sum += s[k].w;
+		for (last = first; last < m && (t + 1 == n || sum + 0.5 * s[last].w < end); last++)
+			sum += s[last].w;
+		for (k = first; k < last; k++, j++) {
+			const double *l = s[k].l;
+
+			psi[2 * j] = fabs(atan2(l[1], sqrt(l[0] * l[0] + l[2] * l[2])));
+			psi[2 * j + 1] = s[k].w;
+			share += s[k].w;
+		}
+		qsort(psi, j, 2 * sizeof(double), by_psi);
+		out[t][0] = quantile(vw, m, total, (t + 0.5) / n);
+		out[t][1] = 0.5 * (q75 - q25);
+		out[t][2] = quantile(psi, j, share, 0.5);
+		first = last;
+	}
+}
+
 int
 main(void)
 {
 	static struct sample s[SAMPLES];
-	static double vw[2 * SAMPLES];
+	static double vw[2 * SAMPLES], psi[2 * SAMPLES];
 	static double kernel[FOOTPRINT_ROUGHNESSES], scale[FOOTPRINT_ROUGHNESSES];
 	unsigned i, j, k;
 
@@ -219,6 +277,51 @@ main(void)
 			printf("\t{");
 			for (k = 0; k < 4; k++)
 				printf(" %af,", (double)(float)e[k]);
+			printf(" },\n");
+		}
+		printf("},\n");
+	}
+	printf("};\n");
+	printf("static const float footprint_shares[%d][%d][%d][3] = {\n", FOOTPRINT_VIEWS,
+	       FOOTPRINT_ROUGHNESSES, FOOTPRINT_SHARES);
+	for (i = 0; i < FOOTPRINT_VIEWS; i++) {
+		double theta_v = footprint_view_angle(i);
+
+		printf("{\n");
+		for (j = 0; j < FOOTPRINT_ROUGHNESSES; j++) {
+			double pr = (double)j / (FOOTPRINT_ROUGHNESSES - 1), sh[FOOTPRINT_SHARES][3];
+			unsigned n, t;
+
+			for (n = 1; n <= FOOTPRINT_TAPS_MAX; n++) {
+				double *row = sh[footprint_first_share(n)];
+
+				if (j == 0) {
+					for (t = 0; t < n; t++) {
+						row[3 * t] = theta_v; /* the mirror */
+						row[3 * t + 1] = row[3 * t + 2] = 0.0;
+					}
+				} else {
+					measure_shares(theta_v, pr, n, s, vw, psi,
+					               (double (*)[3])row);
+				}
+				for (t = 0; i == 0 && t < n / 2; t++) {
+					/* head on the lobe is round: its shares
+					 * mirror each other, to the bit */
+					double *a = row + 3 * t, *b = row + 3 * (n - 1 - t);
+					double phi = 0.5 * (a[0] - b[0]);
+
+					a[0] = phi;
+					b[0] = -phi;
+					a[1] = b[1] = 0.5 * (a[1] + b[1]);
+					a[2] = b[2] = 0.5 * (a[2] + b[2]);
+				}
+				if (i == 0 && n % 2)
+					row[3 * (n / 2)] = 0.0;
+			}
+			printf("\t{");
+			for (k = 0; k < FOOTPRINT_SHARES; k++)
+				printf(" { %af, %af, %af },", (double)(float)sh[k][0],
+				       (double)(float)sh[k][1], (double)(float)sh[k][2]);
 			printf(" },\n");
 		}
 		printf("},\n");

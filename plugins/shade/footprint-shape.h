@@ -1,9 +1,10 @@
-/* The shape of the footprint mode's lobe table, for its generator and
- * the mode: views at angles 0 .. pi/2 from the normal, evenly, by
- * perceptual roughnesses 0 .. 1, evenly; an entry holds the bend of the
- * lobe's centre from the mirror direction, its in-plane widths toward
- * the normal and toward the horizon, and its width across (radians;
- * footprint-gen.c says how they are measured). */
+/* The shape of the footprint mode's lobe tables, for their generator
+ * and the mode: views at angles 0 .. pi/2 from the normal, evenly, by
+ * perceptual roughnesses 0 .. 1, evenly; an entry of the first holds the
+ * bend of the lobe's centre from the mirror direction, its in-plane
+ * widths toward the normal and toward the horizon, and its width across,
+ * one of the second the lobe's shares (below) (radians; footprint-gen.c
+ * says how they are measured). */
 #ifndef REFLECT_PLUGINS_FOOTPRINT_SHAPE_H
 #define REFLECT_PLUGINS_FOOTPRINT_SHAPE_H
 
@@ -17,5 +18,15 @@ footprint_view_angle(unsigned i)
 }
 
 #define FOOTPRINT_TAPS_MAX 4
+
+/* The box path's second table: for each taps= n, the lobe cut into n
+ * shares, one row each; n's first row. */
+#define FOOTPRINT_SHARES 10 /* 1 + 2 + 3 + 4 */
+
+static inline unsigned
+footprint_first_share(unsigned n)
+{
+	return n * (n - 1) / 2;
+}
 
 #endif
