@@ -11,10 +11,29 @@
  *     normal where the horizon cuts it), its in-plane widths toward the
  *     normal and toward the horizon, and its width across, as angles in
  *     units of the prefilter's own kernel.  The centre D goes bend= of
- *     the way from R to that median (the one fitted number, see the
- *     page) where the box projects the lobe; without one (infinite
+ *     the way from R to that median (fitted, see the page) where the
+ *     box projects the lobe and place=axis reads it; without one (infinite
  *     projection, box projection off, P outside the box) D is the
  *     median itself, which reads the lobe best there.
+ *
+ * Through the box (place=shares, the default), then:
+ *
+ *  S. Shares.  The table's second part (footprint_shares) cuts that
+ *     lobe into n = taps= shares of equal weight by in-plane angle and
+ *     gives each its median angle and its half-widths in-plane and
+ *     across.  Each tap is its share's median, box-projected from P;
+ *     three more rays about it (its share's quartiles either way
+ *     in-plane, and across to one side) say how wide the share is at
+ *     C, and its kernel is that wide times a factor that grows with
+ *     roughness.  The taps weigh alike, and go over to one kernel at
+ *     their centre where the lobe looks round from C (at P = C head on,
+ *     what none reads).  This is the bench's oracle (256 rays traced a
+ *     pixel, cut the same way) with the shares' places and spreads
+ *     known beforehand: as good on the rooms, and with 16 box
+ *     projections, fewer than steps 2 to 4 take.
+ *
+ * Steps 2 to 4 are place=axis, and every pixel read without the box:
+ *
  *  2. Its footprint seen from C.  Nine rays from P, the centre, the
  *     four width points and four at half the widths, go to where they
  *     leave the box (the host's project_rays, as reflect-project takes
@@ -49,7 +68,7 @@
  * gives the same pixels (angles and ratios only).
  *
  * Speed: the eight width rays, their log map, the taps of a pixel and
- * their stencils go in lanes (footprint-lanes.h, the same bits at 4 and
+ * their stencils (both places) go in lanes (footprint-lanes.h, the same bits at 4 and
  * 8), its angles by series rather than libm, and the taps of eight
  * pixels in one read of the environment; the model is the same to float
  * rounding.
@@ -72,8 +91,9 @@
 #define RF__LANES_BODY "footprint-lanes.h"
 #include "maths/lanes-widths.h"
 
-enum { TAPS, LOBE, BEND, INNER, NPARAMS };
+enum { TAPS, LOBE, PLACE, BEND, INNER, NPARAMS };
 enum { LOBE_MEASURED, LOBE_ROUND };
+enum { PLACE_SHARES, PLACE_AXIS };
 
 static const struct rf_param params[NPARAMS] = {
 	{ "taps", "cubemap reads a pixel at most, along the footprint's long axis",
@@ -81,6 +101,10 @@ static const struct rf_param params[NPARAMS] = {
 	{ "lobe", "measured: the lobe as GGX makes it at this view (bent, stretched); "
 	  "round: the prefilter's kernel about R, parallax and contact only",
 	  0, 1, LOBE_MEASURED, RF_PARAM_CHOICE, "measured|round" },
+	{ "place", "where the taps go through the box: shares: each at the median of its "
+	  "share of the lobe (cut by in-plane angle), its kernel that share's width at C; "
+	  "axis: along the footprint's long axis at C, with bend= and inner=",
+	  0, 1, PLACE_SHARES, RF_PARAM_CHOICE, "shares|axis" },
 	{ "bend", "how far the centre moves from R toward the lobe's median (0: R, "
 	  "1: the median) where the lobe is read through the box (without one, 1); "
 	  "the default is fitted on the rooms of reflect-mode-footprint(7)",
@@ -121,6 +145,20 @@ static const char *const outputs[] = { RF_SHADE_SPEC_R, RF_SHADE_SPEC_G, RF_SHAD
 #define SHARE_KERNEL 1.15
 #define SHARE_KERNEL_AT 0.4
 #define SHARE_KERNEL_SLOPE 0.6
+/* The same for place=shares, whose stencils span their share's
+ * quartiles: fitted on the rooms of seed 1 (1.0 to 1.1 and slopes 0.8
+ * to 1.2 are within 0.0006 of the best), the same numbers as the bench's
+ * oracle took on those rooms. */
+#define SHARES_KERNEL 1.05
+#define SHARES_KERNEL_SLOPE 1.0
+/* From this roundness (shares_roundness()) on, place=shares goes over
+ * to one kernel about the lobe's centre, to be none's read at P = C
+ * head on.  A line of round kernels is a poor round lobe (too narrow
+ * across), yet on the rooms one kernel did worse still even where the
+ * footprint was all but round (0.97: 0.1307 on seed 1, against 0.1272
+ * without the go-over), so it is kept to the first 8 degrees of view
+ * (0.99: 0.1284). */
+#define SHARES_ROUND 0.99
 /* From this ratio of the footprint's minor axis to its major one, the
  * taps close in and their kernels go over to the footprint's own, to
  * be one tap and one kernel where it is round (at P = C head on, what
@@ -131,6 +169,7 @@ struct footprint {
 	const struct rf_host *host;
 	unsigned taps;
 	int round;
+	int axis; /* place=axis */
 	double bend;
 	float inner; /* an inner tap's weight, an outer one's being 1 */
 	const struct lanes *lanes; /* eight wide with AVX2, else four */
@@ -321,25 +360,53 @@ perpendicular(const double n[3], double t[3])
 	unit(t);
 }
 
+/* Where the tables are read at view angle theta_v and roughness pr,
+ * bilinearly: the cell (i, j) and the weights (fx, fy) within it. */
+static void
+table_cell(double theta_v, double pr, unsigned *i, unsigned *j, double *fx, double *fy)
+{
+	double x = theta_v / footprint_view_angle(FOOTPRINT_VIEWS - 1) * (FOOTPRINT_VIEWS - 1);
+	double y = pr * (FOOTPRINT_ROUGHNESSES - 1);
+
+	x = x < 0.0 ? 0.0 : x > FOOTPRINT_VIEWS - 1 ? FOOTPRINT_VIEWS - 1 : x;
+	y = y < 0.0 ? 0.0 : y > FOOTPRINT_ROUGHNESSES - 1 ? FOOTPRINT_ROUGHNESSES - 1 : y;
+	*i = (unsigned)x < FOOTPRINT_VIEWS - 1 ? (unsigned)x : FOOTPRINT_VIEWS - 2;
+	*j = (unsigned)y < FOOTPRINT_ROUGHNESSES - 1 ? (unsigned)y : FOOTPRINT_ROUGHNESSES - 2;
+	*fx = x - *i;
+	*fy = y - *j;
+}
+
 /* The table at view angle theta_v and roughness pr, bilinearly. */
 static void
 lobe_at(double theta_v, double pr, double e[4])
 {
-	double x = theta_v / footprint_view_angle(FOOTPRINT_VIEWS - 1) * (FOOTPRINT_VIEWS - 1);
-	double y = pr * (FOOTPRINT_ROUGHNESSES - 1), fx, fy;
+	double fx, fy;
 	unsigned i, j, k;
 
-	x = x < 0.0 ? 0.0 : x > FOOTPRINT_VIEWS - 1 ? FOOTPRINT_VIEWS - 1 : x;
-	y = y < 0.0 ? 0.0 : y > FOOTPRINT_ROUGHNESSES - 1 ? FOOTPRINT_ROUGHNESSES - 1 : y;
-	i = (unsigned)x < FOOTPRINT_VIEWS - 1 ? (unsigned)x : FOOTPRINT_VIEWS - 2;
-	j = (unsigned)y < FOOTPRINT_ROUGHNESSES - 1 ? (unsigned)y : FOOTPRINT_ROUGHNESSES - 2;
-	fx = x - i;
-	fy = y - j;
+	table_cell(theta_v, pr, &i, &j, &fx, &fy);
 	for (k = 0; k < 4; k++)
 		e[k] = (1.0 - fx) * ((1.0 - fy) * footprint_table[i][j][k] +
 		                     fy * footprint_table[i][j + 1][k]) +
 		       fx * ((1.0 - fy) * footprint_table[i + 1][j][k] +
 		             fy * footprint_table[i + 1][j + 1][k]);
+}
+
+/* The box path's table at view angle theta_v and roughness pr, for n
+ * taps, bilinearly: each share's median in-plane angle from the normal,
+ * and its half-widths in-plane and across (footprint-gen.c). */
+static void
+shares_at(double theta_v, double pr, unsigned n, double sh[TAPS_MAX][3])
+{
+	double fx, fy;
+	unsigned i, j, t, k, first = footprint_first_share(n);
+
+	table_cell(theta_v, pr, &i, &j, &fx, &fy);
+	for (t = 0; t < n; t++)
+		for (k = 0; k < 3; k++)
+			sh[t][k] = (1.0 - fx) * ((1.0 - fy) * footprint_shares[i][j][first + t][k] +
+			                         fy * footprint_shares[i][j + 1][first + t][k]) +
+			           fx * ((1.0 - fy) * footprint_shares[i + 1][j][first + t][k] +
+			                 fy * footprint_shares[i + 1][j + 1][first + t][k]);
 }
 
 /* The direction at in-plane angle a from d (toward par) and across
@@ -433,6 +500,187 @@ share_kernel(const float tap[3], const float *dirs, const float *look, const dou
 	return w;
 }
 
+/* A share's stencil (ra, rb, 3 each) about its median at in-plane
+ * angle a: half its in-plane width wa either way, and its width across
+ * wb to one side (the other side is the mirror image in the lobe). */
+static void
+share_stencil(double a, double wa, double wb, float *ra, float *rb)
+{
+	ra[0] = (float)(a + wa);
+	ra[1] = (float)(a - wa);
+	ra[2] = (float)a;
+	rb[0] = rb[1] = 0.0f;
+	rb[2] = (float)wb;
+}
+
+static inline double
+chord(const float a[3], const float b[3])
+{
+	double d[3] = { (double)a[0] - b[0], (double)a[1] - b[1], (double)a[2] - b[2] };
+
+	return sqrt(dot(d, d));
+}
+
+/* How round the lobe looks from C, as a weight: 1 where its extents
+ * in-plane and across stand as they do for a lobe seen head on (the
+ * prefilter's kernel), where one kernel about its centre reads it best,
+ * down to 0 at SHARES_ROUND of that.  The n taps and their stencils at P
+ * (tdir) and at C (tlook), as shade_shares() lays them out; sh their
+ * table rows.  Where it is not 0, centre gets the lobe's centre at C and
+ * w the whole lobe's kernel there: its own width (lobe_at()) times how
+ * much the box grows it. */
+static double
+shares_roundness(unsigned n, const float *tdir, const float *tlook, const double below[3],
+                 double theta_v, double pr, const double sh[TAPS_MAX][3], double centre[3],
+                 double *w)
+{
+	double at_p[2], at_c[2] = { 0.0, 0.0 }, head[TAPS_MAX][3], e[4];
+	double across_p = 0.0, across_head = 0.0, q, rho;
+	unsigned i, k;
+
+	at_p[1] = 0.0;
+	for (i = 0; i < n; i++) {
+		const float *side = tdir + 3 * (n + STENCIL * i + 2);
+
+		if (!above(side, below))
+			return 0.0;
+		at_p[1] += chord(side, tdir + 3 * i);
+		at_c[1] += chord(tlook + 3 * (n + STENCIL * i + 2), tlook + 3 * i);
+	}
+	at_p[0] = chord(tdir, tdir + 3 * (n - 1));
+	at_c[0] = chord(tlook, tlook + 3 * (n - 1));
+	shares_at(0.0, pr, n, head);
+	for (i = 0; i < n; i++) {
+		across_p += sh[i][2];
+		across_head += head[i][2];
+	}
+	/* C's ratio against P's (the box's doing), times the lobe's own
+	 * against a head-on lobe's */
+	q = at_c[0] * at_p[1] * (sh[n - 1][0] - sh[0][0]) * across_head /
+	    (at_c[1] * at_p[0] * (head[n - 1][0] - head[0][0]) * across_p);
+	if (!(q > 0.0) || !(q < INFINITY))
+		return 0.0;
+	q = q < 1.0 ? q : 1.0 / q;
+	rho = (q - SHARES_ROUND) / (1.0 - SHARES_ROUND);
+	if (!(rho > 0.0))
+		return 0.0;
+	centre[0] = centre[1] = centre[2] = 0.0;
+	for (i = 0; i < n; i++)
+		for (k = 0; k < 3; k++)
+			centre[k] += tlook[3 * i + k];
+	if (unit(centre) < 0)
+		return 0.0;
+	lobe_at(theta_v, pr, e);
+	*w = sqrt(at_c[0] * at_c[1] / (at_p[0] * at_p[1]) * 0.5 * (e[1] + e[2]) * e[3]);
+	return rho < 1.0 ? rho : 1.0;
+}
+
+/* place=shares, through the box: the lobe cut into n shares of equal
+ * weight by in-plane angle (footprint_shares), each read at its median,
+ * box-projected from P, with the kernel its stencil measures at C; the
+ * taps weigh alike.  The pixel's taps as shade_pixel() gives them, or
+ * -1 where P is outside the box or no share is above the surface (the
+ * rest of shade_pixel() reads those). */
+static int
+shade_shares(const struct footprint *fp, const float pf[3], const double n[3],
+             const double x[3], const double y[3], const double below[3], double theta_v,
+             double pr, float *sx, float *sy, float *sz, float *sl, float *sw)
+{
+	const struct rf_host *host = fp->host;
+	unsigned ntap = fp->taps, i, k, kept = 0, src[TAPS_MAX];
+	double sh[TAPS_MAX][3], par[3], factor, rho = 0.0, centre[3], whole = 0.0;
+	float ia16[2 * 8] = { 0 }, ib16[2 * 8] = { 0 }, dir16[3 * 2 * 8], nf[3], parf[3], yf[3];
+	float tdir[3 * TAPS_MAX * (1 + STENCIL)], tlook[3 * TAPS_MAX * (1 + STENCIL)],
+	      tdist[TAPS_MAX * (1 + STENCIL)], tjac[TAPS_MAX * (1 + STENCIL)];
+	double lobe[TAPS_MAX][3]; /* the whole lobe as one share: its median */
+	int lobe_above = -1; /* whether the lobe's median is: not yet known */
+
+	shares_at(theta_v, pr, ntap, sh);
+	for (k = 0; k < 3; k++) {
+		par[k] = -x[k];
+		nf[k] = (float)n[k];
+		parf[k] = (float)par[k];
+		yf[k] = (float)y[k];
+	}
+	for (i = 0; i < ntap; i++) {
+		ia16[i] = (float)sh[i][0];
+		share_stencil(sh[i][0], sh[i][1], sh[i][2], ia16 + TAPS_MAX + STENCIL * i,
+		              ib16 + TAPS_MAX + STENCIL * i);
+	}
+	fp->lanes->taps(ia16, ib16, nf, parf, yf, dir16);
+	fp->lanes->taps(ia16 + 8, ib16 + 8, nf, parf, yf, dir16 + 24);
+	for (i = 0; i < ntap; i++) {
+		memcpy(tdir + 3 * kept, dir16 + 3 * i, 3 * sizeof(float));
+		if (!above(tdir + 3 * kept, below)) {
+			/* below the geometric surface (N leans away from Ng): the
+			 * tap slides toward the lobe's median until it is just
+			 * above, its stencil with it, as on the axis path; where
+			 * the median is below too, the share gives no light */
+			double f = 0.5, step = 0.25, a;
+			float ra[STENCIL], rb[STENCIL];
+			unsigned it;
+
+			if (lobe_above < 0) {
+				shares_at(theta_v, pr, 1, lobe);
+				lobe_direction(n, par, y, lobe[0][0], 0.0, tdir + 3 * kept);
+				lobe_above = above(tdir + 3 * kept, below);
+			}
+			if (!lobe_above)
+				continue;
+			for (it = 0; it < 12; it++, step *= 0.5) {
+				lobe_direction(n, par, y, lobe[0][0] + f * (sh[i][0] - lobe[0][0]), 0.0,
+				               tdir + 3 * kept);
+				f += above(tdir + 3 * kept, below) ? step : -step;
+			}
+			a = lobe[0][0] + (f - 2.0 * step) * (sh[i][0] - lobe[0][0]);
+			lobe_direction(n, par, y, a, 0.0, tdir + 3 * kept);
+			if (!above(tdir + 3 * kept, below))
+				continue;
+			share_stencil(a, sh[i][1], sh[i][2], ra, rb);
+			for (k = 0; k < STENCIL; k++)
+				lobe_direction(n, par, y, ra[k], rb[k],
+				               dir16 + 3 * (TAPS_MAX + STENCIL * i + k));
+		}
+		src[kept++] = i;
+	}
+	if (!kept)
+		return -1;
+	for (i = 0; i < kept; i++)
+		memcpy(tdir + 3 * (kept + STENCIL * i), dir16 + 3 * (TAPS_MAX + STENCIL * src[i]),
+		       3 * STENCIL * sizeof(float));
+	host->project_rays(host->ctx, kept * (1 + STENCIL), pf, tdir, tlook, tdist, tjac);
+	if (!(tdist[0] < INFINITY))
+		return -1;
+	if (kept == ntap && ntap > 1)
+		rho = shares_roundness(ntap, tdir, tlook, below, theta_v, pr, sh, centre, &whole);
+	factor = SHARES_KERNEL * (1.0 + SHARES_KERNEL_SLOPE * (pr - SHARE_KERNEL_AT));
+	for (i = 0; i < kept; i++) {
+		const double *share = sh[src[i]];
+		double w = share_kernel(tlook + 3 * i, tdir + 3 * (kept + STENCIL * i),
+		                        tlook + 3 * (kept + STENCIL * i), below,
+		                        factor * sqrt(share[1] * share[2]), factor);
+
+		if (rho > 0.0) {
+			/* toward one kernel about the centre, as the lobe
+			 * gets round */
+			double l[3];
+
+			for (k = 0; k < 3; k++)
+				l[k] = centre[k] + (1.0 - rho) * (tlook[3 * i + k] - centre[k]);
+			unit(l);
+			for (k = 0; k < 3; k++)
+				tlook[3 * i + k] = (float)l[k];
+			w = (1.0 - rho) * w + rho * whole;
+		}
+		sx[i] = tlook[3 * i];
+		sy[i] = tlook[3 * i + 1];
+		sz[i] = tlook[3 * i + 2];
+		sl[i] = host->roughness_to_lod(host->ctx, (float)footprint_kernel_roughness(w));
+		sw[i] = 1.0f;
+	}
+	return (int)kept;
+}
+
 /* The pixel's taps, appended to sx, sy, sz (directions), sl (lods) and
  * sw (weights); their number (0: black). */
 static unsigned
@@ -480,6 +728,13 @@ shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, f
 		unit(x);
 	}
 	cross(n, x, y);
+	if (!fp->axis && !fp->round && host->project_rays && host->probe &&
+	    host->probe->box_projection) {
+		int got = shade_shares(fp, pf, n, x, y, below, theta_v, pr, sx, sy, sz, sl, sw);
+
+		if (got >= 0)
+			return (unsigned)got;
+	}
 	/* Where the rays keep their directions (no box: infinite projection,
 	 * box projection off) the lobe is read as it is, about its own
 	 * median; bend= is for the box (see the page). */
@@ -800,6 +1055,7 @@ create(const struct rf_host *host, const double *values, void **state, char *err
 	fp->host = host;
 	fp->taps = (unsigned)values[TAPS];
 	fp->round = values[LOBE] == LOBE_ROUND;
+	fp->axis = values[PLACE] == PLACE_AXIS;
 	fp->bend = values[BEND];
 	fp->inner = (float)values[INNER];
 	fp->lanes = &lanes_4;
