@@ -446,6 +446,30 @@ above(const float l[3], const double below[3])
 	return l[0] * below[0] + l[1] * below[1] + l[2] * below[2] > HORIZON;
 }
 
+/* A tap at angles (a1, b1) from d that is below the surface, slid back
+ * toward (a0, b0), which is above, until it is just above (halving
+ * steps), so that the picture stays continuous where a tap would cross
+ * the horizon: its angles in *a, *b and its direction in out; 0 where
+ * even that is below. */
+static int
+slide_above(const double d[3], const double par[3], const double across[3], double a0,
+            double b0, double a1, double b1, const double below[3], double *a, double *b,
+            float out[3])
+{
+	double f = 0.5, step = 0.25;
+	unsigned it;
+
+	for (it = 0; it < 12; it++, step *= 0.5) {
+		lobe_direction(d, par, across, a0 + f * (a1 - a0), b0 + f * (b1 - b0), out);
+		f += above(out, below) ? step : -step;
+	}
+	f -= 2.0 * step;
+	*a = a0 + f * (a1 - a0);
+	*b = b0 + f * (b1 - b0);
+	lobe_direction(d, par, across, *a, *b, out);
+	return above(out, below);
+}
+
 /* The stencil of a tap at angles (a, b) from d, as angles (ra, rb, 3
  * each): its share, half of it either way along the long axis (cos phi,
  * sin phi in width units; half widths, in-plane by the width of the
@@ -613,28 +637,19 @@ shade_shares(const struct footprint *fp, const float pf[3], const double n[3],
 		memcpy(tdir + 3 * kept, dir16 + 3 * i, 3 * sizeof(float));
 		if (!above(tdir + 3 * kept, below)) {
 			/* below the geometric surface (N leans away from Ng): the
-			 * tap slides toward the lobe's median until it is just
-			 * above, its stencil with it, as on the axis path; where
-			 * the median is below too, the share gives no light */
-			double f = 0.5, step = 0.25, a;
+			 * tap slides toward the lobe's median, its stencil with
+			 * it, as on the axis path; where the median is below too,
+			 * the share gives no light */
+			double a, b;
 			float ra[STENCIL], rb[STENCIL];
-			unsigned it;
 
 			if (lobe_above < 0) {
 				shares_at(theta_v, pr, 1, lobe);
 				lobe_direction(n, par, y, lobe[0][0], 0.0, tdir + 3 * kept);
 				lobe_above = above(tdir + 3 * kept, below);
 			}
-			if (!lobe_above)
-				continue;
-			for (it = 0; it < 12; it++, step *= 0.5) {
-				lobe_direction(n, par, y, lobe[0][0] + f * (sh[i][0] - lobe[0][0]), 0.0,
-				               tdir + 3 * kept);
-				f += above(tdir + 3 * kept, below) ? step : -step;
-			}
-			a = lobe[0][0] + (f - 2.0 * step) * (sh[i][0] - lobe[0][0]);
-			lobe_direction(n, par, y, a, 0.0, tdir + 3 * kept);
-			if (!above(tdir + 3 * kept, below))
+			if (!lobe_above || !slide_above(n, par, y, lobe[0][0], 0.0, sh[i][0], 0.0, below,
+			                                &a, &b, tdir + 3 * kept))
 				continue;
 			share_stencil(a, sh[i][1], sh[i][2], ra, rb);
 			for (k = 0; k < STENCIL; k++)
@@ -714,7 +729,6 @@ shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, f
 	mu = mu < 1.0 ? mu : 1.0;
 	sv = sqrt((1.0 - mu) * (1.0 + mu)); /* sin theta_v */
 	theta_v = fp_atan2(sv, mu);
-	lobe_at(fp->round ? 0.0 : theta_v, pr, e);
 	/* The incidence plane: x toward V along the surface, y across. */
 	for (k = 0; k < 3; k++)
 		x[k] = v[k] - mu * n[k];
@@ -735,6 +749,7 @@ shade_pixel(const struct footprint *fp, const float *in, float *sx, float *sy, f
 		if (got >= 0)
 			return (unsigned)got;
 	}
+	lobe_at(fp->round ? 0.0 : theta_v, pr, e);
 	/* Where the rays keep their directions (no box: infinite projection,
 	 * box projection off) the lobe is read as it is, about its own
 	 * median; bend= is for the box (see the page). */
@@ -916,23 +931,12 @@ cast:
 			if (!above(tdir + 3 * kept, below)) {
 				/* The t-shaped tail reaches past the horizon, which
 				 * the measured lobe never does: the tap slides back
-				 * toward the centre until it is just above (halving
-				 * steps), so the picture stays continuous where a
-				 * tap would cross it; its stencil goes with it. */
-				double f = 0.5, step = 0.25;
+				 * toward the centre; its stencil goes with it. */
 				float ra[STENCIL], rb[STENCIL];
-				unsigned it;
 
-				if (!centre_above)
-					continue;
-				for (it = 0; it < 12; it++, step *= 0.5) {
-					lobe_direction(d, par, y, f * ia, f * ib, tdir + 3 * kept);
-					f += above(tdir + 3 * kept, below) ? step : -step;
-				}
-				ia *= f - 2.0 * step;
-				ib *= f - 2.0 * step;
-				lobe_direction(d, par, y, ia, ib, tdir + 3 * kept);
-				if (!above(tdir + 3 * kept, below))
+				if (!centre_above ||
+				    !slide_above(d, par, y, 0.0, 0.0, tia[i], tib[i], below, &ia, &ib,
+				                 tdir + 3 * kept))
 					continue;
 				if (own) {
 					stencil_angles(ia, ib, share_half(i, ntap), e, ca, sa, ra, rb);
